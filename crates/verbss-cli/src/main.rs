@@ -1,0 +1,3 @@
+//! The `verbss` command-line tool.
+
+fn main() {}

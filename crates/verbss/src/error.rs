@@ -1,0 +1,62 @@
+//! The library's error type: every failure names the file, the line (or byte
+//! offset) and what was expected.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong in verbss.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The operating system refused to open, read or write a file.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What the operating system said.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A text file does not hold what its format requires at a line.
+    #[error("{}:{line}: {message}", path.display())]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// What was found and what was expected.
+        message: String,
+    },
+    /// A binary file (or binary section) is malformed at a byte offset.
+    #[error("{}: byte {offset}: {message}", path.display())]
+    Binary {
+        /// The file.
+        path: PathBuf,
+        /// 0-based byte offset from the start of the file.
+        offset: u64,
+        /// What was found and what was expected.
+        message: String,
+    },
+    /// The file's extension does not name a format verbss knows.
+    #[error("{}: unknown mesh format (expected .msh, .su2 or .vtu)", path.display())]
+    UnknownFormat {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A mesh that was read is not usable (a structural problem not tied to one line).
+    #[error("invalid mesh: {0}")]
+    InvalidMesh(String),
+    /// A setting or an argument is out of range.
+    #[error("invalid setting: {0}")]
+    InvalidSetting(String),
+    /// A named boundary group does not exist.
+    #[error("unknown group '{name}' (the mesh has: {available})")]
+    UnknownGroup {
+        /// The name asked for.
+        name: String,
+        /// The groups that exist, comma separated.
+        available: String,
+    },
+}
+
+/// Result with the library's [`Error`].
+pub type Result<T> = std::result::Result<T, Error>;

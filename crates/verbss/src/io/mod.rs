@@ -1,0 +1,133 @@
+//! Mesh files in and out: Gmsh MSH 2.2/4.1, SU2, VTK XML (`.vtu`, `.pvd`).
+//!
+//! [`read`] and [`write`] choose the format by extension.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+
+pub mod gmsh;
+pub mod su2;
+pub mod vtu;
+
+/// Options for [`write`].
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct WriteOptions {
+    /// Gmsh file-format version: `2.2` or `4.1`.
+    pub msh_version: MshVersion,
+    /// Binary encoding where the format offers one (Gmsh).
+    pub binary: bool,
+}
+
+/// Gmsh MSH file-format version.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MshVersion {
+    /// MSH 2.2.
+    V22,
+    /// MSH 4.1.
+    #[default]
+    V41,
+}
+
+impl Default for WriteOptions {
+    fn default() -> Self {
+        WriteOptions {
+            msh_version: MshVersion::V41,
+            binary: false,
+        }
+    }
+}
+
+/// A mesh file format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// Gmsh `.msh`.
+    Msh,
+    /// SU2 `.su2`.
+    Su2,
+    /// VTK XML unstructured grid `.vtu`.
+    Vtu,
+}
+
+impl Format {
+    /// The format named by a path's extension.
+    pub fn from_path(path: &Path) -> Result<Format> {
+        match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .as_deref()
+        {
+            Some("msh") => Ok(Format::Msh),
+            Some("su2") => Ok(Format::Su2),
+            Some("vtu") => Ok(Format::Vtu),
+            _ => Err(Error::UnknownFormat {
+                path: path.to_path_buf(),
+            }),
+        }
+    }
+}
+
+/// Reads a mesh, choosing the format by extension.
+pub fn read(path: &Path) -> Result<Mesh> {
+    let format = Format::from_path(path)?;
+    let bytes = std::fs::read(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    match format {
+        Format::Msh => gmsh::parse(&bytes, path),
+        Format::Su2 => su2::parse(&bytes, path),
+        Format::Vtu => vtu::parse(&bytes, path).map(|v| v.mesh),
+    }
+}
+
+/// Writes a mesh, choosing the format by extension (atomically, see [`write_atomic`]).
+pub fn write(path: &Path, mesh: &Mesh, options: &WriteOptions) -> Result<()> {
+    let format = Format::from_path(path)?;
+    write_atomic(path, |w| match format {
+        Format::Msh => gmsh::write_to(w, mesh, options.msh_version, options.binary),
+        Format::Su2 => su2::write_to(w, mesh),
+        Format::Vtu => vtu::write_to(w, mesh, &vtu::Fields::default()),
+    })
+}
+
+/// Writes a file through `fill` so that it is never left half-written: the
+/// bytes go to a temporary file beside `path`, which is renamed over `path`
+/// only once everything was written and flushed. On failure the temporary
+/// file is removed and `path` is untouched.
+pub fn write_atomic(
+    path: &Path,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<()> {
+    let io_err = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let result = (|| {
+        let file = File::create(&tmp)?;
+        let mut w = BufWriter::new(file);
+        fill(&mut w)?;
+        let file = w.into_inner().map_err(|e| e.into_error())?;
+        file.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(io_err(e));
+    }
+    Ok(())
+}

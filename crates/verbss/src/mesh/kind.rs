@@ -1,0 +1,173 @@
+//! Element kinds and their reference tables (node count, edges, facets, corners).
+//!
+//! Node numbering follows Gmsh, VTK and SU2, which agree for all linear kinds.
+//! Every node list is kept exactly as the file stored it; orientation (which
+//! way round a cell is numbered) is measured, never assumed: see
+//! [`crate::quality`].
+
+use super::kinds;
+
+/// The kind of a cell: volume elements and the boundary facets of groups.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum CellKind {
+    /// A single node (Gmsh physical points).
+    Vertex,
+    /// 2-node segment: a 2D boundary facet.
+    Line,
+    /// 3-node triangle.
+    Triangle,
+    /// 4-node quadrilateral.
+    Quad,
+    /// 4-node tetrahedron.
+    Tetra,
+    /// 8-node hexahedron.
+    Hexahedron,
+    /// 6-node prism (wedge).
+    Wedge,
+    /// 5-node pyramid.
+    Pyramid,
+}
+
+/// The reference table of one element kind.
+#[derive(Debug)]
+pub struct KindTable {
+    /// The name meshio uses for the kind.
+    pub name: &'static str,
+    /// Topological dimension (0 to 3).
+    pub dim: usize,
+    /// Number of nodes.
+    pub nodes: usize,
+    /// Element edges as pairs of local node indices (never diagonals).
+    pub edges: &'static [[usize; 2]],
+    /// Facets (edges in 2D, faces in 3D) as local node lists, numbered so that
+    /// for a positively oriented element their normal points outward.
+    pub facets: &'static [&'static [usize]],
+    /// Corners: local node `c[0]` followed by its `dim` neighbours, numbered so
+    /// that the corner Jacobian `det(x[c1]-x[c0], …)` is positive for a
+    /// positively oriented element.
+    pub corners: &'static [[usize; 4]],
+}
+
+impl CellKind {
+    /// All kinds, in declaration order.
+    pub const ALL: [CellKind; 8] = [
+        CellKind::Vertex,
+        CellKind::Line,
+        CellKind::Triangle,
+        CellKind::Quad,
+        CellKind::Tetra,
+        CellKind::Hexahedron,
+        CellKind::Wedge,
+        CellKind::Pyramid,
+    ];
+
+    /// The kind's reference table.
+    pub fn table(self) -> &'static KindTable {
+        match self {
+            CellKind::Vertex => &kinds::vertex::TABLE,
+            CellKind::Line => &kinds::line::TABLE,
+            CellKind::Triangle => &kinds::triangle::TABLE,
+            CellKind::Quad => &kinds::quad::TABLE,
+            CellKind::Tetra => &kinds::tetra::TABLE,
+            CellKind::Hexahedron => &kinds::hexahedron::TABLE,
+            CellKind::Wedge => &kinds::wedge::TABLE,
+            CellKind::Pyramid => &kinds::pyramid::TABLE,
+        }
+    }
+
+    /// The name meshio uses (`"triangle"`, `"tetra"`, `"wedge"`, …).
+    pub fn name(self) -> &'static str {
+        self.table().name
+    }
+
+    /// Number of nodes of the kind.
+    pub fn node_count(self) -> usize {
+        self.table().nodes
+    }
+
+    /// Topological dimension of the kind.
+    pub fn dim(self) -> usize {
+        self.table().dim
+    }
+
+    /// The kind with a given meshio name.
+    pub fn from_name(name: &str) -> Option<CellKind> {
+        CellKind::ALL.into_iter().find(|k| k.name() == name)
+    }
+
+    /// The kind of a facet with `n` nodes (2: line, 3: triangle, 4: quad).
+    pub fn facet_kind(n: usize) -> CellKind {
+        match n {
+            1 => CellKind::Vertex,
+            2 => CellKind::Line,
+            3 => CellKind::Triangle,
+            _ => CellKind::Quad,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tables_are_consistent() {
+        for kind in CellKind::ALL {
+            let t = kind.table();
+            assert_eq!(kind.dim(), t.dim);
+            for e in t.edges {
+                assert!(e[0] < t.nodes && e[1] < t.nodes && e[0] != e[1], "{kind:?}");
+            }
+            for f in t.facets {
+                assert!(f.iter().all(|&n| n < t.nodes), "{kind:?}");
+            }
+            for c in t.corners {
+                assert!(c[..=t.dim].iter().all(|&n| n < t.nodes), "{kind:?}");
+            }
+            assert_eq!(CellKind::from_name(t.name), Some(kind));
+        }
+    }
+
+    #[test]
+    fn every_edge_lies_on_a_facet_and_facets_close() {
+        // Each facet edge of a 3D element is shared by exactly two facets.
+        for kind in [
+            CellKind::Tetra,
+            CellKind::Hexahedron,
+            CellKind::Wedge,
+            CellKind::Pyramid,
+        ] {
+            let t = kind.table();
+            for e in t.edges {
+                let mut uses = 0;
+                for f in t.facets {
+                    for k in 0..f.len() {
+                        let (a, b) = (f[k], f[(k + 1) % f.len()]);
+                        if (a, b) == (e[0], e[1]) || (b, a) == (e[0], e[1]) {
+                            uses += 1;
+                        }
+                    }
+                }
+                assert_eq!(uses, 2, "{kind:?} edge {e:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn facets_not_touching_a_node_match_design() {
+        let count = |kind: CellKind, node: usize| {
+            kind.table()
+                .facets
+                .iter()
+                .filter(|f| !f.contains(&node))
+                .count()
+        };
+        assert_eq!(count(CellKind::Triangle, 0), 1);
+        assert_eq!(count(CellKind::Quad, 0), 2);
+        assert_eq!(count(CellKind::Tetra, 0), 1);
+        assert_eq!(count(CellKind::Hexahedron, 0), 3);
+        assert_eq!(count(CellKind::Wedge, 0), 2);
+        assert_eq!(count(CellKind::Pyramid, 4), 1);
+        assert_eq!(count(CellKind::Pyramid, 0), 2);
+    }
+}

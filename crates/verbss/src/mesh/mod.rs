@@ -1,0 +1,281 @@
+//! The mesh model: flat coordinates, cells as kind + offsets + node indices,
+//! named boundary groups with their facets.
+
+mod kind;
+pub mod kinds;
+
+pub use kind::{CellKind, KindTable};
+
+use crate::error::{Error, Result};
+
+/// A list of cells of mixed kinds in compressed form: cell `c` has kind
+/// `kinds[c]` and nodes `nodes[offsets[c]..offsets[c + 1]]` (0-based node indices).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Cells {
+    /// Kind of each cell.
+    pub kinds: Vec<CellKind>,
+    /// Start of each cell's node list in `nodes`, plus the end: `len() + 1` entries.
+    pub offsets: Vec<usize>,
+    /// Node indices of all cells, concatenated.
+    pub nodes: Vec<usize>,
+}
+
+impl Cells {
+    /// An empty list.
+    pub fn new() -> Self {
+        Cells {
+            kinds: Vec::new(),
+            offsets: vec![0],
+            nodes: Vec::new(),
+        }
+    }
+
+    /// Appends one cell.
+    pub fn push(&mut self, kind: CellKind, nodes: &[usize]) {
+        debug_assert_eq!(nodes.len(), kind.node_count());
+        self.kinds.push(kind);
+        self.nodes.extend_from_slice(nodes);
+        self.offsets.push(self.nodes.len());
+    }
+
+    /// Number of cells.
+    pub fn len(&self) -> usize {
+        self.kinds.len()
+    }
+
+    /// Whether there is no cell.
+    pub fn is_empty(&self) -> bool {
+        self.kinds.is_empty()
+    }
+
+    /// The nodes of cell `c`.
+    pub fn cell(&self, c: usize) -> &[usize] {
+        &self.nodes[self.offsets[c]..self.offsets[c + 1]]
+    }
+
+    /// Iterates over `(kind, nodes)` of every cell.
+    pub fn iter(&self) -> impl Iterator<Item = (CellKind, &[usize])> + '_ {
+        (0..self.len()).map(move |c| (self.kinds[c], self.cell(c)))
+    }
+}
+
+/// A named boundary group (a Gmsh physical group, an SU2 marker): its facets.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Group {
+    /// The group's name.
+    pub name: String,
+    /// The physical tag the file gave it, if any (Gmsh).
+    pub tag: Option<i32>,
+    /// The group's facets (lines in 2D, triangles/quads in 3D, or single vertices).
+    pub facets: Cells,
+}
+
+impl Group {
+    /// The distinct nodes of the group, sorted.
+    pub fn nodes(&self) -> Vec<usize> {
+        let mut nodes = self.facets.nodes.clone();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+}
+
+/// An unstructured 2D or 3D hybrid mesh.
+///
+/// Node `i` has coordinates `coords[D*i..D*i+D]`. Node and cell order are the
+/// file's order; `node_tags`/`cell_tags` keep the file's own numbers (Gmsh tags,
+/// SU2 indices + 1) so that a mesh is written back with the numbering it was read with.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mesh {
+    /// Spatial dimension, 2 or 3.
+    pub dim: usize,
+    /// Node coordinates, `dim` numbers per node.
+    pub coords: Vec<f64>,
+    /// The file's number of each node (≥ 1).
+    pub node_tags: Vec<u64>,
+    /// The volume cells (cells of dimension `dim`).
+    pub cells: Cells,
+    /// The file's number of each cell (≥ 1).
+    pub cell_tags: Vec<u64>,
+    /// Named boundary groups.
+    pub groups: Vec<Group>,
+}
+
+impl Mesh {
+    /// A mesh with tags `1..=n` for nodes and cells, checked with [`Mesh::validate`].
+    pub fn new(dim: usize, coords: Vec<f64>, cells: Cells, groups: Vec<Group>) -> Result<Mesh> {
+        let n = if dim == 0 { 0 } else { coords.len() / dim };
+        let mesh = Mesh {
+            dim,
+            node_tags: (1..=n as u64).collect(),
+            cell_tags: (1..=cells.len() as u64).collect(),
+            coords,
+            cells,
+            groups,
+        };
+        mesh.validate()?;
+        Ok(mesh)
+    }
+
+    /// Number of nodes.
+    pub fn node_count(&self) -> usize {
+        self.coords.len() / self.dim
+    }
+
+    /// Number of volume cells.
+    pub fn cell_count(&self) -> usize {
+        self.cells.len()
+    }
+
+    /// Coordinates of node `i`.
+    pub fn point(&self, i: usize) -> &[f64] {
+        &self.coords[self.dim * i..self.dim * (i + 1)]
+    }
+
+    /// The group called `name`, or an error listing the groups that exist.
+    pub fn group(&self, name: &str) -> Result<&Group> {
+        self.groups
+            .iter()
+            .find(|g| g.name == name)
+            .ok_or_else(|| Error::UnknownGroup {
+                name: name.to_string(),
+                available: self.group_names().join(", "),
+            })
+    }
+
+    /// Names of all groups, in file order.
+    pub fn group_names(&self) -> Vec<String> {
+        self.groups.iter().map(|g| g.name.clone()).collect()
+    }
+
+    /// Checks the structural invariants: dimension 2 or 3, finite coordinates,
+    /// tags as many as nodes/cells, cells of dimension `dim` with the right node
+    /// count, facets of lower dimension, every node index in range.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |m: String| Err(Error::InvalidMesh(m));
+        if self.dim != 2 && self.dim != 3 {
+            return bad(format!("dimension {} (expected 2 or 3)", self.dim));
+        }
+        if self.coords.len() % self.dim != 0 {
+            return bad(format!(
+                "{} coordinates is not a multiple of the dimension {}",
+                self.coords.len(),
+                self.dim
+            ));
+        }
+        let n = self.node_count();
+        if let Some(i) = self.coords.iter().position(|x| !x.is_finite()) {
+            return bad(format!("node {} has a non-finite coordinate", i / self.dim));
+        }
+        if self.node_tags.len() != n {
+            return bad(format!(
+                "{} node tags for {} nodes",
+                self.node_tags.len(),
+                n
+            ));
+        }
+        if self.cell_tags.len() != self.cells.len() {
+            return bad(format!(
+                "{} cell tags for {} cells",
+                self.cell_tags.len(),
+                self.cells.len()
+            ));
+        }
+        check_cells(&self.cells, n, "cell", |k| k.dim() == self.dim)?;
+        for g in &self.groups {
+            check_cells(&g.facets, n, &format!("group '{}' facet", g.name), |k| {
+                k.dim() < self.dim
+            })?;
+        }
+        Ok(())
+    }
+}
+
+fn check_cells(
+    cells: &Cells,
+    n: usize,
+    what: &str,
+    kind_ok: impl Fn(CellKind) -> bool,
+) -> Result<()> {
+    if cells.offsets.len() != cells.len() + 1 || cells.offsets.last() != Some(&cells.nodes.len()) {
+        return Err(Error::InvalidMesh(format!(
+            "{what} offsets are inconsistent"
+        )));
+    }
+    for (c, (kind, nodes)) in cells.iter().enumerate() {
+        if !kind_ok(kind) {
+            return Err(Error::InvalidMesh(format!(
+                "{what} {c} is a {} of the wrong dimension",
+                kind.name()
+            )));
+        }
+        if nodes.len() != kind.node_count() {
+            return Err(Error::InvalidMesh(format!(
+                "{what} {c} ({}) has {} nodes (expected {})",
+                kind.name(),
+                nodes.len(),
+                kind.node_count()
+            )));
+        }
+        if let Some(&bad) = nodes.iter().find(|&&i| i >= n) {
+            return Err(Error::InvalidMesh(format!(
+                "{what} {c} uses node {bad} but the mesh has {n} nodes"
+            )));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square() -> Mesh {
+        let mut cells = Cells::new();
+        cells.push(CellKind::Triangle, &[0, 1, 2]);
+        cells.push(CellKind::Triangle, &[0, 2, 3]);
+        let mut facets = Cells::new();
+        facets.push(CellKind::Line, &[0, 1]);
+        let g = Group {
+            name: "bottom".into(),
+            tag: None,
+            facets,
+        };
+        Mesh::new(2, vec![0., 0., 1., 0., 1., 1., 0., 1.], cells, vec![g]).unwrap()
+    }
+
+    #[test]
+    fn builds_and_counts() {
+        let m = square();
+        assert_eq!(m.node_count(), 4);
+        assert_eq!(m.cell_count(), 2);
+        assert_eq!(m.point(2), &[1.0, 1.0]);
+        assert_eq!(m.group("bottom").unwrap().nodes(), vec![0, 1]);
+    }
+
+    #[test]
+    fn unknown_group_lists_the_groups() {
+        let e = square().group("wing").unwrap_err();
+        assert_eq!(e.to_string(), "unknown group 'wing' (the mesh has: bottom)");
+    }
+
+    #[test]
+    fn rejects_out_of_range_node() {
+        let mut m = square();
+        m.cells.nodes[5] = 9;
+        assert_eq!(
+            m.validate().unwrap_err().to_string(),
+            "invalid mesh: cell 1 uses node 9 but the mesh has 4 nodes"
+        );
+    }
+
+    #[test]
+    fn rejects_nan() {
+        let mut m = square();
+        m.coords[3] = f64::NAN;
+        assert_eq!(
+            m.validate().unwrap_err().to_string(),
+            "invalid mesh: node 1 has a non-finite coordinate"
+        );
+    }
+}

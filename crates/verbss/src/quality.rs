@@ -1,0 +1,1 @@
+//! Element quality, inversion check and the paper's histogram bins.
