@@ -21,3 +21,4 @@ pub mod topology;
 
 pub use error::{Error, Result};
 pub use mesh::{CellKind, Cells, Group, Mesh};
+pub mod solve;
