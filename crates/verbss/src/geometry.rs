@@ -63,6 +63,258 @@ pub fn corner_jacobian<const D: usize>(
     det::<D>(&e)
 }
 
+/// Number of stored entries of a packed symmetric `D×D` matrix: `D(D+1)/2`.
+#[inline]
+pub const fn packed_len(d: usize) -> usize {
+    d * (d + 1) / 2
+}
+
+/// Position of entry `(r, c)` in a packed symmetric matrix: the lower triangle
+/// row by row, `[a00, a10, a11]` in 2D, `[a00, a10, a11, a20, a21, a22]` in 3D.
+#[inline]
+pub const fn packed_index(r: usize, c: usize) -> usize {
+    if r >= c {
+        r * (r + 1) / 2 + c
+    } else {
+        c * (c + 1) / 2 + r
+    }
+}
+
+/// `a += s · n nᵀ` for a packed symmetric `a`.
+#[inline]
+pub fn add_outer<const D: usize>(a: &mut [f64], s: f64, n: &[f64; D]) {
+    for r in 0..D {
+        for c in 0..=r {
+            a[packed_index(r, c)] += s * n[r] * n[c];
+        }
+    }
+}
+
+/// `A x` for a packed symmetric `A`.
+#[inline]
+pub fn packed_mul<const D: usize>(a: &[f64], x: &[f64; D]) -> [f64; D] {
+    let a = &a[..packed_len(D)];
+    std::array::from_fn(|r| (0..D).map(|c| a[packed_index(r, c)] * x[c]).sum())
+}
+
+/// LDLᵀ factorisation of a symmetric positive definite packed matrix
+/// (the paper's appendix): `A = L D Lᵀ` with `L` unit lower triangular,
+/// `d_j = a_jj − Σ_{k<j} l_jk² d_k`, `l_ij = (a_ij − Σ_{k<j} l_ik l_jk d_k) / d_j`.
+///
+/// The factor is written in the packed layout of [`packed_index`]: `l_ij`
+/// below the diagonal, `1/d_j` on it. Returns `false` (and leaves `f`
+/// partly written) when a pivot is not positive: `d_j ≤ 64 ε a_jj`, i.e. the
+/// matrix is singular or indefinite to working precision.
+pub fn ldlt_factor<const D: usize>(a: &[f64], f: &mut [f64]) -> bool {
+    let mut d = [0.0; D];
+    for j in 0..D {
+        let ajj = a[packed_index(j, j)];
+        let dj = ajj
+            - (0..j)
+                .map(|k| f[packed_index(j, k)].powi(2) * d[k])
+                .sum::<f64>();
+        if !(dj.is_finite() && dj > 64.0 * f64::EPSILON * ajj.abs()) {
+            return false;
+        }
+        d[j] = dj;
+        f[packed_index(j, j)] = 1.0 / dj;
+        for i in j + 1..D {
+            let s: f64 = (0..j)
+                .map(|k| f[packed_index(i, k)] * f[packed_index(j, k)] * d[k])
+                .sum();
+            f[packed_index(i, j)] = (a[packed_index(i, j)] - s) / dj;
+        }
+    }
+    true
+}
+
+/// Solves `A x = b` with the packed LDLᵀ factor of [`ldlt_factor`]:
+/// `L y = b` forward, `z = D⁻¹ y`, `Lᵀ x = z` backward (paper eq. 13).
+#[inline]
+pub fn ldlt_solve<const D: usize>(f: &[f64], b: &[f64; D]) -> [f64; D] {
+    let f = &f[..packed_len(D)];
+    let mut x = *b;
+    for i in 0..D {
+        for k in 0..i {
+            x[i] -= f[packed_index(i, k)] * x[k];
+        }
+    }
+    for i in 0..D {
+        x[i] *= f[packed_index(i, i)];
+    }
+    for i in (0..D).rev() {
+        for k in i + 1..D {
+            x[i] -= f[packed_index(k, i)] * x[k];
+        }
+    }
+    x
+}
+
+/// The point of segment `[a, b]` nearest to `x` and its weights `(w_a, w_b)`:
+/// `t = (x−a)·(b−a)/|b−a|²` clamped to `[0, 1]`, `p = a + t (b−a)`, `w = (1−t, t)`.
+pub fn nearest_on_segment<const D: usize>(
+    x: &[f64; D],
+    a: &[f64; D],
+    b: &[f64; D],
+) -> ([f64; D], [f64; 2]) {
+    let ab = sub(b, a);
+    let len2 = dot(&ab, &ab);
+    let t = if len2 > 0.0 {
+        (dot(&sub(x, a), &ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (std::array::from_fn(|k| a[k] + t * ab[k]), [1.0 - t, t])
+}
+
+/// The point of triangle `abc` nearest to `x` and its barycentric weights
+/// (Ericson, *Real-Time Collision Detection*, §5.1.5): the orthogonal
+/// projection when it falls inside, otherwise the nearest point of the
+/// nearest edge or corner. A degenerate (zero-area) triangle whose nearest
+/// point is interior gives non-finite values.
+pub fn nearest_on_triangle<const D: usize>(
+    x: &[f64; D],
+    a: &[f64; D],
+    b: &[f64; D],
+    c: &[f64; D],
+) -> ([f64; D], [f64; 3]) {
+    let at = |wa: f64, wb: f64, wc: f64| {
+        (
+            std::array::from_fn(|k| wa * a[k] + wb * b[k] + wc * c[k]),
+            [wa, wb, wc],
+        )
+    };
+    let ab = sub(b, a);
+    let ac = sub(c, a);
+    let ax = sub(x, a);
+    let (d1, d2) = (dot(&ab, &ax), dot(&ac, &ax));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return at(1.0, 0.0, 0.0);
+    }
+    let bx = sub(x, b);
+    let (d3, d4) = (dot(&ab, &bx), dot(&ac, &bx));
+    if d3 >= 0.0 && d4 <= d3 {
+        return at(0.0, 1.0, 0.0);
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return at(1.0 - v, v, 0.0);
+    }
+    let cx = sub(x, c);
+    let (d5, d6) = (dot(&ab, &cx), dot(&ac, &cx));
+    if d6 >= 0.0 && d5 <= d6 {
+        return at(0.0, 0.0, 1.0);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return at(1.0 - w, 0.0, w);
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return at(0.0, 1.0 - w, w);
+    }
+    let denom = 1.0 / (va + vb + vc);
+    let (v, w) = (vb * denom, vc * denom);
+    at(1.0 - v - w, v, w)
+}
+
+/// The ball-vertex point of quadrilateral `q` (cyclic node order) for `x`,
+/// and its weights.
+///
+/// The face and `x` are projected onto the plane through the face's centroid
+/// whose normal is the cross product of the diagonals; `(s, t)` are the
+/// bilinear coordinates of `x`'s projection in that planar quad
+/// (`x = a + s e + t f + s t g` with `e = b−a`, `f = d−a`, `g = a−b+c−d`,
+/// solved in closed form: `t` from `k₂t² + k₁t + k₀ = 0`, the root whose
+/// `(s, t)` lies nearest to the unit square), clamped to `[0,1]²`;
+/// `p` is the planar quad's point at `(s, t)` and the weights are
+/// `((1−s)(1−t), s(1−t), st, (1−s)t)`. `None` when the diagonals are parallel
+/// (a degenerate face).
+pub fn nearest_on_quad(x: &[f64; 3], q: &[[f64; 3]; 4]) -> Option<([f64; 3], [f64; 4])> {
+    let normal = cross(&sub(&q[2], &q[0]), &sub(&q[3], &q[1]));
+    let len = norm(&normal);
+    if !(len > 0.0 && len.is_finite()) {
+        return None;
+    }
+    let n = normal.map(|v| v / len);
+    let centroid: [f64; 3] = std::array::from_fn(|k| q.iter().map(|v| v[k]).sum::<f64>() / 4.0);
+    let project = |v: &[f64; 3]| {
+        let h = dot(&n, &sub(v, &centroid));
+        std::array::from_fn::<f64, 3, _>(|k| v[k] - h * n[k])
+    };
+    let [a, b, c, d] = q.map(|v| project(&v));
+    let e = sub(&b, &a);
+    let f = sub(&d, &a);
+    let g: [f64; 3] = std::array::from_fn(|k| a[k] - b[k] + c[k] - d[k]);
+    let h = sub(&project(x), &a);
+    let cr = |u: &[f64; 3], v: &[f64; 3]| dot(&n, &cross(u, v));
+    let (k2, k1, k0) = (cr(&g, &f), cr(&e, &f) + cr(&h, &g), cr(&h, &e));
+    // Numerically stable roots of k2 t² + k1 t + k0 = 0 (a linear equation when k2 = 0).
+    let sq = (k1 * k1 - 4.0 * k0 * k2).max(0.0).sqrt();
+    let qq = -0.5 * (k1 + sq.copysign(k1));
+    let roots = [
+        if qq != 0.0 { k0 / qq } else { 0.0 },
+        if k2 != 0.0 { qq / k2 } else { f64::NAN },
+    ];
+    let st_of = |t: f64| {
+        let m: [f64; 3] = std::array::from_fn(|k| e[k] + t * g[k]);
+        let mm = dot(&m, &m);
+        let s = if mm > 0.0 {
+            dot(&sub(&h, &f.map(|v| v * t)), &m) / mm
+        } else {
+            0.0
+        };
+        (s, t)
+    };
+    let outside = |(s, t): (f64, f64)| {
+        let o = |v: f64| (-v).max(v - 1.0).max(0.0);
+        o(s).powi(2) + o(t).powi(2)
+    };
+    let mut best = st_of(roots[0]);
+    if roots[1].is_finite() {
+        let other = st_of(roots[1]);
+        if outside(other) < outside(best) || !outside(best).is_finite() {
+            best = other;
+        }
+    }
+    let (s, t) = (best.0.clamp(0.0, 1.0), best.1.clamp(0.0, 1.0));
+    let w = [(1.0 - s) * (1.0 - t), s * (1.0 - t), s * t, (1.0 - s) * t];
+    let p = std::array::from_fn(|k| w[0] * a[k] + w[1] * b[k] + w[2] * c[k] + w[3] * d[k]);
+    Some((p, w))
+}
+
+/// An orthonormal frame whose last row is the unit normal `n`: rows
+/// `t₁ … t_{D−1}, n`. In 2D `t = (−n_y, n_x)`; in 3D `t₁` is the coordinate
+/// axis least aligned with `n` made orthogonal to it, `t₂ = n × t₁`.
+pub fn normal_frame<const D: usize>(n: &[f64; D]) -> [[f64; D]; D] {
+    let mut r = [[0.0; D]; D];
+    r[D - 1] = *n;
+    if D == 2 {
+        r[0][0] = -n[1];
+        r[0][1] = n[0];
+    } else {
+        let k = (0..D)
+            .min_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+            .unwrap_or(0);
+        let mut t = [0.0; D];
+        t[k] = 1.0;
+        let along = n[k];
+        for i in 0..D {
+            t[i] -= along * n[i];
+        }
+        let len = norm(&t);
+        let t1: [f64; 3] = std::array::from_fn(|i| t[i] / len);
+        let n3: [f64; 3] = std::array::from_fn(|i| n[i]);
+        let t2 = cross(&n3, &t1);
+        r[0] = std::array::from_fn(|i| t1[i]);
+        r[1] = std::array::from_fn(|i| t2[i]);
+    }
+    r
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -135,5 +387,157 @@ mod tests {
                 }
             }
         }
+    }
+
+    fn close<const N: usize>(a: &[f64; N], b: &[f64; N]) -> bool {
+        a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-14)
+    }
+
+    fn weights_ok(w: &[f64]) {
+        assert!(w.iter().all(|&v| (0.0..=1.0).contains(&v)), "{w:?}");
+        assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-14, "{w:?}");
+    }
+
+    #[test]
+    fn segment_nearest_points() {
+        let (a, b) = ([0.0, 0.0], [2.0, 0.0]);
+        let cases = [
+            ([0.5, 1.0], [0.5, 0.0], [0.75, 0.25]),
+            ([3.0, 1.0], [2.0, 0.0], [0.0, 1.0]),
+            ([-1.0, -1.0], [0.0, 0.0], [1.0, 0.0]),
+        ];
+        for (x, p, w) in cases {
+            let (q, v) = nearest_on_segment(&x, &a, &b);
+            assert!(close(&q, &p) && close(&v, &w), "{x:?}: {q:?} {v:?}");
+            weights_ok(&v);
+        }
+    }
+
+    #[test]
+    fn triangle_nearest_points() {
+        let (a, b, c) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        let cases = [
+            // inside: the orthogonal projection
+            ([0.25, 0.25, 1.0], [0.25, 0.25, 0.0], [0.5, 0.25, 0.25]),
+            // beyond edge bc
+            ([2.0, 2.0, 0.0], [0.5, 0.5, 0.0], [0.0, 0.5, 0.5]),
+            // beyond edge ab
+            ([0.5, -1.0, 0.0], [0.5, 0.0, 0.0], [0.5, 0.5, 0.0]),
+            // beyond edge ca
+            ([-1.0, 0.25, -2.0], [0.0, 0.25, 0.0], [0.75, 0.0, 0.25]),
+            // corner regions
+            ([-1.0, -1.0, 3.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
+            ([3.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+            ([-1.0, 3.0, 0.5], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]),
+        ];
+        for (x, p, w) in cases {
+            let (q, v) = nearest_on_triangle(&x, &a, &b, &c);
+            assert!(close(&q, &p) && close(&v, &w), "{x:?}: {q:?} {v:?}");
+            weights_ok(&v);
+        }
+    }
+
+    #[test]
+    fn quad_nearest_points() {
+        let square = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let trapezoid = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let cases = [
+            (
+                square,
+                [0.25, 0.5, 2.0],
+                [0.25, 0.5, 0.0],
+                [0.375, 0.125, 0.125, 0.375],
+            ),
+            // x = s(2 − t), y = t: (0.75, 0.5) is s = 0.5, t = 0.5
+            (
+                trapezoid,
+                [0.75, 0.5, 1.0],
+                [0.75, 0.5, 0.0],
+                [0.25, 0.25, 0.25, 0.25],
+            ),
+            // outside: s clamped to 1
+            (
+                square,
+                [3.0, 0.5, -1.0],
+                [1.0, 0.5, 0.0],
+                [0.0, 0.5, 0.5, 0.0],
+            ),
+            // outside two sides: the corner
+            (
+                square,
+                [-2.0, -3.0, 0.5],
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0, 0.0],
+            ),
+        ];
+        for (q, x, p, w) in cases {
+            let (r, v) = nearest_on_quad(&x, &q).unwrap();
+            assert!(close(&r, &p) && close(&v, &w), "{x:?}: {r:?} {v:?}");
+            weights_ok(&v);
+        }
+        // A warped face: p lies in the mean plane and reproduces its own weights.
+        let warped = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.1],
+            [1.2, 1.0, 0.0],
+            [0.0, 0.9, 0.2],
+        ];
+        let (p, w) = nearest_on_quad(&[0.3, 0.6, 1.0], &warped).unwrap();
+        weights_ok(&w);
+        let (p2, w2) = nearest_on_quad(&p, &warped).unwrap();
+        assert!(close(&p, &p2) && close(&w, &w2));
+        let degenerate = [[0.0; 3], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [1.0, 0.0, 0.0]];
+        assert!(nearest_on_quad(&[0.0, 1.0, 0.0], &degenerate).is_none());
+    }
+
+    #[test]
+    fn ldlt_2x2_and_3x3() {
+        // [[4, 2], [2, 3]]: l10 = 0.5, d = (4, 2); x = (0.5, 0) for b = (2, 1).
+        let a = [4.0, 2.0, 3.0];
+        let mut f = [0.0; 3];
+        assert!(ldlt_factor::<2>(&a, &mut f));
+        assert_eq!(f, [0.25, 0.5, 0.5]);
+        assert_eq!(ldlt_solve::<2>(&f, &[2.0, 1.0]), [0.5, 0.0]);
+        // [[4, 2, 0], [2, 5, 1], [0, 1, 3]]: d = (4, 4, 2.75), l = (0.5, 0, 0.25);
+        // x = (1, −1, 2) for b = (2, −1, 5).
+        let a = [4.0, 2.0, 5.0, 0.0, 1.0, 3.0];
+        let mut f = [0.0; 6];
+        assert!(ldlt_factor::<3>(&a, &mut f));
+        assert!(close(&f, &[0.25, 0.5, 0.25, 0.0, 0.25, 1.0 / 2.75]));
+        assert!(close(
+            &ldlt_solve::<3>(&f, &[2.0, -1.0, 5.0]),
+            &[1.0, -1.0, 2.0]
+        ));
+        assert_eq!(packed_mul::<3>(&a, &[1.0, -1.0, 2.0]), [2.0, -1.0, 5.0]);
+        // Singular and indefinite matrices are refused.
+        assert!(!ldlt_factor::<2>(&[1.0, 1.0, 1.0], &mut [0.0; 3]));
+        assert!(!ldlt_factor::<2>(&[1.0, 2.0, 1.0], &mut [0.0; 3]));
+    }
+
+    #[test]
+    fn normal_frames_are_orthonormal() {
+        let n2 = [0.6, 0.8];
+        let r2 = normal_frame(&n2);
+        assert_eq!(r2, [[-0.8, 0.6], [0.6, 0.8]]);
+        let n3 = [0.0, 0.6, 0.8];
+        let r = normal_frame(&n3);
+        for i in 0..3 {
+            for j in 0..3 {
+                let e = if i == j { 1.0 } else { 0.0 };
+                assert!((dot(&r[i], &r[j]) - e).abs() < 1e-15);
+            }
+        }
+        assert_eq!(r[2], n3);
+        assert!(det::<3>(&r) > 0.0);
     }
 }
