@@ -22,3 +22,4 @@ pub mod topology;
 pub use error::{Error, Result};
 pub use mesh::{CellKind, Cells, Group, Mesh};
 pub mod solve;
+pub mod generate;
