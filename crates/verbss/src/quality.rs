@@ -1,1 +1,0 @@
-//! Element quality, inversion check and the paper's histogram bins.

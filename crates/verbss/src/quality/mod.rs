@@ -1,0 +1,362 @@
+//! Element quality, orientation, the inversion check and the paper's histogram.
+//!
+//! # Orientation
+//!
+//! Every element kind lists its *corners* ([`KindTable::corners`]): a node
+//! and its `D` neighbours, numbered so that the corner Jacobian
+//! `J_c = det(x[c1]−x[c0], …, x[cD]−x[c0])` (twice the corner triangle's area
+//! in 2D, six times the corner tetrahedron's volume in 3D, as
+//! [`crate::geometry::corner_jacobian`]) is positive for a positively oriented
+//! element. The orientation of a cell ([`orientation`]) is the sign of
+//! `Σ_c J_c`, or 0 when `|Σ_c J_c| ≤ ε Σ_c Π_k |e_ck|` (ε = [`ZERO`]: the
+//! cell is flat). Real files mix orientations (a mesh may store some quads
+//! clockwise): a cell is measured *relative to its reference orientation*
+//! `s ∈ {+1, −1, 0}`, so a cell stored clockwise is not bad. For a quad
+//! `Σ_c J_c = 2 d₁×d₂` (d the diagonals), whose sign is the one Verdict takes
+//! for the quad's centre normal.
+//!
+//! # Inversion
+//!
+//! With the *scaled corner Jacobian* `σ_c = J_c / Π_k |e_ck|` (0 if an edge
+//! has zero length), a cell is **inverted** when some corner has
+//! `s·σ_c ≤ ε`: its Jacobian has the sign opposite to the reference
+//! orientation, or is zero (to rounding, ε = [`ZERO`]). A cell whose reference
+//! orientation is 0 is always inverted. Measured against its own orientation
+//! (`verbss quality`), "inverted" means *tangled* (corners disagreeing in
+//! sign) or of zero volume. [`worst_corner`] gives the corner with the
+//! smallest `s·σ_c` and its signed volume `s·J_c / D!` (negative or zero when
+//! inverted); [`inversions`] lists every inverted cell with its centroid and
+//! that volume.
+//!
+//! # Quality
+//!
+//! Per element, a number in `[0, 1]`, 1 for the ideal element and 0 for an
+//! inverted one (relative to `s`). Otherwise:
+//!
+//! | kind | measure | source |
+//! |---|---|---|
+//! | triangle | `ρ = 2r/R = 4J²/(P·abc)` (`J = 2A`, `P = a+b+c`) | VerBSS paper eq. 9; = 1 / Verdict `tri_radius_ratio` |
+//! | tetrahedron | `ρ = 3r/R = 3J²/(S·|n|)` (`J = 6V`, `S` total face area, `n = |a|²(b×c)+|b|²(c×a)+|c|²(a×b)`, edges `a b c` from node 0) | paper eq. 9; = 1 / Verdict `tet_radius_ratio` |
+//! | quad | `min_c s·σ_c` over the 4 corners | Verdict `quad_scaled_jacobian` |
+//! | hexahedron | `min(min_c s·σ_c, s·det(a,b,c)/(|a||b||c|))` over the 8 corners and the principal axes `a, b, c` at the centre | Verdict `hex_scaled_jacobian` |
+//! | prism (wedge) | `2/√3 · min_c s·σ_c` over the 6 corners | Verdict `wedge_scaled_jacobian` |
+//! | pyramid | `v = 2 · min_c s·J_c / max(ℓ_c, |J_c|)` over the 4 base corners, `ℓ_c` the largest product of the three edges at a vertex of the corner's tetrahedron (corner node, its base neighbours, apex); quality `v` if `v ≤ 1`, else `2 − v` | Verdict `pyramid_scaled_jacobian` (its four tetrahedra are exactly the four base corners) |
+//!
+//! The result is clamped to `[0, 1]` (the wedge measure reaches `2/√3` at a
+//! right corner). These equal VTK's `vtkMeshQuality` (RadiusRatio for
+//! triangles and tetrahedra, inverted; ScaledJacobian, clamped, for the others)
+//! for cells positively oriented in Verdict's sense; the tests check them
+//! against values computed with VTK 9.7 (`scripts/reference_quality.py`).
+//! Where Verdict's conventions differ they are not followed, by design:
+//! - its scaled Jacobians of hexahedra, wedges and pyramids are signed by the
+//!   node order; here they are relative to `s`, so a cell stored the other
+//!   way round measures the same;
+//! - a zero-length edge gives 0 here (Verdict: 0 for quads, `DBL_MAX` for
+//!   hexahedra, NaN for wedges);
+//! - Verdict measures a quad whose last two nodes coincide as a triangle;
+//!   here it is degenerate (quality 0, inverted).
+//!
+//! Vertices and lines are never volume cells of a valid mesh; they have no
+//! corner, hence zero volume: orientation 0, quality 0, inverted.
+//!
+//! # Histogram
+//!
+//! [`Summary`] holds the minimum, the mean and the paper's five bins
+//! ([`BIN_EDGES`]), each `lo ≤ q < hi`, the last one `[0.7, 1.0]`.
+//!
+//! All mesh-wide functions take the node coordinates explicitly (a deformed
+//! state, `mesh.dim` numbers per node), run in parallel over the cells and
+//! give the same result for any number of threads.
+
+mod histogram;
+mod measures;
+
+pub use histogram::{bin_index, Bin, Report, Summary, BIN_EDGES};
+
+use rayon::prelude::*;
+
+use crate::geometry::point;
+use crate::mesh::{CellKind, KindTable, Mesh};
+
+/// Rounding tolerance ε on scaled corner Jacobians: a corner with
+/// `|σ_c| ≤ ε` counts as zero (flat).
+pub const ZERO: f64 = 1e-12;
+
+/// Most nodes of any kind (the hexahedron's 8).
+const MAX_NODES: usize = 8;
+
+/// The worst corner of a cell relative to a reference orientation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct Corner {
+    /// Index of the corner in [`KindTable::corners`].
+    pub corner: usize,
+    /// Its scaled Jacobian times the reference orientation, `s·σ_c`.
+    pub scaled: f64,
+    /// Its signed area (2D) or volume (3D) times the reference orientation,
+    /// `s·J_c / D!`.
+    pub volume: f64,
+}
+
+impl Corner {
+    /// Whether the cell is inverted: `s·σ_c ≤` [`ZERO`] (or not a number,
+    /// from non-finite coordinates).
+    pub fn inverted(&self) -> bool {
+        self.scaled <= ZERO || self.scaled.is_nan()
+    }
+}
+
+/// An inverted cell, for the message that reports it.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct Inversion {
+    /// The cell's index in `mesh.cells`.
+    pub cell: usize,
+    /// The mean of its nodes (`dim` numbers).
+    pub centroid: Vec<f64>,
+    /// The signed area/volume of its worst corner relative to the reference
+    /// orientation (≤ 0), see [`Corner::volume`].
+    pub volume: f64,
+}
+
+/// The cell's points, in node order.
+fn gather<const D: usize>(coords: &[f64], nodes: &[usize]) -> [[f64; D]; MAX_NODES] {
+    let mut p = [[0.0; D]; MAX_NODES];
+    for (k, &n) in nodes.iter().enumerate() {
+        p[k] = point::<D>(coords, n);
+    }
+    p
+}
+
+/// `D!`, the ratio of a corner Jacobian to its simplex's area/volume.
+const fn factorial(d: usize) -> f64 {
+    if d == 2 {
+        2.0
+    } else {
+        6.0
+    }
+}
+
+/// Orientation of one cell: the sign of `Σ_c J_c`, 0 when
+/// `|Σ_c J_c| ≤ ε Σ_c Π_k |e_ck|` (see the module docs).
+pub fn cell_orientation<const D: usize>(kind: CellKind, nodes: &[usize], coords: &[f64]) -> i8 {
+    let p = gather::<D>(coords, nodes);
+    let (mut sum, mut scale) = (0.0, 0.0);
+    for c in kind.table().corners {
+        let (j, lengths) = measures::corner(&p, c);
+        sum += j;
+        scale += lengths;
+    }
+    if sum.abs() <= ZERO * scale {
+        0
+    } else if sum > 0.0 {
+        1
+    } else {
+        -1
+    }
+}
+
+/// The corner of a cell with the smallest `s·σ_c` for reference orientation
+/// `sign` (see the module docs). A kind without corners gives corner 0 with
+/// zero volume.
+pub fn worst_corner<const D: usize>(
+    kind: CellKind,
+    nodes: &[usize],
+    coords: &[f64],
+    sign: i8,
+) -> Corner {
+    worst(kind.table(), &gather::<D>(coords, nodes), f64::from(sign))
+}
+
+fn worst<const D: usize>(table: &KindTable, p: &[[f64; D]], s: f64) -> Corner {
+    let mut worst = Corner {
+        corner: 0,
+        scaled: f64::INFINITY,
+        volume: 0.0,
+    };
+    for (k, c) in table.corners.iter().enumerate() {
+        let (j, lengths) = measures::corner(p, c);
+        let scaled = measures::scaled(s * j, lengths);
+        if scaled < worst.scaled || k == 0 {
+            worst = Corner {
+                corner: k,
+                scaled,
+                volume: s * j / factorial(D),
+            };
+        }
+    }
+    if table.corners.is_empty() {
+        worst.scaled = 0.0;
+    }
+    worst
+}
+
+/// Quality in `[0, 1]` of one cell relative to reference orientation `sign`
+/// (the measures of the module docs; 0 when inverted).
+pub fn cell_quality<const D: usize>(
+    kind: CellKind,
+    nodes: &[usize],
+    coords: &[f64],
+    sign: i8,
+) -> f64 {
+    let p = gather::<D>(coords, nodes);
+    measure(
+        kind,
+        &p,
+        f64::from(sign),
+        &worst(kind.table(), &p, f64::from(sign)),
+    )
+}
+
+/// The quality of a cell whose worst corner is `worst`.
+fn measure<const D: usize>(kind: CellKind, p: &[[f64; D]], s: f64, worst: &Corner) -> f64 {
+    if worst.inverted() {
+        return 0.0;
+    }
+    let q = match kind {
+        CellKind::Triangle => measures::triangle(p),
+        CellKind::Tetra => measures::tetra(p),
+        CellKind::Quad => worst.scaled,
+        CellKind::Hexahedron => worst.scaled.min(measures::hexahedron_centre(p, s)),
+        CellKind::Wedge => measures::wedge(worst.scaled),
+        CellKind::Pyramid => measures::pyramid(p, kind.table().corners, s),
+        CellKind::Vertex | CellKind::Line => 0.0,
+    };
+    q.clamp(0.0, 1.0)
+}
+
+/// Runs `body` with a local `const $d: usize` equal to the mesh's dimension.
+macro_rules! by_dim {
+    ($dim:expr, $d:ident => $body:expr) => {
+        match $dim {
+            2 => {
+                const $d: usize = 2;
+                $body
+            }
+            3 => {
+                const $d: usize = 3;
+                $body
+            }
+            other => panic!("mesh dimension {other} (expected 2 or 3)"),
+        }
+    };
+}
+
+/// `f(cell, kind, nodes)` for every cell, in parallel, in cell order.
+fn per_cell<T: Send>(mesh: &Mesh, f: impl Fn(usize, CellKind, &[usize]) -> T + Sync) -> Vec<T> {
+    (0..mesh.cells.len())
+        .into_par_iter()
+        .map(|c| f(c, mesh.cells.kinds[c], mesh.cells.cell(c)))
+        .collect()
+}
+
+fn check(mesh: &Mesh, coords: &[f64], reference: Option<&[i8]>) {
+    assert_eq!(
+        coords.len(),
+        mesh.coords.len(),
+        "coordinates for {} numbers, the mesh has {}",
+        coords.len(),
+        mesh.coords.len()
+    );
+    if let Some(r) = reference {
+        assert_eq!(
+            r.len(),
+            mesh.cells.len(),
+            "reference orientation for {} cells, the mesh has {}",
+            r.len(),
+            mesh.cells.len()
+        );
+    }
+}
+
+/// Orientation (+1, −1, or 0 when flat) of every cell on the mesh's own
+/// coordinates: the reference for measuring it or any deformed state of it.
+pub fn orientation(mesh: &Mesh) -> Vec<i8> {
+    orientation_at(mesh, &mesh.coords)
+}
+
+/// Orientation of every cell on coordinates `coords` (see [`cell_orientation`]).
+///
+/// # Panics
+/// If `coords` does not have `mesh.coords.len()` numbers or `mesh.dim` is not 2 or 3.
+pub fn orientation_at(mesh: &Mesh, coords: &[f64]) -> Vec<i8> {
+    check(mesh, coords, None);
+    by_dim!(mesh.dim, D => per_cell(mesh, |_, kind, nodes| cell_orientation::<D>(kind, nodes, coords)))
+}
+
+/// Quality of every cell on `coords` relative to `reference` (one orientation
+/// per cell, usually [`orientation`] of the initial mesh).
+///
+/// # Panics
+/// If `coords` or `reference` do not match the mesh, or `mesh.dim` is not 2 or 3.
+pub fn qualities(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<f64> {
+    check(mesh, coords, Some(reference));
+    by_dim!(mesh.dim, D => per_cell(mesh, |c, kind, nodes| {
+        cell_quality::<D>(kind, nodes, coords, reference[c])
+    }))
+}
+
+/// Indices of the cells inverted on `coords` relative to `reference`, in
+/// increasing order.
+///
+/// # Panics
+/// As [`qualities`].
+pub fn inverted_cells(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<usize> {
+    inversions(mesh, coords, reference)
+        .into_iter()
+        .map(|i| i.cell)
+        .collect()
+}
+
+/// Every cell inverted on `coords` relative to `reference`, with its centroid
+/// and the signed volume of its worst corner, in increasing cell order.
+///
+/// # Panics
+/// As [`qualities`].
+pub fn inversions(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<Inversion> {
+    check(mesh, coords, Some(reference));
+    let worst = by_dim!(mesh.dim, D => per_cell(mesh, |c, kind, nodes| {
+        worst_corner::<D>(kind, nodes, coords, reference[c])
+    }));
+    worst
+        .iter()
+        .enumerate()
+        .filter(|(_, w)| w.inverted())
+        .map(|(cell, w)| Inversion {
+            cell,
+            centroid: centroid(mesh, coords, cell),
+            volume: w.volume,
+        })
+        .collect()
+}
+
+/// The mean of cell `cell`'s nodes on `coords` (`mesh.dim` numbers).
+pub fn centroid(mesh: &Mesh, coords: &[f64], cell: usize) -> Vec<f64> {
+    let nodes = mesh.cells.cell(cell);
+    (0..mesh.dim)
+        .map(|k| nodes.iter().map(|&n| coords[mesh.dim * n + k]).sum::<f64>() / nodes.len() as f64)
+        .collect()
+}
+
+/// Quality summary and number of inverted cells on `coords` relative to
+/// `reference`, in one pass.
+///
+/// # Panics
+/// As [`qualities`].
+pub fn report(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Report {
+    check(mesh, coords, Some(reference));
+    let cells: Vec<(f64, bool)> = by_dim!(mesh.dim, D => per_cell(mesh, |c, kind, nodes| {
+        let p = gather::<D>(coords, nodes);
+        let s = f64::from(reference[c]);
+        let w = worst(kind.table(), &p, s);
+        (measure(kind, &p, s, &w), w.inverted())
+    }));
+    let q: Vec<f64> = cells.iter().map(|&(q, _)| q).collect();
+    Report {
+        quality: Summary::new(&q),
+        inverted: cells.iter().filter(|&&(_, inv)| inv).count(),
+    }
+}
+
+#[cfg(test)]
+mod tests;
