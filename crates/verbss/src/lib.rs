@@ -17,6 +17,7 @@ pub mod geometry;
 pub mod io;
 pub mod mesh;
 pub mod quality;
+pub mod springs;
 pub mod topology;
 
 pub use error::{Error, Result};

@@ -1,15 +1,86 @@
 //! The solvers of the node-block spring system (DESIGN §2).
 //!
-//! API CONTRACT (to be implemented by the engine; the motion/stepper layer codes
-//! against these types):
-//!
 //! ```text
-//! let mut engine = Engine::new(&mesh, &roles)?;              // topology, once per mesh
+//! let mut engine = Engine::new(&mesh, &roles, &normals)?;          // topology, once per mesh
 //! let info = engine.solve(&coords, &mut displacement, &params)?;  // once per step
 //! ```
-//! `coords`: reference coordinates of this step (D·N). `displacement`: D·N; on
-//! entry the prescribed values of Fixed nodes (and the initial guess of the
-//! others: the previous step's solution); on return the solution.
+//!
+//! `coords` are the reference coordinates `X` of the step (`D·N` numbers);
+//! `displacement` (`D·N`) holds on entry the prescribed values of
+//! [`NodeRole::Fixed`] nodes (and the normal component of
+//! [`NodeRole::Slide`] nodes) and the initial guess of the unknowns (the
+//! previous step's solution); on return the solution. The springs
+//! ([`crate::springs`]) and the per-node factors are rebuilt only when `coords`
+//! or the method changed since the last call, so a "fixed reference" run
+//! (paper, option 2) forms them once.
+//!
+//! # Methods
+//!
+//! Every method solves, for every unknown node `i`, `K_ii u_i = Σ_j B_ij u_j`:
+//!
+//! * [`Method::Verbss`]: edge + ball-vertex springs, node by node: each
+//!   `K_ii` is factored once as LDLᵀ, then each sweep sets
+//!   `u_i ← ω K_ii⁻¹ (Σ_j B_ij u_j) + (1 − ω) u_i` (block SOR, [`verbss`]);
+//! * [`Method::BallVertex`]: the same system as one global system:
+//!   [`Solver::Sor`], scalar SOR over all unknown components ([`sor`]), or
+//!   [`Solver::Direct`], an exact sparse LU ([`direct`]; the system is not
+//!   symmetric), the reference the sweeps are checked against;
+//! * [`Method::Spring`]: edge springs only, swept like `Verbss`;
+//! * [`Method::Laplacian`]: `Σ_j k_ij (u_j − u_i) = 0` per component with
+//!   `k_ij = 1/L_ij` ([`laplacian`]).
+//!
+//! # Sliding nodes
+//!
+//! A node sliding in a plane of unit normal `n` keeps the normal component
+//! `d = n·u` it was given and has the tangential components as unknowns: with
+//! `T` the tangent basis (`D×(D−1)`, orthonormal, [`normal_frame`]) and
+//! `u = d n + T a`, its equation is the projected one,
+//! `Tᵀ K_ii T a = Tᵀ (Σ_j B_ij u_j − d K_ii n)`. The sweeps solve it per node,
+//! the global solvers use the same tangent unknowns `a`.
+//!
+//! # Order and parallelism
+//!
+//! The unknowns are ordered by breadth-first layers from the moving boundary
+//! (the prescribed nodes with a nonzero prescribed displacement; all
+//! prescribed nodes when none moves), coloured greedily in that order so that
+//! no two coupled nodes share a colour, and renumbered colour by colour (by
+//! layer within a colour) so that each colour is one contiguous block of
+//! memory. A sweep visits the colours in turn and updates all nodes of one
+//! colour in parallel; as nodes of one colour do not couple, this is exactly
+//! a Gauss–Seidel (SOR) sweep in colour order — the colour order, not the
+//! layer order, is the Gauss–Seidel order. Each colour is cut into fixed
+//! chunks of nodes whose changes are summed on their own and then added in
+//! chunk order, so the results, eq.-8 value included, are bit-identical for
+//! every thread count.
+//!
+//! # Stopping (paper eq. 8)
+//!
+//! After each sweep, the eq.-8 value is the mean over all unknown components
+//! (`D` per free node, `D − 1` per sliding node, in the tangent basis) of the
+//! absolute change made *by that sweep*. The sweeps stop when it falls below
+//! `tolerance × max |prescribed displacement|` (the largest prescribed
+//! displacement vector, or normal component, of the step; `tolerance` itself
+//! when [`SolveParams::absolute_tolerance`] is set or when nothing moves), or
+//! after [`SolveParams::max_iterations`] sweeps. The eq.-8 value measures the
+//! last sweep's change, not the error: with ω close to 2 or a slowly
+//! converging mesh the error can be many times larger.
+
+mod direct;
+mod laplacian;
+mod sor;
+mod verbss;
+
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use crate::error::{Error, Result};
+use crate::geometry::{
+    ldlt_factor, norm, normal_frame, packed_index, packed_len, packed_mul, point,
+};
+use crate::mesh::Mesh;
+use crate::springs::{self, Connectivity, NodeBlocks, Springs};
+use crate::topology;
 
 /// What a node's displacement is.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -65,7 +136,8 @@ pub struct SolveParams {
     pub absolute_tolerance: bool,
     /// Maximum number of sweeps k_max.
     pub max_iterations: usize,
-    /// Worker threads of the sweeps (1: serial). Results do not depend on it.
+    /// Worker threads of the sweeps (1: serial; 0: one per available core).
+    /// Results do not depend on it.
     pub threads: usize,
     /// Record the eq.-8 value of every sweep in [`SolveInfo::history`].
     pub record_history: bool,
@@ -104,4 +176,719 @@ pub struct SolveInfo {
     pub seconds: f64,
     /// Eq.-8 value after each sweep, when asked for.
     pub history: Vec<f64>,
+    /// Whether this call (re)built the springs and factors.
+    pub rebuilt: bool,
+}
+
+/// The default roles of a mesh: [`NodeRole::Fixed`] on every boundary node
+/// ([`topology::boundary_nodes`]: nodes of boundary facets and of named
+/// groups), [`NodeRole::Free`] elsewhere.
+pub fn default_roles(mesh: &Mesh) -> Vec<NodeRole> {
+    topology::boundary_nodes(mesh)
+        .into_iter()
+        .map(|b| if b { NodeRole::Fixed } else { NodeRole::Free })
+        .collect()
+}
+
+/// Nodes of one colour are updated in chunks of this many; each chunk sums its
+/// changes on its own and the chunks are added in order, whatever the threads.
+const CHUNK: usize = 256;
+
+/// The mesh-motion engine: topology once per mesh, springs and factors once per
+/// reference configuration, one [`Engine::solve`] per step.
+pub struct Engine {
+    conn: Connectivity,
+    roles: Vec<NodeRole>,
+    /// Unit plane normals of the sliding nodes (first `D` numbers used).
+    normals: Vec<[f64; 3]>,
+    built: Option<Built>,
+    pool: Option<(usize, rayon::ThreadPool)>,
+}
+
+/// What one reference configuration and method need: the system and scratch.
+struct Built {
+    coords: Vec<f64>,
+    method: Method,
+    layout: Layout,
+    system: System,
+    lu: Option<direct::Lu>,
+    scratch: Scratch,
+}
+
+/// The system swept or factored.
+enum System {
+    /// Spring blocks. `diag` holds per position the (projected, for sliding
+    /// nodes) `K_ii`, as its LDLᵀ factor when `factored`; `kn` holds `K_ii n`
+    /// per sliding node.
+    Blocks {
+        blocks: NodeBlocks,
+        kn: Vec<f64>,
+        factored: bool,
+    },
+    /// Scalar Laplacian weights.
+    Laplacian(laplacian::Weights),
+}
+
+/// Per-solve arrays, allocated once per build.
+struct Scratch {
+    /// Right-hand side from the prescribed nodes, `D` per position.
+    constant: Vec<f64>,
+    /// Displacements of the unknowns by position.
+    work: Vec<f64>,
+    /// New values of the colour being swept.
+    next: Vec<f64>,
+    /// Change summed per chunk.
+    partials: Vec<f64>,
+}
+
+/// The numbering of the unknowns for the sweeps.
+pub(crate) struct Layout {
+    /// Position → node.
+    pub(crate) order: Vec<usize>,
+    /// Node → position (`u32::MAX` for prescribed nodes).
+    pub(crate) position: Vec<u32>,
+    /// Colour `c` holds positions `colour_starts[c]..colour_starts[c + 1]`.
+    colour_starts: Vec<usize>,
+    /// Colour `c`'s chunk sums are `partials[chunk_starts[c]..chunk_starts[c + 1]]`.
+    chunk_starts: Vec<usize>,
+    /// Per position: index of the sliding frame, `u32::MAX` for a free node.
+    slide_of: Vec<u32>,
+    /// `D×D` per sliding node: rows `t₁ … t_{D−1}, n` ([`normal_frame`]).
+    frames: Vec<f64>,
+    /// Unknown components: `D` per free node, `D − 1` per sliding node.
+    pub(crate) dofs: usize,
+}
+
+impl Layout {
+    /// The frame of position `p`, if it slides.
+    #[inline]
+    pub(crate) fn frame<const D: usize>(&self, p: usize) -> Option<[[f64; D]; D]> {
+        let s = self.slide_of[p];
+        (s != u32::MAX).then(|| {
+            let f = &self.frames[D * D * s as usize..D * D * (s as usize + 1)];
+            std::array::from_fn(|r| std::array::from_fn(|c| f[D * r + c]))
+        })
+    }
+
+    /// Number of unknown nodes.
+    fn len(&self) -> usize {
+        self.order.len()
+    }
+}
+
+/// `R v` for a frame with rows `R`.
+#[inline]
+pub(crate) fn rotate<const D: usize>(r: &[[f64; D]; D], v: &[f64; D]) -> [f64; D] {
+    std::array::from_fn(|k| (0..D).map(|l| r[k][l] * v[l]).sum())
+}
+
+/// `Rᵀ a` for a frame with rows `R`.
+#[inline]
+pub(crate) fn unrotate<const D: usize>(r: &[[f64; D]; D], a: &[f64; D]) -> [f64; D] {
+    std::array::from_fn(|l| (0..D).map(|k| r[k][l] * a[k]).sum())
+}
+
+/// `c_p + Σ_j B_pj u_j` over the unknown neighbours of position `p`.
+#[inline]
+pub(crate) fn coupled<const D: usize>(
+    blocks: &NodeBlocks,
+    constant: &[f64],
+    p: usize,
+    work: &[f64],
+) -> [f64; D] {
+    let s = packed_len(D);
+    let mut r = point::<D>(constant, p);
+    for e in blocks.offsets[p]..blocks.offsets[p + 1] {
+        let v = packed_mul::<D>(
+            &blocks.blocks[s * e..],
+            &point(work, blocks.neighbours[e] as usize),
+        );
+        for k in 0..D {
+            r[k] += v[k];
+        }
+    }
+    r
+}
+
+impl Engine {
+    /// Topology once per mesh. `roles`: one per node. `normals`: unit plane
+    /// normals for [`NodeRole::Slide`]`(k)` (3 numbers each; the first `D`
+    /// are used, and normalised).
+    ///
+    /// Fails with [`Error::InvalidSetting`] when the roles do not match the
+    /// nodes, a sliding node names a missing or zero normal, or an unknown node
+    /// is not connected (through cells) to any [`NodeRole::Fixed`] node, which
+    /// would leave its displacement undetermined.
+    pub fn new(mesh: &Mesh, roles: &[NodeRole], normals: &[[f64; 3]]) -> Result<Engine> {
+        let n = mesh.node_count();
+        let dim = mesh.dim;
+        if roles.len() != n {
+            return Err(Error::InvalidSetting(format!(
+                "{} node roles for {n} nodes",
+                roles.len()
+            )));
+        }
+        let mut unit = Vec::with_capacity(normals.len());
+        for (k, v) in normals.iter().enumerate() {
+            let len = norm(&[v[0], v[1], if dim == 3 { v[2] } else { 0.0 }]);
+            if !(len > 0.0 && len.is_finite()) {
+                return Err(Error::InvalidSetting(format!(
+                    "sliding normal {k} is zero or not finite"
+                )));
+            }
+            let mut u = [v[0] / len, v[1] / len, 0.0];
+            if dim == 3 {
+                u[2] = v[2] / len;
+            }
+            unit.push(u);
+        }
+        for (i, role) in roles.iter().enumerate() {
+            if let NodeRole::Slide(k) = role {
+                if *k >= normals.len() {
+                    return Err(Error::InvalidSetting(format!(
+                        "node {} slides on normal {k} but {} normals were given",
+                        mesh.node_tags[i],
+                        normals.len()
+                    )));
+                }
+            }
+        }
+        let conn = Connectivity::new(mesh);
+        let fixed: Vec<usize> = (0..n).filter(|&i| roles[i] == NodeRole::Fixed).collect();
+        let reach = topology::bfs_layers(&conn.graph, &fixed);
+        if let Some(i) = (0..n).find(|&i| reach[i] == u32::MAX && roles[i] != NodeRole::Fixed) {
+            return Err(Error::InvalidSetting(format!(
+                "node {} is not connected to any fixed node (its displacement would be \
+                 undetermined)",
+                mesh.node_tags[i]
+            )));
+        }
+        Ok(Engine {
+            conn,
+            roles: roles.to_vec(),
+            normals: unit,
+            built: None,
+            pool: None,
+        })
+    }
+
+    /// One step: solves for the unknowns of `displacement` (see the module
+    /// documentation) on reference coordinates `coords`, and says what it did.
+    ///
+    /// Fails with [`Error::InvalidSetting`] for arrays of the wrong length,
+    /// non-finite input or parameters out of range, and with
+    /// [`Error::InvalidMesh`] when `coords` collapse a cell (a spring of zero
+    /// length) or make a node's springs singular.
+    pub fn solve(
+        &mut self,
+        coords: &[f64],
+        displacement: &mut [f64],
+        params: &SolveParams,
+    ) -> Result<SolveInfo> {
+        let start = Instant::now();
+        self.check(coords, displacement, params)?;
+        let threads = params.threads;
+        if self.pool.as_ref().map(|p| p.0) != Some(threads) {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .map_err(|e| {
+                    Error::InvalidSetting(format!("cannot start {threads} threads: {e}"))
+                })?;
+            self.pool = Some((threads, pool));
+        }
+        let reuse = self
+            .built
+            .as_ref()
+            .is_some_and(|b| b.method == params.method && b.coords == coords);
+        if !reuse {
+            self.built = None;
+            self.built = Some(match self.conn.dim {
+                2 => self.build::<2>(coords, displacement, params.method)?,
+                _ => self.build::<3>(coords, displacement, params.method)?,
+            });
+        }
+        let Engine {
+            conn,
+            roles,
+            normals,
+            built,
+            pool,
+        } = self;
+        let built = built.as_mut().expect("built above");
+        let pool = &pool.as_ref().expect("started above").1;
+        if params.method == Method::BallVertex
+            && params.solver == Solver::Direct
+            && built.lu.is_none()
+        {
+            let blocks = system_blocks(&built.system);
+            built.lu = Some(match conn.dim {
+                2 => direct::Lu::new::<2>(&built.layout, blocks, pool)?,
+                _ => direct::Lu::new::<3>(&built.layout, blocks, pool)?,
+            });
+        }
+        let form_seconds = start.elapsed().as_secs_f64();
+        let solving = Instant::now();
+        let scale = prescribed_scale(conn.dim, roles, normals, displacement);
+        let threshold = if params.absolute_tolerance || scale == 0.0 {
+            params.tolerance
+        } else {
+            params.tolerance * scale
+        };
+        let mut info = match conn.dim {
+            2 => run::<2>(built, pool, displacement, params, threshold)?,
+            _ => run::<3>(built, pool, displacement, params, threshold)?,
+        };
+        info.form_seconds = form_seconds;
+        info.solve_seconds = solving.elapsed().as_secs_f64();
+        info.seconds = start.elapsed().as_secs_f64();
+        info.rebuilt = !reuse;
+        Ok(info)
+    }
+
+    /// Bytes of the sweep's stored data per unknown node: diagonal factors,
+    /// coupling blocks and neighbour indices, offsets, sliding frames,
+    /// right-hand side and displacement arrays (0 before the first solve).
+    pub fn bytes_per_node(&self) -> f64 {
+        let Some(b) = &self.built else { return 0.0 };
+        let f = std::mem::size_of::<f64>();
+        let u = std::mem::size_of::<u32>();
+        let z = std::mem::size_of::<usize>();
+        let l = &b.layout;
+        let common = (b.scratch.constant.len() + b.scratch.work.len() + b.scratch.next.len()) * f
+            + l.slide_of.len() * u
+            + l.frames.len() * f;
+        let system = match &b.system {
+            System::Blocks { blocks, kn, .. } => {
+                (blocks.diag.len() + blocks.blocks.len() + kn.len()) * f
+                    + blocks.neighbours.len() * u
+                    + blocks.offsets.len() * z
+            }
+            System::Laplacian(w) => w.sweep_bytes(),
+        };
+        (common + system) as f64 / l.len().max(1) as f64
+    }
+
+    /// Validates the arrays and settings of [`Engine::solve`].
+    fn check(&self, coords: &[f64], displacement: &[f64], params: &SolveParams) -> Result<()> {
+        let dim = self.conn.dim;
+        let want = dim * self.roles.len();
+        for (name, a) in [("coordinates", coords), ("displacements", displacement)] {
+            if a.len() != want {
+                return Err(Error::InvalidSetting(format!(
+                    "{} {name} for {} nodes in {dim}D (expected {want})",
+                    a.len(),
+                    self.roles.len()
+                )));
+            }
+            if let Some(k) = a.iter().position(|v| !v.is_finite()) {
+                return Err(Error::InvalidSetting(format!(
+                    "{name} of node {} are not finite",
+                    self.conn.node_tags[k / dim]
+                )));
+            }
+        }
+        if !(params.omega > 0.0 && params.omega < 2.0) {
+            return Err(Error::InvalidSetting(format!(
+                "omega {} is outside (0, 2)",
+                params.omega
+            )));
+        }
+        if !(params.tolerance >= 0.0 && params.tolerance.is_finite()) {
+            return Err(Error::InvalidSetting(format!(
+                "tolerance {} is not a finite number ≥ 0",
+                params.tolerance
+            )));
+        }
+        if params.max_iterations == 0 {
+            return Err(Error::InvalidSetting(
+                "max_iterations is 0 (expected at least 1 sweep)".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Orders the unknowns, assembles the springs and prepares the diagonal.
+    fn build<const D: usize>(
+        &self,
+        coords: &[f64],
+        displacement: &[f64],
+        method: Method,
+    ) -> Result<Built> {
+        let layout = self.layout::<D>(displacement);
+        let system = match method {
+            Method::Laplacian => {
+                System::Laplacian(laplacian::Weights::new::<D>(&self.conn, coords, &layout)?)
+            }
+            Method::Spring | Method::Verbss | Method::BallVertex => {
+                let kind = if method == Method::Spring {
+                    Springs::Edge
+                } else {
+                    Springs::BallVertex
+                };
+                let mut blocks =
+                    springs::assemble(&self.conn, coords, &layout.order, &layout.position, kind)?;
+                let factored = method != Method::BallVertex;
+                let kn = self.prepare_diag::<D>(&mut blocks, &layout, factored)?;
+                System::Blocks {
+                    blocks,
+                    kn,
+                    factored,
+                }
+            }
+        };
+        let m = layout.len();
+        let chunks = *layout.chunk_starts.last().unwrap_or(&0);
+        Ok(Built {
+            coords: coords.to_vec(),
+            method,
+            layout,
+            system,
+            lu: None,
+            scratch: Scratch {
+                constant: vec![0.0; D * m],
+                work: vec![0.0; D * m],
+                next: vec![0.0; D * m],
+                partials: vec![0.0; chunks],
+            },
+        })
+    }
+
+    /// Projects the diagonal blocks of sliding nodes onto their tangent frame
+    /// (padded: `[[Tᵀ K T, 0], [0, 1]]`) and, when `factored`, replaces every
+    /// diagonal block by its LDLᵀ factor. Returns `K_ii n` per sliding node.
+    fn prepare_diag<const D: usize>(
+        &self,
+        blocks: &mut NodeBlocks,
+        layout: &Layout,
+        factored: bool,
+    ) -> Result<Vec<f64>> {
+        let s = packed_len(D);
+        let mut kn = vec![0.0; layout.frames.len() / D];
+        for p in 0..layout.len() {
+            let diag = &mut blocks.diag[s * p..s * (p + 1)];
+            if let Some(r) = layout.frame::<D>(p) {
+                let k = diag.to_vec();
+                let slot = layout.slide_of[p] as usize;
+                let n = r[D - 1];
+                kn[D * slot..D * (slot + 1)].copy_from_slice(&packed_mul::<D>(&k, &n));
+                for a in 0..D {
+                    for b in 0..=a {
+                        diag[packed_index(a, b)] = if a == D - 1 {
+                            f64::from(u8::from(b == D - 1))
+                        } else {
+                            let kb = packed_mul::<D>(&k, &r[b]);
+                            (0..D).map(|c| r[a][c] * kb[c]).sum()
+                        };
+                    }
+                }
+            }
+            if factored {
+                let a = diag.to_vec();
+                if !ldlt_factor::<D>(&a, diag) {
+                    return Err(Error::InvalidMesh(format!(
+                        "node {}: its springs do not hold it in every direction \
+                         (singular stiffness block)",
+                        self.conn.node_tags[layout.order[p]]
+                    )));
+                }
+            }
+        }
+        Ok(kn)
+    }
+
+    /// Orders the unknowns by breadth-first layers from the moving boundary,
+    /// colours them greedily in that order and numbers them colour by colour.
+    fn layout<const D: usize>(&self, displacement: &[f64]) -> Layout {
+        let n = self.roles.len();
+        let moving = |i: usize| match self.roles[i] {
+            NodeRole::Free => false,
+            NodeRole::Fixed => point::<D>(displacement, i).iter().any(|&v| v != 0.0),
+            NodeRole::Slide(k) => self.normal_component::<D>(displacement, i, k) != 0.0,
+        };
+        let mut seeds: Vec<usize> = (0..n).filter(|&i| moving(i)).collect();
+        if seeds.is_empty() {
+            seeds = (0..n)
+                .filter(|&i| self.roles[i] != NodeRole::Free)
+                .collect();
+        }
+        let layer = topology::bfs_layers(&self.conn.graph, &seeds);
+        let mut by_layer: Vec<usize> = (0..n)
+            .filter(|&i| self.roles[i] != NodeRole::Fixed)
+            .collect();
+        by_layer.sort_by_key(|&i| (layer[i], i));
+        let (colour, colours) = topology::colour(&self.conn.graph, &by_layer);
+        let mut order = by_layer;
+        order.sort_by_key(|&i| colour[i]);
+        let mut colour_starts = vec![0usize; colours as usize + 1];
+        for &i in &order {
+            colour_starts[colour[i] as usize + 1] += 1;
+        }
+        let mut chunk_starts = vec![0; colours as usize + 1];
+        for c in 0..colours as usize {
+            colour_starts[c + 1] += colour_starts[c];
+            let len = colour_starts[c + 1] - colour_starts[c];
+            chunk_starts[c + 1] = chunk_starts[c] + len.div_ceil(CHUNK);
+        }
+        let mut position = vec![u32::MAX; n];
+        let mut slide_of = vec![u32::MAX; order.len()];
+        let mut frames = Vec::new();
+        let mut dofs = 0;
+        for (p, &i) in order.iter().enumerate() {
+            position[i] = p as u32;
+            dofs += D;
+            if let NodeRole::Slide(k) = self.roles[i] {
+                let nrm: [f64; D] = std::array::from_fn(|c| self.normals[k][c]);
+                slide_of[p] = (frames.len() / (D * D)) as u32;
+                frames.extend(normal_frame(&nrm).iter().flatten());
+                dofs -= 1;
+            }
+        }
+        Layout {
+            order,
+            position,
+            colour_starts,
+            chunk_starts,
+            slide_of,
+            frames,
+            dofs,
+        }
+    }
+
+    /// `n_k · u_i`.
+    fn normal_component<const D: usize>(&self, displacement: &[f64], i: usize, k: usize) -> f64 {
+        let u = point::<D>(displacement, i);
+        (0..D).map(|c| self.normals[k][c] * u[c]).sum()
+    }
+}
+
+/// The largest prescribed displacement: `|u_i|` of fixed nodes, `|n·u_i|` of
+/// sliding nodes.
+fn prescribed_scale(dim: usize, roles: &[NodeRole], normals: &[[f64; 3]], u: &[f64]) -> f64 {
+    let mut scale: f64 = 0.0;
+    for (i, role) in roles.iter().enumerate() {
+        let ui = &u[dim * i..dim * (i + 1)];
+        let size = match role {
+            NodeRole::Free => continue,
+            NodeRole::Fixed => ui.iter().map(|v| v * v).sum::<f64>().sqrt(),
+            NodeRole::Slide(k) => ui
+                .iter()
+                .zip(&normals[*k])
+                .map(|(a, b)| a * b)
+                .sum::<f64>()
+                .abs(),
+        };
+        scale = scale.max(size);
+    }
+    scale
+}
+
+/// Forms the right-hand side, runs the chosen solver and writes the unknowns back.
+fn run<const D: usize>(
+    built: &mut Built,
+    pool: &rayon::ThreadPool,
+    displacement: &mut [f64],
+    params: &SolveParams,
+    threshold: f64,
+) -> Result<SolveInfo> {
+    let Built {
+        layout,
+        system,
+        lu,
+        scratch,
+        ..
+    } = built;
+    let Scratch {
+        constant,
+        work,
+        next,
+        partials,
+    } = scratch;
+    for (p, &i) in layout.order.iter().enumerate() {
+        work[D * p..D * (p + 1)].copy_from_slice(&displacement[D * i..D * (i + 1)]);
+    }
+    match system {
+        System::Blocks { blocks, kn, .. } => {
+            block_constants::<D>(blocks, kn, layout, displacement, constant)
+        }
+        System::Laplacian(w) => w.constants::<D>(layout, displacement, constant),
+    }
+    let omega = params.omega;
+    let constant: &[f64] = constant;
+    let info = if layout.len() == 0 {
+        SolveInfo {
+            converged: true,
+            ..SolveInfo::default()
+        }
+    } else {
+        match (&*system, params.method, params.solver) {
+            (System::Blocks { blocks, .. }, Method::BallVertex, Solver::Direct) => {
+                let lu = lu.as_ref().expect("factored before the solve");
+                pool.install(|| lu.solve::<D>(layout, blocks, constant, work))?;
+                SolveInfo {
+                    iterations: 1,
+                    converged: true,
+                    ..SolveInfo::default()
+                }
+            }
+            (
+                System::Blocks {
+                    blocks, factored, ..
+                },
+                _,
+                _,
+            ) => {
+                let blocks: &NodeBlocks = blocks;
+                if *factored {
+                    iterate::<D, _>(
+                        pool,
+                        layout,
+                        work,
+                        next,
+                        partials,
+                        params,
+                        threshold,
+                        |p, w| verbss::update::<D>(blocks, layout, constant, omega, p, w),
+                    )
+                } else {
+                    iterate::<D, _>(
+                        pool,
+                        layout,
+                        work,
+                        next,
+                        partials,
+                        params,
+                        threshold,
+                        |p, w| sor::update::<D>(blocks, layout, constant, omega, p, w),
+                    )
+                }
+            }
+            (System::Laplacian(weights), _, _) => {
+                let weights: &laplacian::Weights = weights;
+                iterate::<D, _>(
+                    pool,
+                    layout,
+                    work,
+                    next,
+                    partials,
+                    params,
+                    threshold,
+                    |p, w| weights.update::<D>(layout, constant, omega, p, w),
+                )
+            }
+        }
+    };
+    for (p, &i) in layout.order.iter().enumerate() {
+        displacement[D * i..D * (i + 1)].copy_from_slice(&work[D * p..D * (p + 1)]);
+    }
+    Ok(info)
+}
+
+/// The blocks of a [`System::Blocks`].
+fn system_blocks(system: &System) -> &NodeBlocks {
+    match system {
+        System::Blocks { blocks, .. } => blocks,
+        System::Laplacian(_) => unreachable!("the direct solver works on spring blocks"),
+    }
+}
+
+/// `c_p = Σ_{j prescribed} B_pj u_j`, minus `d K_pp n` for a sliding node.
+fn block_constants<const D: usize>(
+    blocks: &NodeBlocks,
+    kn: &[f64],
+    layout: &Layout,
+    displacement: &[f64],
+    constant: &mut [f64],
+) {
+    let s = packed_len(D);
+    for p in 0..layout.len() {
+        let mut c = [0.0; D];
+        for e in blocks.fixed_offsets[p]..blocks.fixed_offsets[p + 1] {
+            let v = packed_mul::<D>(
+                &blocks.fixed_blocks[s * e..],
+                &point(displacement, blocks.fixed_nodes[e]),
+            );
+            for k in 0..D {
+                c[k] += v[k];
+            }
+        }
+        if let Some(r) = layout.frame::<D>(p) {
+            let slot = layout.slide_of[p] as usize;
+            let u = point::<D>(displacement, layout.order[p]);
+            let d: f64 = (0..D).map(|k| r[D - 1][k] * u[k]).sum();
+            for k in 0..D {
+                c[k] -= d * kn[D * slot + k];
+            }
+        }
+        constant[D * p..D * (p + 1)].copy_from_slice(&c);
+    }
+}
+
+/// Sweeps until the eq.-8 value is below `threshold` or `max_iterations` sweeps.
+/// `update(p, work)` returns position `p`'s new displacement and the sum of
+/// the absolute changes of its unknown components.
+#[allow(clippy::too_many_arguments)]
+fn iterate<const D: usize, F>(
+    pool: &rayon::ThreadPool,
+    layout: &Layout,
+    work: &mut [f64],
+    next: &mut [f64],
+    partials: &mut [f64],
+    params: &SolveParams,
+    threshold: f64,
+    update: F,
+) -> SolveInfo
+where
+    F: Fn(usize, &[f64]) -> ([f64; D], f64) + Sync,
+{
+    let mut info = SolveInfo::default();
+    pool.install(|| {
+        while info.iterations < params.max_iterations {
+            let value = sweep::<D, F>(layout, work, next, partials, &update) / layout.dofs as f64;
+            info.iterations += 1;
+            info.residual = value;
+            if params.record_history {
+                info.history.push(value);
+            }
+            if value < threshold {
+                info.converged = true;
+                break;
+            }
+        }
+    });
+    info
+}
+
+/// One sweep, colour by colour, each colour's nodes in parallel chunks.
+/// Returns the sum of absolute changes, added chunk by chunk in order.
+fn sweep<const D: usize, F>(
+    layout: &Layout,
+    work: &mut [f64],
+    next: &mut [f64],
+    partials: &mut [f64],
+    update: &F,
+) -> f64
+where
+    F: Fn(usize, &[f64]) -> ([f64; D], f64) + Sync,
+{
+    for c in 0..layout.colour_starts.len() - 1 {
+        let (start, end) = (layout.colour_starts[c], layout.colour_starts[c + 1]);
+        let sums = &mut partials[layout.chunk_starts[c]..layout.chunk_starts[c + 1]];
+        let current: &[f64] = work;
+        next[D * start..D * end]
+            .par_chunks_mut(D * CHUNK)
+            .zip(sums.par_iter_mut())
+            .enumerate()
+            .for_each(|(k, (out, sum))| {
+                let first = start + k * CHUNK;
+                *sum = 0.0;
+                for (m, u) in out.chunks_exact_mut(D).enumerate() {
+                    let (value, change) = update(first + m, current);
+                    u.copy_from_slice(&value);
+                    *sum += change;
+                }
+            });
+        work[D * start..D * end].copy_from_slice(&next[D * start..D * end]);
+    }
+    partials.iter().sum()
 }

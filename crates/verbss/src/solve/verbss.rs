@@ -1,0 +1,54 @@
+//! VerBSS: the node-by-node block-SOR sweep (paper §3, appendix).
+//!
+//! Each unknown node's `D×D` block `K_ii` (projected on its tangent frame for
+//! a sliding node) is factored once per build as LDLᵀ; a sweep then sets, node
+//! by node, `u_i ← ω K_ii⁻¹ (Σ_j B_ij u_j) + (1 − ω) u_i` with two
+//! triangular solves and a diagonal scaling per node (paper eq. 13).
+
+use super::{coupled, rotate, unrotate, Layout};
+use crate::geometry::{ldlt_solve, packed_len, point};
+use crate::springs::NodeBlocks;
+
+/// Position `p`'s relaxed block solution and the sum of the absolute changes
+/// of its unknown components. `blocks.diag` holds the LDLᵀ factors.
+#[inline]
+pub(crate) fn update<const D: usize>(
+    blocks: &NodeBlocks,
+    layout: &Layout,
+    constant: &[f64],
+    omega: f64,
+    p: usize,
+    work: &[f64],
+) -> ([f64; D], f64) {
+    let r = coupled::<D>(blocks, constant, p, work);
+    let old = point::<D>(work, p);
+    let factor = &blocks.diag[packed_len(D) * p..];
+    match layout.frame::<D>(p) {
+        None => {
+            let x = ldlt_solve::<D>(factor, &r);
+            let delta: [f64; D] = std::array::from_fn(|k| omega * (x[k] - old[k]));
+            (
+                std::array::from_fn(|k| old[k] + delta[k]),
+                delta.iter().map(|v| v.abs()).sum(),
+            )
+        }
+        Some(frame) => {
+            let mut b = rotate(&frame, &r);
+            b[D - 1] = 0.0;
+            let x = ldlt_solve::<D>(factor, &b);
+            let a = rotate(&frame, &old);
+            let delta: [f64; D] = std::array::from_fn(|k| {
+                if k < D - 1 {
+                    omega * (x[k] - a[k])
+                } else {
+                    0.0
+                }
+            });
+            let step = unrotate(&frame, &delta);
+            (
+                std::array::from_fn(|k| old[k] + step[k]),
+                delta.iter().map(|v| v.abs()).sum(),
+            )
+        }
+    }
+}

@@ -1,0 +1,307 @@
+//! Assembly of the node-block spring system (DESIGN §2).
+//!
+//! Every unknown node `i` gets one equation `K_ii u_i = Σ_j B_ij u_j` with
+//! symmetric `D×D` blocks:
+//!
+//! * **edge springs** (Batina): for every element edge `(i, j)`,
+//!   `L = |X_j − X_i|`, `n = (X_j − X_i)/L`, `k = 1/L`; `k n nᵀ` is added to
+//!   `K_ii` and to `B_ij`;
+//! * **ball-vertex springs** (Bottasso): for every element `e` containing `i`
+//!   and every facet `F` of `e` not containing `i`, `p` is the point of `F`
+//!   nearest to `X_i` ([`nearest_on_segment`], [`nearest_on_triangle`],
+//!   [`nearest_on_quad`]) with weights `w_f ∈ [0, 1]`, `Σ w_f = 1`;
+//!   `h = |p − X_i|`, `n = (p − X_i)/h`, `k = 1/h`; `k n nᵀ` is added to `K_ii`
+//!   and `w_f k n nᵀ` to `B_if`.
+//!
+//! Since every spring's weights sum to one, `Σ_j B_ij = K_ii` for every row:
+//! a common translation of all nodes solves every equation exactly.
+//!
+//! Rows are numbered by *position* (the solver's order of the unknowns).
+//! Couplings to other unknowns are stored with the neighbour's position;
+//! couplings to prescribed nodes are kept apart, since they only enter the
+//! right-hand side, once per solve.
+
+use crate::error::{Error, Result};
+use crate::geometry::{
+    add_outer, nearest_on_quad, nearest_on_segment, nearest_on_triangle, norm, packed_len, point,
+    sub,
+};
+use crate::mesh::{Cells, Mesh};
+use crate::topology::{self, Csr};
+
+/// Which springs a system is made of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Springs {
+    /// Edge springs only (the spring analogy).
+    Edge,
+    /// Edge and ball-vertex springs.
+    BallVertex,
+}
+
+/// The connectivity the assembly needs, derived once per mesh.
+#[derive(Debug, Clone)]
+pub struct Connectivity {
+    /// Spatial dimension `D`.
+    pub dim: usize,
+    /// The mesh's volume cells.
+    pub cells: Cells,
+    /// Node → cells incidence.
+    pub node_cells: Csr,
+    /// Node-coupling graph: nodes sharing a cell.
+    pub graph: Csr,
+    /// Edge graph: nodes joined by an element edge.
+    pub edge_graph: Csr,
+    /// The file's node numbers (for messages).
+    pub node_tags: Vec<u64>,
+    /// The file's cell numbers (for messages).
+    pub cell_tags: Vec<u64>,
+}
+
+impl Connectivity {
+    /// Derives the incidence, coupling graph and edge graph of `mesh`.
+    pub fn new(mesh: &Mesh) -> Connectivity {
+        let n = mesh.node_count();
+        let edges = topology::edges(&mesh.cells);
+        let edge_graph = Csr::from_pairs(
+            n,
+            edges
+                .iter()
+                .flat_map(|&[a, b]| [(a, b), (b, a)].into_iter()),
+        );
+        Connectivity {
+            dim: mesh.dim,
+            node_cells: topology::node_cells(&mesh.cells, n),
+            graph: topology::node_graph(&mesh.cells, n),
+            edge_graph,
+            cells: mesh.cells.clone(),
+            node_tags: mesh.node_tags.clone(),
+            cell_tags: mesh.cell_tags.clone(),
+        }
+    }
+}
+
+/// The node-block system of the unknown nodes, one row per position.
+///
+/// Blocks are symmetric and stored packed ([`crate::geometry::packed_index`]):
+/// `D(D+1)/2` numbers each (3 in 2D, 6 in 3D).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct NodeBlocks {
+    /// `K_ii` of each row.
+    pub diag: Vec<f64>,
+    /// Row `r`'s couplings to unknowns are entries `offsets[r]..offsets[r + 1]`.
+    pub offsets: Vec<usize>,
+    /// The position of each coupled unknown node.
+    pub neighbours: Vec<u32>,
+    /// `B_ij` of each entry.
+    pub blocks: Vec<f64>,
+    /// Row `r`'s couplings to prescribed nodes are entries
+    /// `fixed_offsets[r]..fixed_offsets[r + 1]`.
+    pub fixed_offsets: Vec<usize>,
+    /// The (mesh) index of each coupled prescribed node.
+    pub fixed_nodes: Vec<usize>,
+    /// `B_ij` of each prescribed coupling.
+    pub fixed_blocks: Vec<f64>,
+}
+
+/// Assembles the rows of the nodes `order` (position → node) at coordinates
+/// `coords`; `position[j]` is node `j`'s position, or `u32::MAX` for a
+/// prescribed node. Blocks that are exactly zero are left out.
+///
+/// Fails with [`Error::InvalidMesh`] naming the node (by its file number) when
+/// an edge has zero length or a node lies on a facet of its ball (a spring of
+/// zero length: a collapsed cell).
+pub fn assemble(
+    conn: &Connectivity,
+    coords: &[f64],
+    order: &[usize],
+    position: &[u32],
+    springs: Springs,
+) -> Result<NodeBlocks> {
+    match conn.dim {
+        2 => assemble_d::<2>(conn, coords, order, position, springs),
+        3 => assemble_d::<3>(conn, coords, order, position, springs),
+        d => Err(Error::InvalidMesh(format!(
+            "dimension {d} (expected 2 or 3)"
+        ))),
+    }
+}
+
+fn assemble_d<const D: usize>(
+    conn: &Connectivity,
+    coords: &[f64],
+    order: &[usize],
+    position: &[u32],
+    springs: Springs,
+) -> Result<NodeBlocks> {
+    let s = packed_len(D);
+    let mut out = NodeBlocks {
+        offsets: vec![0],
+        fixed_offsets: vec![0],
+        ..NodeBlocks::default()
+    };
+    out.diag.reserve(s * order.len());
+    let widest = (0..conn.graph.rows())
+        .map(|i| conn.graph.row(i).len())
+        .max()
+        .unwrap_or(0);
+    let mut acc = vec![0.0; s * widest];
+    for &i in order {
+        let row = conn.graph.row(i);
+        let acc = &mut acc[..s * row.len()];
+        acc.fill(0.0);
+        let slot = |j: usize| s * row.binary_search(&j).expect("coupled nodes share a cell");
+        let mut kii = [0.0; 6];
+        let xi = point::<D>(coords, i);
+        for &j in conn.edge_graph.row(i) {
+            let d = sub(&point::<D>(coords, j), &xi);
+            let len = norm(&d);
+            if !(len > 0.0 && len.is_finite()) {
+                return Err(Error::InvalidMesh(format!(
+                    "nodes {} and {} coincide (an edge of zero length)",
+                    conn.node_tags[i], conn.node_tags[j]
+                )));
+            }
+            let n = d.map(|v| v / len);
+            add_outer(&mut kii, 1.0 / len, &n);
+            let at = slot(j);
+            add_outer(&mut acc[at..at + s], 1.0 / len, &n);
+        }
+        if springs == Springs::BallVertex {
+            for &c in conn.node_cells.row(i) {
+                let nodes = conn.cells.cell(c);
+                let local = nodes.iter().position(|&v| v == i).expect("incidence");
+                for facet in conn.cells.kinds[c].table().facets {
+                    if facet.contains(&local) {
+                        continue;
+                    }
+                    let (p, w, m) = nearest::<D>(coords, &xi, nodes, facet).ok_or_else(|| {
+                        Error::InvalidMesh(format!(
+                            "cell {} has a degenerate quadrilateral face",
+                            conn.cell_tags[c]
+                        ))
+                    })?;
+                    let d = sub(&p, &xi);
+                    let h = norm(&d);
+                    if !(h > 0.0 && h.is_finite() && w[..m].iter().all(|v| v.is_finite())) {
+                        return Err(Error::InvalidMesh(format!(
+                            "node {} lies on a facet of cell {} (a collapsed cell: \
+                             zero ball-vertex spring length)",
+                            conn.node_tags[i], conn.cell_tags[c]
+                        )));
+                    }
+                    let n = d.map(|v| v / h);
+                    add_outer(&mut kii, 1.0 / h, &n);
+                    for (&f, &wf) in facet.iter().zip(&w[..m]) {
+                        let at = slot(nodes[f]);
+                        add_outer(&mut acc[at..at + s], wf / h, &n);
+                    }
+                }
+            }
+        }
+        out.diag.extend_from_slice(&kii[..s]);
+        for (k, &j) in row.iter().enumerate() {
+            let block = &acc[s * k..s * (k + 1)];
+            if block.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            if position[j] == u32::MAX {
+                out.fixed_nodes.push(j);
+                out.fixed_blocks.extend_from_slice(block);
+            } else {
+                out.neighbours.push(position[j]);
+                out.blocks.extend_from_slice(block);
+            }
+        }
+        out.offsets.push(out.neighbours.len());
+        out.fixed_offsets.push(out.fixed_nodes.len());
+    }
+    Ok(out)
+}
+
+/// The nearest point of facet `facet` (local indices into `nodes`) to `x`,
+/// its weights and their number; `None` for a degenerate quadrilateral.
+fn nearest<const D: usize>(
+    coords: &[f64],
+    x: &[f64; D],
+    nodes: &[usize],
+    facet: &[usize],
+) -> Option<([f64; D], [f64; 4], usize)> {
+    let at = |k: usize| point::<D>(coords, nodes[facet[k]]);
+    let widen = |v: &[f64; D]| std::array::from_fn::<f64, 3, _>(|k| if k < D { v[k] } else { 0.0 });
+    match facet.len() {
+        2 => {
+            let (p, w) = nearest_on_segment(x, &at(0), &at(1));
+            Some((p, [w[0], w[1], 0.0, 0.0], 2))
+        }
+        3 => {
+            let (p, w) = nearest_on_triangle(x, &at(0), &at(1), &at(2));
+            Some((p, [w[0], w[1], w[2], 0.0], 3))
+        }
+        _ => {
+            let q = [0, 1, 2, 3].map(|k| widen(&at(k)));
+            let (p, w) = nearest_on_quad(&widen(x), &q)?;
+            Some((std::array::from_fn(|k| p[k]), w, 4))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::CellKind;
+
+    /// One equilateral-ish triangle with node 2 unknown:
+    /// edges to 0 and 1, and the ball-vertex spring to edge (0, 1).
+    #[test]
+    fn triangle_row_by_hand() {
+        let mut cells = Cells::new();
+        cells.push(CellKind::Triangle, &[0, 1, 2]);
+        let coords = vec![0.0, 0.0, 2.0, 0.0, 0.5, 1.0];
+        let mesh = Mesh::new(2, coords.clone(), cells, vec![]).unwrap();
+        let conn = Connectivity::new(&mesh);
+        let position = [u32::MAX, u32::MAX, 0];
+        let b = assemble(&conn, &coords, &[2], &position, Springs::BallVertex).unwrap();
+        // Edge to node 0: L = √1.25, n = −(0.5, 1)/L. Edge to node 1: L = √3.25,
+        // n = (1.5, −1)/L. Ball-vertex: p = (0.5, 0), h = 1, n = (0, −1),
+        // weights (0.75, 0.25).
+        let outer = |k: f64, n: [f64; 2]| [k * n[0] * n[0], k * n[1] * n[0], k * n[1] * n[1]];
+        let l0 = 1.25f64.sqrt();
+        let l1 = 3.25f64.sqrt();
+        let e0 = outer(1.0 / l0, [0.5 / l0, 1.0 / l0]);
+        let e1 = outer(1.0 / l1, [1.5 / l1, -1.0 / l1]);
+        let bv = outer(1.0, [0.0, -1.0]);
+        let expect_k: Vec<f64> = (0..3).map(|k| e0[k] + e1[k] + bv[k]).collect();
+        let expect_b0: Vec<f64> = (0..3).map(|k| e0[k] + 0.75 * bv[k]).collect();
+        let expect_b1: Vec<f64> = (0..3).map(|k| e1[k] + 0.25 * bv[k]).collect();
+        let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-15);
+        assert!(close(&b.diag, &expect_k), "{:?}", b.diag);
+        assert_eq!(b.fixed_nodes, [0, 1]);
+        assert!(close(&b.fixed_blocks[..3], &expect_b0));
+        assert!(close(&b.fixed_blocks[3..], &expect_b1));
+        assert!(b.neighbours.is_empty());
+        let spring = assemble(&conn, &coords, &[2], &position, Springs::Edge).unwrap();
+        assert!(close(&spring.fixed_blocks, &[e0, e1].concat()));
+    }
+
+    #[test]
+    fn collapsed_cells_are_reported() {
+        let mut cells = Cells::new();
+        cells.push(CellKind::Triangle, &[0, 1, 2]);
+        let coords = vec![0.0, 0.0, 2.0, 0.0, 0.5, 0.0];
+        let mesh = Mesh::new(2, coords.clone(), cells, vec![]).unwrap();
+        let conn = Connectivity::new(&mesh);
+        let position = [u32::MAX, u32::MAX, 0];
+        let e = assemble(&conn, &coords, &[2], &position, Springs::BallVertex).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid mesh: node 3 lies on a facet of cell 1 (a collapsed cell: zero ball-vertex \
+             spring length)"
+        );
+        let coords = vec![0.0, 0.0, 2.0, 0.0, 0.0, 0.0];
+        let e = assemble(&conn, &coords, &[2], &position, Springs::Edge).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid mesh: nodes 3 and 1 coincide (an edge of zero length)"
+        );
+    }
+}

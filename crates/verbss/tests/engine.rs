@@ -1,0 +1,592 @@
+//! The deformation engine against the contract of DESIGN §2: row sums,
+//! translations, zero motion, thread independence, and VerBSS against the
+//! exact (direct) ball-vertex solution on generated and real meshes.
+
+use std::path::Path;
+
+use verbss::solve::{default_roles, Engine, Method, NodeRole, SolveInfo, SolveParams, Solver};
+use verbss::springs::{assemble, Connectivity, Springs};
+use verbss::topology::boundary_nodes;
+use verbss::{CellKind, Cells, Mesh};
+
+/// The element layouts of the generated meshes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Layout {
+    Tri,
+    Quad,
+    MixedTriQuad,
+    Tet,
+    Hex,
+    Wedge,
+    Pyramid,
+    /// Hexahedra, prism columns and cubes of six pyramids around a centre node.
+    MixedHexWedgePyramid,
+}
+
+const LAYOUTS: [Layout; 8] = [
+    Layout::Tri,
+    Layout::Quad,
+    Layout::MixedTriQuad,
+    Layout::Tet,
+    Layout::Hex,
+    Layout::Wedge,
+    Layout::Pyramid,
+    Layout::MixedHexWedgePyramid,
+];
+
+/// A deterministic number in [−0.5, 0.5) from a node's grid index.
+fn jitter(seed: usize) -> f64 {
+    let mut h = (seed as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    h ^= h >> 29;
+    h = h.wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    h ^= h >> 32;
+    (h % 1_000_000) as f64 / 1_000_000.0 - 0.5
+}
+
+/// A structured grid of `n` cells per side on the unit square or cube, cells
+/// split according to `layout`, interior grid nodes moved by up to ±10 % of a
+/// cell.
+fn grid(layout: Layout, n: usize) -> Mesh {
+    let dim = match layout {
+        Layout::Tri | Layout::Quad | Layout::MixedTriQuad => 2,
+        _ => 3,
+    };
+    let h = 1.0 / n as f64;
+    let side = n + 1;
+    let count = side.pow(dim as u32);
+    let mut coords = Vec::with_capacity(dim * count);
+    for id in 0..count {
+        let ijk = [id % side, (id / side) % side, id / (side * side)];
+        let interior = ijk[..dim].iter().all(|&v| v > 0 && v < n);
+        for (axis, &v) in ijk[..dim].iter().enumerate() {
+            let shift = if interior {
+                0.2 * h * jitter(dim * id + axis)
+            } else {
+                0.0
+            };
+            coords.push(v as f64 * h + shift);
+        }
+    }
+    let node = |i: usize, j: usize, k: usize| i + side * (j + side * k);
+    let mut cells = Cells::new();
+    for k in 0..if dim == 3 { n } else { 1 } {
+        for j in 0..n {
+            for i in 0..n {
+                if dim == 2 {
+                    let q = [
+                        node(i, j, 0),
+                        node(i + 1, j, 0),
+                        node(i + 1, j + 1, 0),
+                        node(i, j + 1, 0),
+                    ];
+                    let quad =
+                        layout == Layout::Quad || (layout == Layout::MixedTriQuad && i < n / 2);
+                    if quad {
+                        cells.push(CellKind::Quad, &q);
+                    } else {
+                        cells.push(CellKind::Triangle, &[q[0], q[1], q[2]]);
+                        cells.push(CellKind::Triangle, &[q[0], q[2], q[3]]);
+                    }
+                    continue;
+                }
+                let v = |b: usize| node(i + (b & 1), j + ((b >> 1) & 1), k + (b >> 2));
+                // Hexahedron numbering: bottom 0 1 2 3, top 4 5 6 7.
+                let hex = [v(0), v(1), v(3), v(2), v(4), v(5), v(7), v(6)];
+                let kind = match layout {
+                    Layout::MixedHexWedgePyramid => match (i + j) % 3 {
+                        0 => Layout::Hex,
+                        1 => Layout::Wedge,
+                        _ => Layout::Pyramid,
+                    },
+                    other => other,
+                };
+                match kind {
+                    Layout::Hex => cells.push(CellKind::Hexahedron, &hex),
+                    Layout::Wedge => {
+                        cells.push(
+                            CellKind::Wedge,
+                            &[hex[0], hex[1], hex[2], hex[4], hex[5], hex[6]],
+                        );
+                        cells.push(
+                            CellKind::Wedge,
+                            &[hex[0], hex[2], hex[3], hex[4], hex[6], hex[7]],
+                        );
+                    }
+                    Layout::Tet => {
+                        // Six tetrahedra along the diagonal v(0)–v(7), one per axis order.
+                        for axes in [
+                            [0, 1, 2],
+                            [0, 2, 1],
+                            [1, 0, 2],
+                            [1, 2, 0],
+                            [2, 0, 1],
+                            [2, 1, 0],
+                        ] {
+                            let a = 1 << axes[0];
+                            let b = a | (1 << axes[1]);
+                            cells.push(CellKind::Tetra, &[v(0), v(a), v(b), v(7)]);
+                        }
+                    }
+                    _ => {
+                        let centre = coords.len() / 3;
+                        for axis in 0..3 {
+                            let mid = (0..8).map(|b| coords[3 * v(b) + axis]).sum::<f64>() / 8.0;
+                            coords.push(mid);
+                        }
+                        for face in [
+                            [0, 3, 2, 1],
+                            [4, 5, 6, 7],
+                            [0, 1, 5, 4],
+                            [1, 2, 6, 5],
+                            [2, 3, 7, 6],
+                            [3, 0, 4, 7],
+                        ] {
+                            let f = face.map(|l| hex[l]);
+                            cells.push(CellKind::Pyramid, &[f[0], f[1], f[2], f[3], centre]);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Mesh::new(dim, coords, cells, vec![]).unwrap()
+}
+
+fn params(method: Method, solver: Solver, tolerance: f64) -> SolveParams {
+    let mut p = SolveParams::default();
+    p.method = method;
+    p.solver = solver;
+    p.tolerance = tolerance;
+    p.max_iterations = 200_000;
+    p
+}
+
+/// Every method and global solver.
+const METHODS: [(Method, Solver); 5] = [
+    (Method::Verbss, Solver::Sor),
+    (Method::BallVertex, Solver::Sor),
+    (Method::BallVertex, Solver::Direct),
+    (Method::Spring, Solver::Sor),
+    (Method::Laplacian, Solver::Sor),
+];
+
+/// A smooth, non-affine displacement of every boundary node; zero elsewhere.
+fn wavy_boundary(mesh: &Mesh) -> Vec<f64> {
+    let d = mesh.dim;
+    let boundary = boundary_nodes(mesh);
+    let mut u = vec![0.0; mesh.coords.len()];
+    for i in 0..mesh.node_count() {
+        if boundary[i] {
+            let x = mesh.point(i);
+            for k in 0..d {
+                u[d * i + k] = 0.05 * (3.0 * x[(k + 1) % d] + k as f64).sin() * x[k];
+            }
+        }
+    }
+    u
+}
+
+fn solve(
+    mesh: &Mesh,
+    roles: &[NodeRole],
+    normals: &[[f64; 3]],
+    u: &mut [f64],
+    p: &SolveParams,
+) -> SolveInfo {
+    let mut engine = Engine::new(mesh, roles, normals).unwrap();
+    engine.solve(&mesh.coords, u, p).unwrap()
+}
+
+fn rel_diff(a: &[f64], b: &[f64]) -> f64 {
+    let diff: f64 = a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum();
+    let size: f64 = b.iter().map(|y| y * y).sum();
+    (diff / size).sqrt()
+}
+
+#[test]
+fn coupling_rows_sum_to_the_diagonal() {
+    for layout in LAYOUTS {
+        let mesh = grid(layout, 3);
+        let conn = Connectivity::new(&mesh);
+        let boundary = boundary_nodes(&mesh);
+        let order: Vec<usize> = (0..mesh.node_count()).filter(|&i| !boundary[i]).collect();
+        let mut position = vec![u32::MAX; mesh.node_count()];
+        for (p, &i) in order.iter().enumerate() {
+            position[i] = p as u32;
+        }
+        let s = mesh.dim * (mesh.dim + 1) / 2;
+        for springs in [Springs::Edge, Springs::BallVertex] {
+            let b = assemble(&conn, &mesh.coords, &order, &position, springs).unwrap();
+            for p in 0..order.len() {
+                let mut sum = vec![0.0; s];
+                let rows = [
+                    (&b.blocks, b.offsets[p]..b.offsets[p + 1]),
+                    (&b.fixed_blocks, b.fixed_offsets[p]..b.fixed_offsets[p + 1]),
+                ];
+                for (blocks, range) in rows {
+                    for e in range {
+                        for k in 0..s {
+                            sum[k] += blocks[s * e + k];
+                        }
+                    }
+                }
+                let diag = &b.diag[s * p..s * (p + 1)];
+                let scale = diag.iter().map(|v| v.abs()).fold(0.0, f64::max);
+                for k in 0..s {
+                    assert!(
+                        (sum[k] - diag[k]).abs() <= 1e-13 * scale,
+                        "{layout:?} {springs:?} row {p}: {sum:?} vs {diag:?}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_common_translation_moves_every_node() {
+    for layout in LAYOUTS {
+        let mesh = grid(layout, 3);
+        let roles = default_roles(&mesh);
+        let shift = [0.3, -0.2, 0.1];
+        for (method, solver) in METHODS {
+            let mut u = vec![0.0; mesh.coords.len()];
+            for i in 0..mesh.node_count() {
+                if roles[i] == NodeRole::Fixed {
+                    u[mesh.dim * i..mesh.dim * (i + 1)].copy_from_slice(&shift[..mesh.dim]);
+                }
+            }
+            let info = solve(&mesh, &roles, &[], &mut u, &params(method, solver, 1e-12));
+            assert!(info.converged, "{layout:?} {method:?} {solver:?}");
+            let err = (0..u.len())
+                .map(|k| (u[k] - shift[k % mesh.dim]).abs())
+                .fold(0.0, f64::max);
+            let bound = if solver == Solver::Direct && method == Method::BallVertex {
+                1e-14
+            } else {
+                1e-9
+            };
+            assert!(err < bound, "{layout:?} {method:?} {solver:?}: {err}");
+        }
+    }
+}
+
+#[test]
+fn zero_motion_gives_zero_displacement() {
+    for layout in [Layout::MixedTriQuad, Layout::MixedHexWedgePyramid] {
+        let mesh = grid(layout, 3);
+        let roles = default_roles(&mesh);
+        for (method, solver) in METHODS {
+            let mut u = vec![0.0; mesh.coords.len()];
+            let info = solve(&mesh, &roles, &[], &mut u, &params(method, solver, 1e-6));
+            assert!(
+                info.converged && info.iterations == 1,
+                "{method:?}: {info:?}"
+            );
+            assert!(
+                u.iter().all(|&v| v == 0.0),
+                "{layout:?} {method:?} {solver:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn results_do_not_depend_on_the_thread_count() {
+    for mesh in [grid(Layout::MixedTriQuad, 64), grid(Layout::Hex, 16)] {
+        let roles = default_roles(&mesh);
+        let u0 = wavy_boundary(&mesh);
+        for (method, solver) in METHODS {
+            if solver == Solver::Direct {
+                continue;
+            }
+            let mut p = params(method, solver, 1e-5);
+            p.record_history = true;
+            let mut engine = Engine::new(&mesh, &roles, &[]).unwrap();
+            let runs: Vec<(Vec<f64>, SolveInfo)> = [1, 2, 3]
+                .into_iter()
+                .map(|threads| {
+                    p.threads = threads;
+                    let mut u = u0.clone();
+                    let info = engine.solve(&mesh.coords, &mut u, &p).unwrap();
+                    (u, info)
+                })
+                .collect();
+            for (u, info) in &runs[1..] {
+                assert!(u == &runs[0].0, "{method:?}");
+                assert_eq!(info.history, runs[0].1.history, "{method:?}");
+            }
+            assert!(runs[0].1.converged && runs[0].1.iterations > 5);
+        }
+    }
+}
+
+#[test]
+fn verbss_converges_to_the_direct_ball_vertex_solution() {
+    for layout in LAYOUTS {
+        let mesh = grid(layout, 4);
+        let roles = default_roles(&mesh);
+        let mut exact = wavy_boundary(&mesh);
+        solve(
+            &mesh,
+            &roles,
+            &[],
+            &mut exact,
+            &params(Method::BallVertex, Solver::Direct, 0.0),
+        );
+        for (method, solver) in [
+            (Method::Verbss, Solver::Sor),
+            (Method::BallVertex, Solver::Sor),
+        ] {
+            let mut u = wavy_boundary(&mesh);
+            let info = solve(&mesh, &roles, &[], &mut u, &params(method, solver, 1e-13));
+            assert!(info.converged, "{layout:?} {method:?}");
+            let rel = rel_diff(&u, &exact);
+            assert!(rel < 1e-8, "{layout:?} {method:?}: {rel}");
+        }
+    }
+}
+
+#[test]
+fn sliding_nodes_keep_their_normal_component() {
+    // The hexahedral box with its x = 0 face sliding in its plane (normal
+    // (−2, 0, 0), normalised by the engine), edges of that face fixed.
+    let mesh = grid(Layout::Hex, 4);
+    let mut roles = default_roles(&mesh);
+    let mut u = wavy_boundary(&mesh);
+    let mut sliding = Vec::new();
+    for i in 0..mesh.node_count() {
+        let x = mesh.point(i);
+        let inside = |v: f64| v > 1e-9 && v < 1.0 - 1e-9;
+        if x[0] == 0.0 && inside(x[1]) && inside(x[2]) {
+            roles[i] = NodeRole::Slide(0);
+            u[3 * i] = 0.01;
+            u[3 * i + 1] = 0.0;
+            u[3 * i + 2] = 0.0;
+            sliding.push(i);
+        }
+    }
+    let normals = [[-2.0, 0.0, 0.0]];
+    let mut exact = u.clone();
+    solve(
+        &mesh,
+        &roles,
+        &normals,
+        &mut exact,
+        &params(Method::BallVertex, Solver::Direct, 0.0),
+    );
+    for (method, solver) in [
+        (Method::Verbss, Solver::Sor),
+        (Method::BallVertex, Solver::Sor),
+    ] {
+        let mut v = u.clone();
+        let info = solve(
+            &mesh,
+            &roles,
+            &normals,
+            &mut v,
+            &params(method, solver, 1e-13),
+        );
+        assert!(info.converged);
+        let rel = rel_diff(&v, &exact);
+        assert!(rel < 1e-8, "{method:?}: {rel}");
+    }
+    for &i in &sliding {
+        assert!(
+            (exact[3 * i] - 0.01).abs() < 1e-15,
+            "node {i}: {}",
+            exact[3 * i]
+        );
+        assert!(exact[3 * i + 1] != 0.0 && exact[3 * i + 2] != 0.0);
+    }
+    // A translation along the sliding plane moves every node by it.
+    let shift = [0.0, 0.2, -0.1];
+    let mut t = vec![0.0; mesh.coords.len()];
+    for i in 0..mesh.node_count() {
+        if roles[i] == NodeRole::Fixed {
+            t[3 * i..3 * i + 3].copy_from_slice(&shift);
+        }
+    }
+    solve(
+        &mesh,
+        &roles,
+        &normals,
+        &mut t,
+        &params(Method::BallVertex, Solver::Direct, 0.0),
+    );
+    let err = (0..t.len())
+        .map(|k| (t[k] - shift[k % 3]).abs())
+        .fold(0.0, f64::max);
+    assert!(err < 1e-14, "{err}");
+}
+
+#[test]
+fn springs_are_rebuilt_only_when_the_reference_or_method_changes() {
+    let mesh = grid(Layout::Tri, 6);
+    let roles = default_roles(&mesh);
+    let mut engine = Engine::new(&mesh, &roles, &[]).unwrap();
+    let p = params(Method::Verbss, Solver::Sor, 1e-8);
+    let mut u = wavy_boundary(&mesh);
+    assert!(engine.solve(&mesh.coords, &mut u, &p).unwrap().rebuilt);
+    assert!(engine.bytes_per_node() > 0.0);
+    let mut v = wavy_boundary(&mesh);
+    let again = engine.solve(&mesh.coords, &mut v, &p).unwrap();
+    assert!(!again.rebuilt);
+    assert_eq!(u, v);
+    let moved: Vec<f64> = mesh.coords.iter().zip(&u).map(|(x, d)| x + d).collect();
+    assert!(engine.solve(&moved, &mut v, &p).unwrap().rebuilt);
+    let laplace = params(Method::Laplacian, Solver::Sor, 1e-8);
+    assert!(engine.solve(&moved, &mut v, &laplace).unwrap().rebuilt);
+}
+
+#[test]
+fn bad_input_is_reported() {
+    let mesh = grid(Layout::Quad, 2);
+    let roles = default_roles(&mesh);
+    let msg = |r: Result<Engine, verbss::Error>| r.err().unwrap().to_string();
+    assert_eq!(
+        msg(Engine::new(&mesh, &roles[1..], &[])),
+        "invalid setting: 8 node roles for 9 nodes"
+    );
+    let free = vec![NodeRole::Free; 9];
+    assert_eq!(
+        msg(Engine::new(&mesh, &free, &[])),
+        "invalid setting: node 1 is not connected to any fixed node (its displacement would \
+         be undetermined)"
+    );
+    let mut slide = roles.clone();
+    slide[4] = NodeRole::Slide(1);
+    assert_eq!(
+        msg(Engine::new(&mesh, &slide, &[[1.0, 0.0, 0.0]])),
+        "invalid setting: node 5 slides on normal 1 but 1 normals were given"
+    );
+    assert_eq!(
+        msg(Engine::new(&mesh, &roles, &[[0.0, 0.0, 7.0]])),
+        "invalid setting: sliding normal 0 is zero or not finite"
+    );
+    let mut engine = Engine::new(&mesh, &roles, &[]).unwrap();
+    let mut u = vec![0.0; 18];
+    let mut p = SolveParams::default();
+    let e = engine.solve(&mesh.coords[2..], &mut u, &p).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "invalid setting: 16 coordinates for 9 nodes in 2D (expected 18)"
+    );
+    u[5] = f64::NAN;
+    let e = engine.solve(&mesh.coords, &mut u, &p).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "invalid setting: displacements of node 3 are not finite"
+    );
+    u[5] = 0.0;
+    p.omega = 2.0;
+    let e = engine.solve(&mesh.coords, &mut u, &p).unwrap_err();
+    assert_eq!(e.to_string(), "invalid setting: omega 2 is outside (0, 2)");
+    p.omega = 1.5;
+    let mut flat = mesh.coords.clone();
+    flat[8] = flat[2];
+    flat[9] = flat[3];
+    let e = engine.solve(&flat, &mut u, &p).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "invalid mesh: nodes 5 and 2 coincide (an edge of zero length)"
+    );
+}
+
+// ---- real meshes -------------------------------------------------------------
+
+fn real(name: &str) -> Mesh {
+    let path = format!(
+        "{}/../../assets/meshes/su2/{name}",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    verbss::io::read(Path::new(&path)).unwrap()
+}
+
+/// Displacement rotating the nodes of `group` by `degrees` about `centre`
+/// (in the x–y plane), zero elsewhere.
+fn rotate_group(mesh: &Mesh, group: &str, degrees: f64, centre: [f64; 2]) -> Vec<f64> {
+    let (s, c) = degrees.to_radians().sin_cos();
+    let d = mesh.dim;
+    let mut u = vec![0.0; mesh.coords.len()];
+    for i in mesh.group(group).unwrap().nodes() {
+        let x = mesh.point(i);
+        let (dx, dy) = (x[0] - centre[0], x[1] - centre[1]);
+        u[d * i] = centre[0] + c * dx - s * dy - x[0];
+        u[d * i + 1] = centre[1] + s * dx + c * dy - x[1];
+    }
+    u
+}
+
+/// VerBSS at a tight tolerance against the direct solution.
+fn check_against_direct(mesh: &Mesh, u0: &[f64]) {
+    let roles = default_roles(mesh);
+    let mut engine = Engine::new(mesh, &roles, &[]).unwrap();
+    let mut exact = u0.to_vec();
+    engine
+        .solve(
+            &mesh.coords,
+            &mut exact,
+            &params(Method::BallVertex, Solver::Direct, 0.0),
+        )
+        .unwrap();
+    let mut u = u0.to_vec();
+    let info = engine
+        .solve(
+            &mesh.coords,
+            &mut u,
+            &params(Method::Verbss, Solver::Sor, 1e-13),
+        )
+        .unwrap();
+    assert!(info.converged, "{info:?}");
+    let rel = rel_diff(&u, &exact);
+    assert!(
+        rel < 1e-8,
+        "relative difference {rel} after {} sweeps",
+        info.iterations
+    );
+}
+
+#[test]
+fn naca0012_rotated_5_degrees() {
+    let mesh = real("mesh_NACA0012_inv.su2");
+    check_against_direct(&mesh, &rotate_group(&mesh, "airfoil", 5.0, [0.25, 0.0]));
+}
+
+#[test]
+fn rae2822_hybrid_rotated_2_degrees() {
+    let mesh = real("mesh_RAE2822_turb_ffd.su2");
+    check_against_direct(&mesh, &rotate_group(&mesh, "AIRFOIL", 2.0, [0.25, 0.0]));
+}
+
+/// The `z_p` face of a brick on [0,2]×[0,1]×[0,1] lifted by 0.1, or twisted
+/// by 10° about the box's long axis (y = z = 0.5).
+fn brick_motions(mesh: &Mesh) -> [Vec<f64>; 2] {
+    let mut lift = vec![0.0; mesh.coords.len()];
+    let mut twist = vec![0.0; mesh.coords.len()];
+    let (s, c) = 10f64.to_radians().sin_cos();
+    for i in mesh.group("z_p").unwrap().nodes() {
+        let x = mesh.point(i);
+        lift[3 * i + 2] = 0.1;
+        let (dy, dz) = (x[1] - 0.5, x[2] - 0.5);
+        twist[3 * i + 1] = 0.5 + c * dy - s * dz - x[1];
+        twist[3 * i + 2] = 0.5 + s * dy + c * dz - x[2];
+    }
+    [lift, twist]
+}
+
+#[test]
+fn tet_brick_lifted_and_twisted() {
+    let mesh = real("mesh_brick_tets_ffd.su2");
+    for u0 in brick_motions(&mesh) {
+        check_against_direct(&mesh, &u0);
+    }
+}
+
+#[test]
+fn hex_brick_lifted_and_twisted() {
+    let mesh = real("mesh_brick_hex_ffd.su2");
+    for u0 in brick_motions(&mesh) {
+        check_against_direct(&mesh, &u0);
+    }
+}
