@@ -1,3 +1,52 @@
-//! The `verbss` command-line tool.
+//! The `verbss` command-line tool: thin argument parsing, progress and printing
+//! over the `verbss` library.
+//!
+//! Exit codes: 0 success, 2 bad input (file, argument, setting), 3 a step
+//! inverted an element.
 
-fn main() {}
+mod convert;
+mod demo;
+mod progress;
+mod quality;
+mod run;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// Mesh motion for unstructured 2D/3D hybrid meshes by Vertex-Ball Spring Smoothing.
+#[derive(Parser)]
+#[command(name = "verbss", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Measure element quality: counts, groups, histogram, inverted elements.
+    Quality(quality::QualityArgs),
+    /// Convert a mesh between formats, chosen by extension (.msh, .su2, .vtu).
+    Convert(convert::ConvertArgs),
+    /// Run a case file: moving boundaries over time steps, with outputs.
+    Run(run::RunArgs),
+    /// Run the paper's pitching–plunging NACA0012 case with no input files.
+    Demo(demo::DemoArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Quality(args) => quality::run(args),
+        Command::Convert(args) => convert::run(args),
+        Command::Run(args) => run::run(args),
+        Command::Demo(args) => demo::run(args),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}

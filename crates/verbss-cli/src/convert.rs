@@ -1,0 +1,50 @@
+//! `verbss convert IN OUT`: read one format, write another.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, ValueEnum};
+use verbss::io::{self, MshVersion, WriteOptions};
+
+/// Arguments of `verbss convert`.
+#[derive(Args)]
+pub struct ConvertArgs {
+    /// Input mesh (.msh, .su2, .vtu).
+    input: PathBuf,
+    /// Output mesh; its extension chooses the format.
+    output: PathBuf,
+    /// Gmsh file-format version of a .msh output.
+    #[arg(long, value_enum, default_value = "4.1")]
+    msh_version: MshVersionArg,
+    /// Write a binary .msh.
+    #[arg(long)]
+    binary: bool,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum MshVersionArg {
+    #[value(name = "2.2")]
+    V22,
+    #[value(name = "4.1")]
+    V41,
+}
+
+/// Runs `verbss convert`.
+pub fn run(args: ConvertArgs) -> anyhow::Result<ExitCode> {
+    let mesh = io::read(&args.input)?;
+    let mut options = WriteOptions::default();
+    options.msh_version = match args.msh_version {
+        MshVersionArg::V22 => MshVersion::V22,
+        MshVersionArg::V41 => MshVersion::V41,
+    };
+    options.binary = args.binary;
+    io::write(&args.output, &mesh, &options)?;
+    println!(
+        "wrote {} ({} nodes, {} elements, {} groups)",
+        args.output.display(),
+        mesh.node_count(),
+        mesh.cell_count(),
+        mesh.groups.len()
+    );
+    Ok(ExitCode::SUCCESS)
+}
