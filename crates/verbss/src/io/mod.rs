@@ -10,6 +10,7 @@ use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 
 pub mod gmsh;
+pub mod positions;
 pub mod su2;
 pub mod vtu;
 

@@ -1,19 +1,1264 @@
-//! SU2 native ASCII meshes.
+//! SU2 native ASCII meshes (`.su2`).
+//!
+//! A file is a list of sections, each opened by a keyword line:
+//!
+//! ```text
+//! NDIME= 2                      % spatial dimension, 2 or 3
+//! NELEM= 2                      % volume elements: VTK type id, node indices, [index]
+//! 5  0 1 2  0
+//! 5  0 2 3  1
+//! NPOIN= 4                      % points: x y [z] [index]
+//! 0 0  0
+//! 1 0  1
+//! 1 1  2
+//! 0 1  3
+//! NMARK= 1                      % boundary markers
+//! MARKER_TAG= wall
+//! MARKER_ELEMS= 1               % marker facets: VTK type id, node indices
+//! 3  0 1
+//! ```
+//!
+//! Node indices are 0-based positions in the `NPOIN=` list. Element type ids
+//! are VTK's: 1 vertex, 3 line, 5 triangle, 9 quadrilateral, 10 tetrahedron,
+//! 12 hexahedron, 13 prism, 14 pyramid.
+//!
+//! The reader accepts what SU2 and other tools write: `%` comments, blank
+//! lines, sections in any order after `NDIME=`, keywords in any case with or
+//! without `_` and spaces (`MARKER_TAG=`, `MARKERTAG =`), trailing indices after
+//! coordinates and node lists, `NPOIN= n n_domain`. Sections it does not use
+//! (`FFD_NBOX=`, `NPERIODIC=` and any other unknown keyword) are skipped with
+//! their data lines. Node tags are `index + 1`, cell tags `element index + 1`.
 
 use std::io::Write;
 use std::path::Path;
 
-use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::error::{Error, Result};
+use crate::mesh::{CellKind, Cells, Group, Mesh};
 
-/// Parses an SU2 file's bytes; `path` is only used in error messages.
-pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
-    let _ = (bytes, path);
-    unimplemented!("su2 reader")
+/// The SU2 (VTK) element type ids, their kinds and the names used in messages.
+const TYPES: [(u32, CellKind, &str); 8] = [
+    (1, CellKind::Vertex, "vertex"),
+    (3, CellKind::Line, "line"),
+    (5, CellKind::Triangle, "triangle"),
+    (9, CellKind::Quad, "quadrilateral"),
+    (10, CellKind::Tetra, "tetrahedron"),
+    (12, CellKind::Hexahedron, "hexahedron"),
+    (13, CellKind::Wedge, "prism"),
+    (14, CellKind::Pyramid, "pyramid"),
+];
+
+/// The SU2 type id of a kind.
+fn type_id(kind: CellKind) -> u32 {
+    TYPES
+        .iter()
+        .find(|t| t.1 == kind)
+        .map(|t| t.0)
+        .expect("every kind has an SU2 type id")
 }
 
-/// Writes `mesh` in SU2 format.
+/// Parses an SU2 file's bytes; `path` is only used in error messages.
+///
+/// Checks everything [`Mesh::validate`] checks, but reports it with the line:
+/// every count against its data, every node index against `NPOIN=`, every
+/// coordinate finite, every element type allowed where it stands.
+pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
+    Parser::new(bytes, path).run()
+}
+
+/// Writes `mesh` in SU2 format: `NDIME=`, `NELEM=` (elements with their index),
+/// `NPOIN=` (coordinates in shortest round-trip form, so that reading the file
+/// back gives the same bits, with their index), `NMARK=` and one marker per group.
+///
+/// Fails with [`std::io::ErrorKind::InvalidInput`] for a group name an SU2 file
+/// cannot hold (empty, with surrounding spaces, a `%` or a control character).
 pub fn write_to(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
-    let _ = (w, mesh);
-    unimplemented!("su2 writer")
+    for g in &mesh.groups {
+        let name = g.name.as_str();
+        if name.is_empty()
+            || name.trim() != name
+            || name.contains('%')
+            || name.chars().any(char::is_control)
+        {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                format!("group name {name:?} cannot be written as an SU2 MARKER_TAG"),
+            ));
+        }
+    }
+    writeln!(w, "NDIME= {}", mesh.dim)?;
+    writeln!(w, "NELEM= {}", mesh.cells.len())?;
+    for (c, (kind, nodes)) in mesh.cells.iter().enumerate() {
+        write_element(w, kind, nodes)?;
+        writeln!(w, "\t{c}")?;
+    }
+    writeln!(w, "NPOIN= {}", mesh.node_count())?;
+    for i in 0..mesh.node_count() {
+        for x in mesh.point(i) {
+            write!(w, "{x:?}\t")?;
+        }
+        writeln!(w, "{i}")?;
+    }
+    writeln!(w, "NMARK= {}", mesh.groups.len())?;
+    for g in &mesh.groups {
+        writeln!(w, "MARKER_TAG= {}", g.name)?;
+        writeln!(w, "MARKER_ELEMS= {}", g.facets.len())?;
+        for (kind, nodes) in g.facets.iter() {
+            write_element(w, kind, nodes)?;
+            writeln!(w)?;
+        }
+    }
+    Ok(())
+}
+
+/// Writes `type n1 … nk` without the end of line.
+fn write_element(w: &mut dyn Write, kind: CellKind, nodes: &[usize]) -> std::io::Result<()> {
+    write!(w, "{}", type_id(kind))?;
+    for n in nodes {
+        write!(w, "\t{n}")?;
+    }
+    Ok(())
+}
+
+/// One non-blank line with its comment removed.
+enum Line<'a> {
+    /// `KEY= value`: the key as written, upper-cased without `_` and spaces
+    /// (`MARKERTAG`), and the value trimmed.
+    Keyword {
+        raw: &'a str,
+        key: String,
+        value: &'a str,
+    },
+    /// Anything else: whitespace-separated numbers.
+    Data(&'a str),
+}
+
+/// A section with data lines.
+#[derive(Clone, Copy, PartialEq)]
+enum Block {
+    Points,
+    Elements,
+    Marker,
+}
+
+impl Block {
+    fn what(self) -> &'static str {
+        match self {
+            Block::Points => "points",
+            Block::Elements => "elements",
+            Block::Marker => "marker elements",
+        }
+    }
+
+    fn keyword(self) -> &'static str {
+        match self {
+            Block::Points => "NPOIN=",
+            Block::Elements => "NELEM=",
+            Block::Marker => "MARKER_ELEMS=",
+        }
+    }
+}
+
+/// A section's progress: its kind, announced count, data lines read, keyword line.
+struct Section {
+    block: Block,
+    count: usize,
+    done: usize,
+    line: usize,
+}
+
+/// The largest node index a section uses and the first line where it appears.
+struct MaxRef {
+    index: usize,
+    line: usize,
+}
+
+/// A marker: its name, the line of its `MARKER_TAG=`, its facets.
+struct Marker {
+    name: String,
+    line: usize,
+    elems_seen: bool,
+    facets: Cells,
+}
+
+/// Line-by-line reader state.
+struct Parser<'a> {
+    bytes: &'a [u8],
+    path: &'a Path,
+    pos: usize,
+    line: usize,
+    /// `(value, line)` of `NDIME=`, `NPOIN=`, `NELEM=`, `NMARK=`.
+    ndime: Option<(usize, usize)>,
+    npoin: Option<(usize, usize)>,
+    nelem: Option<(usize, usize)>,
+    nmark: Option<(usize, usize)>,
+    coords: Vec<f64>,
+    cells: Cells,
+    markers: Vec<Marker>,
+    /// One entry per element or marker section, in file order.
+    max_refs: Vec<MaxRef>,
+    /// The section whose data lines are being read.
+    open: Option<Section>,
+    /// The section just read to its end, for "more data than announced" messages.
+    closed: Option<Section>,
+    /// The last keyword line: `(keyword, line)`.
+    last_keyword: Option<(String, usize)>,
+    /// Inside a section verbss does not use: its data lines are ignored.
+    skipping: bool,
+}
+
+impl<'a> Parser<'a> {
+    fn new(bytes: &'a [u8], path: &'a Path) -> Self {
+        Parser {
+            bytes,
+            path,
+            pos: 0,
+            line: 0,
+            ndime: None,
+            npoin: None,
+            nelem: None,
+            nmark: None,
+            coords: Vec::new(),
+            cells: Cells::new(),
+            markers: Vec::new(),
+            max_refs: Vec::new(),
+            open: None,
+            closed: None,
+            last_keyword: None,
+            skipping: false,
+        }
+    }
+
+    fn err(&self, line: usize, message: String) -> Error {
+        Error::Parse {
+            path: self.path.to_path_buf(),
+            line,
+            message,
+        }
+    }
+
+    /// A capacity for `n` announced entries of `per` numbers each, capped by
+    /// what the file can hold (every number takes at least two bytes).
+    fn capacity(&self, n: usize, per: usize) -> usize {
+        n.saturating_mul(per).min(self.bytes.len() / 2)
+    }
+
+    /// The spatial dimension (`NDIME=` was read before any section that needs it).
+    fn dim(&self) -> usize {
+        self.ndime.map_or(0, |d| d.0)
+    }
+
+    /// The next non-blank line without its `%` comment, or `None` at the end.
+    fn next_line(&mut self) -> Result<Option<Line<'a>>> {
+        while self.pos < self.bytes.len() {
+            let rest = &self.bytes[self.pos..];
+            let end = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+            self.pos += end + 1;
+            self.line += 1;
+            let raw = rest[..end].strip_suffix(b"\r").unwrap_or(&rest[..end]);
+            let text = std::str::from_utf8(raw).map_err(|e| {
+                self.err(
+                    self.line,
+                    format!(
+                        "non-UTF-8 byte 0x{:02x} at column {} (expected SU2 ASCII text, \
+                         found binary data)",
+                        raw[e.valid_up_to()],
+                        e.valid_up_to() + 1
+                    ),
+                )
+            })?;
+            let text = text.split('%').next().unwrap_or("").trim();
+            if text.is_empty() {
+                continue;
+            }
+            return Ok(Some(match text.split_once('=') {
+                Some((key, value)) => Line::Keyword {
+                    raw: key.trim(),
+                    key: key
+                        .chars()
+                        .filter(|c| !c.is_whitespace() && *c != '_')
+                        .collect::<String>()
+                        .to_ascii_uppercase(),
+                    value: value.trim(),
+                },
+                None => Line::Data(text),
+            }));
+        }
+        Ok(None)
+    }
+
+    fn run(mut self) -> Result<Mesh> {
+        while let Some(line) = self.next_line()? {
+            match line {
+                Line::Data(text) => self.data(text)?,
+                Line::Keyword { raw, key, value } => self.keyword(raw, key, value)?,
+            }
+        }
+        self.finish()
+    }
+
+    /// A data line: the next entry of the open section, skipped, or an error.
+    fn data(&mut self, text: &str) -> Result<()> {
+        let Some(open) = &mut self.open else {
+            if self.skipping {
+                return Ok(());
+            }
+            let message = match (&self.closed, &self.last_keyword) {
+                (Some(c), _) => format!(
+                    "unexpected data line '{}' after the {} {} announced by {} at line {} \
+                     (the count disagrees with the data)",
+                    shown(text),
+                    c.count,
+                    c.block.what(),
+                    c.block.keyword(),
+                    c.line
+                ),
+                (None, Some((key, line))) => format!(
+                    "unexpected data line '{}' after {key}= at line {line} \
+                     (expected a keyword line)",
+                    shown(text)
+                ),
+                (None, None) => format!(
+                    "unexpected data line '{}' (expected NDIME= first)",
+                    shown(text)
+                ),
+            };
+            return Err(self.err(self.line, message));
+        };
+        open.done += 1;
+        let block = open.block;
+        if open.done == open.count {
+            self.closed = self.open.take();
+        }
+        match block {
+            Block::Points => self.point(text),
+            Block::Elements => self.element(text),
+            Block::Marker => self.marker_element(text),
+        }
+    }
+
+    /// A keyword line: opens a section, or starts skipping an unknown one.
+    fn keyword(&mut self, raw: &str, key: String, value: &str) -> Result<()> {
+        let line = self.line;
+        if let Some(open) = &self.open {
+            return Err(self.err(
+                line,
+                format!(
+                    "found {raw}= after {} of the {} {} announced by {} at line {} \
+                     (the count disagrees with the data)",
+                    open.done,
+                    open.count,
+                    open.block.what(),
+                    open.block.keyword(),
+                    open.line
+                ),
+            ));
+        }
+        self.skipping = false;
+        self.closed = None;
+        match key.as_str() {
+            "NDIME" => {
+                self.once(self.ndime, "NDIME=")?;
+                let d = self.count(value, "NDIME=")?;
+                if d != 2 && d != 3 {
+                    return Err(self.err(line, format!("NDIME= {d} (expected 2 or 3)")));
+                }
+                self.ndime = Some((d, line));
+            }
+            "NPOIN" => {
+                self.need_dim("NPOIN=")?;
+                self.once(self.npoin, "NPOIN=")?;
+                let n = self.count(value, "NPOIN=")?;
+                self.coords = Vec::with_capacity(self.capacity(n, self.dim()));
+                self.npoin = Some((n, line));
+                self.start(Block::Points, n);
+            }
+            "NELEM" => {
+                self.need_dim("NELEM=")?;
+                self.once(self.nelem, "NELEM=")?;
+                let n = self.count(value, "NELEM=")?;
+                let cap = self.capacity(n, 1);
+                self.cells.kinds.reserve(cap);
+                self.cells.offsets.reserve(cap);
+                self.nelem = Some((n, line));
+                self.start(Block::Elements, n);
+            }
+            "NMARK" => {
+                self.need_dim("NMARK=")?;
+                self.once(self.nmark, "NMARK=")?;
+                self.nmark = Some((self.count(value, "NMARK=")?, line));
+            }
+            "MARKERTAG" => self.marker_tag(value)?,
+            "MARKERELEMS" => {
+                let Some(m) = self.markers.last() else {
+                    return Err(self.err(line, "MARKER_ELEMS= before MARKER_TAG=".into()));
+                };
+                if m.elems_seen {
+                    return Err(self.err(
+                        line,
+                        format!(
+                            "second MARKER_ELEMS= for marker '{}' (MARKER_TAG= at line {})",
+                            m.name, m.line
+                        ),
+                    ));
+                }
+                let n = self.count(value, "MARKER_ELEMS=")?;
+                let cap = self.capacity(n, 1);
+                let m = self.markers.last_mut().expect("checked above");
+                m.elems_seen = true;
+                m.facets.kinds.reserve(cap);
+                m.facets.offsets.reserve(cap);
+                self.start(Block::Marker, n);
+            }
+            _ => self.skipping = true,
+        }
+        self.last_keyword = Some((raw.to_string(), line));
+        Ok(())
+    }
+
+    /// `MARKER_TAG= name`: starts a new marker.
+    fn marker_tag(&mut self, name: &str) -> Result<()> {
+        let line = self.line;
+        let Some((nmark, nmark_line)) = self.nmark else {
+            return Err(self.err(line, "MARKER_TAG= before NMARK=".into()));
+        };
+        self.check_marker_elems()?;
+        if self.markers.len() == nmark {
+            return Err(self.err(
+                line,
+                format!(
+                    "MARKER_TAG= {name} is one more marker than the {nmark} announced by \
+                     NMARK= at line {nmark_line} (the count disagrees with the data)"
+                ),
+            ));
+        }
+        if name.is_empty() {
+            return Err(self.err(line, "empty MARKER_TAG= (expected a name)".into()));
+        }
+        if let Some(m) = self.markers.iter().find(|m| m.name == name) {
+            return Err(self.err(
+                line,
+                format!("marker '{name}' given twice (first at line {})", m.line),
+            ));
+        }
+        self.markers.push(Marker {
+            name: name.to_string(),
+            line,
+            elems_seen: false,
+            facets: Cells::new(),
+        });
+        Ok(())
+    }
+
+    /// Fails when the last marker has no `MARKER_ELEMS=`.
+    fn check_marker_elems(&self) -> Result<()> {
+        match self.markers.last() {
+            Some(m) if !m.elems_seen => Err(self.err(
+                self.line,
+                format!(
+                    "marker '{}' (MARKER_TAG= at line {}) has no MARKER_ELEMS=",
+                    m.name, m.line
+                ),
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    /// Opens a section of `count` data lines.
+    fn start(&mut self, block: Block, count: usize) {
+        let section = Section {
+            block,
+            count,
+            done: 0,
+            line: self.line,
+        };
+        if block != Block::Points {
+            self.max_refs.push(MaxRef { index: 0, line: 0 });
+        }
+        if count == 0 {
+            self.closed = Some(section);
+        } else {
+            self.open = Some(section);
+        }
+    }
+
+    fn need_dim(&self, keyword: &str) -> Result<()> {
+        match self.ndime {
+            Some(_) => Ok(()),
+            None => Err(self.err(
+                self.line,
+                format!("{keyword} before NDIME= (expected NDIME= 2 or 3 first)"),
+            )),
+        }
+    }
+
+    fn once(&self, seen: Option<(usize, usize)>, keyword: &str) -> Result<()> {
+        match seen {
+            None => Ok(()),
+            Some((_, first)) => Err(self.err(
+                self.line,
+                format!(
+                    "{keyword} given twice (first at line {first}; \
+                     multi-zone files are not supported)"
+                ),
+            )),
+        }
+    }
+
+    /// The count after a keyword; `NPOIN=` may add the number of domain points.
+    fn count(&self, value: &str, keyword: &str) -> Result<usize> {
+        let mut tokens = value.split_whitespace();
+        let first = tokens.next();
+        let extra_ok = keyword == "NPOIN=";
+        let n = first.and_then(|t| t.parse::<usize>().ok());
+        let rest_ok = tokens
+            .enumerate()
+            .all(|(k, t)| extra_ok && k == 0 && t.parse::<usize>().is_ok_and(|d| Some(d) <= n));
+        match n {
+            Some(n) if rest_ok => Ok(n),
+            _ => Err(self.err(
+                self.line,
+                format!("expected a count after {keyword}, found '{}'", shown(value)),
+            )),
+        }
+    }
+
+    /// `x y [z] [index …]`.
+    fn point(&mut self, text: &str) -> Result<()> {
+        let dim = self.dim();
+        let mut tokens = text.split_whitespace();
+        for k in 0..dim {
+            let Some(t) = tokens.next() else {
+                return Err(self.err(
+                    self.line,
+                    format!(
+                        "expected NDIME= {dim} coordinates, found {k} in '{}'",
+                        shown(text)
+                    ),
+                ));
+            };
+            let x: f64 = t.parse().map_err(|_| {
+                self.err(
+                    self.line,
+                    format!("expected a coordinate, found '{}'", shown(t)),
+                )
+            })?;
+            if !x.is_finite() {
+                return Err(self.err(
+                    self.line,
+                    format!(
+                        "non-finite coordinate '{}' (expected a finite number)",
+                        shown(t)
+                    ),
+                ));
+            }
+            self.coords.push(x);
+        }
+        self.trailing_indices(tokens, &format!("the {dim} coordinates"))
+    }
+
+    /// Anything after a point's coordinates or an element's nodes must be an index.
+    fn trailing_indices<'t>(
+        &self,
+        tokens: impl Iterator<Item = &'t str>,
+        after: &str,
+    ) -> Result<()> {
+        for t in tokens {
+            if t.parse::<u64>().is_err() {
+                return Err(self.err(
+                    self.line,
+                    format!("expected an index after {after}, found '{}'", shown(t)),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// A volume element line `type n1 … nk [index …]`.
+    fn element(&mut self, text: &str) -> Result<()> {
+        let dim = self.dim();
+        let kind = self.element_kind(text, |k| k.dim() == dim)?;
+        let mut cells = std::mem::take(&mut self.cells);
+        let done = self.element_nodes(text, kind, &mut cells);
+        self.cells = cells;
+        done
+    }
+
+    /// A marker element line `type n1 … nk [index …]`.
+    fn marker_element(&mut self, text: &str) -> Result<()> {
+        let dim = self.dim();
+        let kind = self.element_kind(text, |k| k.dim() < dim)?;
+        let mut m = self.markers.pop().expect("a marker section has a marker");
+        let done = self.element_nodes(text, kind, &mut m.facets);
+        self.markers.push(m);
+        done
+    }
+
+    /// The kind named by the line's type id, which must pass `allowed`.
+    fn element_kind(&self, text: &str, allowed: impl Fn(CellKind) -> bool) -> Result<CellKind> {
+        let first = text.split_whitespace().next().unwrap_or("");
+        let expected = || {
+            let names: Vec<String> = TYPES
+                .iter()
+                .filter(|t| allowed(t.1))
+                .map(|t| format!("{} {}", t.0, t.2))
+                .collect();
+            let (last, rest) = names.split_last().expect("every place allows a kind");
+            if rest.is_empty() {
+                last.clone()
+            } else {
+                format!("{} or {last}", rest.join(", "))
+            }
+        };
+        let Ok(id) = first.parse::<u32>() else {
+            return Err(self.err(
+                self.line,
+                format!(
+                    "expected an SU2 element type ({}), found '{}'",
+                    expected(),
+                    shown(first)
+                ),
+            ));
+        };
+        match TYPES.iter().find(|t| t.0 == id) {
+            Some(&(_, kind, _)) if allowed(kind) => Ok(kind),
+            Some(&(_, _, name)) => Err(self.err(
+                self.line,
+                format!(
+                    "SU2 element type {id} ({name}) does not belong in the {} of a {}D mesh \
+                     (expected {})",
+                    self.open_what(),
+                    self.dim(),
+                    expected()
+                ),
+            )),
+            None => Err(self.err(
+                self.line,
+                format!(
+                    "unsupported SU2 element type {id} (expected {})",
+                    expected()
+                ),
+            )),
+        }
+    }
+
+    /// What the section being read holds (the section may have just been closed).
+    fn open_what(&self) -> &'static str {
+        self.open
+            .as_ref()
+            .or(self.closed.as_ref())
+            .map_or("elements", |s| s.block.what())
+    }
+
+    /// Reads the node indices after the type id into `cells`.
+    fn element_nodes(&mut self, text: &str, kind: CellKind, cells: &mut Cells) -> Result<()> {
+        let n = kind.node_count();
+        let mut tokens = text.split_whitespace().skip(1);
+        let start = cells.nodes.len();
+        for k in 0..n {
+            let Some(t) = tokens.next() else {
+                return Err(self.err(
+                    self.line,
+                    format!(
+                        "{} (type {}) needs {n} node indices, found {k}",
+                        kind_name(kind),
+                        type_id(kind)
+                    ),
+                ));
+            };
+            let Ok(i) = t.parse::<usize>() else {
+                return Err(self.err(
+                    self.line,
+                    format!("expected a node index, found '{}'", shown(t)),
+                ));
+            };
+            cells.nodes.push(i);
+        }
+        cells.kinds.push(kind);
+        cells.offsets.push(cells.nodes.len());
+        let top = cells.nodes[start..].iter().copied().max().unwrap_or(0);
+        let line = self.line;
+        let max = self
+            .max_refs
+            .last_mut()
+            .expect("an element section has a max");
+        if max.line == 0 || top > max.index {
+            *max = MaxRef { index: top, line };
+        }
+        self.trailing_indices(tokens, &format!("the {n} node indices"))
+    }
+
+    /// Checks what only the end of the file tells and builds the mesh.
+    fn finish(self) -> Result<Mesh> {
+        let last = self.line.max(1);
+        if let Some(open) = &self.open {
+            return Err(self.err(
+                last,
+                format!(
+                    "file ends after {} of the {} {} announced by {} at line {}",
+                    open.done,
+                    open.count,
+                    open.block.what(),
+                    open.block.keyword(),
+                    open.line
+                ),
+            ));
+        }
+        let Some((dim, _)) = self.ndime else {
+            return Err(self.err(last, "missing NDIME= (expected NDIME= 2 or 3)".into()));
+        };
+        let Some((npoin, npoin_line)) = self.npoin else {
+            return Err(self.err(last, "missing NPOIN= (the file has no points)".into()));
+        };
+        if self.nelem.is_none() {
+            return Err(self.err(last, "missing NELEM= (the file has no elements)".into()));
+        }
+        self.check_marker_elems()?;
+        if let Some((nmark, line)) = self.nmark {
+            if self.markers.len() < nmark {
+                return Err(self.err(
+                    last,
+                    format!(
+                        "file ends after {} of the {nmark} markers announced by NMARK= at line {line}",
+                        self.markers.len()
+                    ),
+                ));
+            }
+        }
+        if let Some(bad) = self
+            .max_refs
+            .iter()
+            .find(|m| m.line > 0 && m.index >= npoin)
+        {
+            return Err(self.err(
+                bad.line,
+                format!(
+                    "node index {} out of range (NPOIN= {npoin} at line {npoin_line}: {})",
+                    bad.index,
+                    match npoin {
+                        0 => "no points".to_string(),
+                        n => format!("indices 0 to {}", n - 1),
+                    }
+                ),
+            ));
+        }
+        let mesh = Mesh {
+            dim,
+            node_tags: (1..=npoin as u64).collect(),
+            cell_tags: (1..=self.cells.len() as u64).collect(),
+            coords: self.coords,
+            cells: self.cells,
+            groups: self
+                .markers
+                .into_iter()
+                .map(|m| Group {
+                    name: m.name,
+                    tag: None,
+                    facets: m.facets,
+                })
+                .collect(),
+        };
+        mesh.validate()?;
+        Ok(mesh)
+    }
+}
+
+/// The SU2/VTK name of a kind, as used in messages.
+fn kind_name(kind: CellKind) -> &'static str {
+    TYPES
+        .iter()
+        .find(|t| t.1 == kind)
+        .map(|t| t.2)
+        .expect("every kind has an SU2 name")
+}
+
+/// A token or line as quoted in messages: printable, at most 40 characters.
+fn shown(text: &str) -> String {
+    let mut s: String = text.chars().take(40).flat_map(char::escape_debug).collect();
+    if text.chars().count() > 40 {
+        s.push('…');
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/meshes/su2/");
+
+    /// A unit square of two triangles with one marker; lines are numbered in comments.
+    const SQUARE: &str = "\
+NDIME= 2
+NELEM= 2
+5 0 1 2 0
+5 0 2 3 1
+NPOIN= 4
+0 0 0
+1 0 1
+1 1 2
+0 1 3
+NMARK= 1
+MARKER_TAG= wall
+MARKER_ELEMS= 1
+3 0 1
+";
+
+    fn parse_str(text: &str) -> Result<Mesh> {
+        parse(text.as_bytes(), Path::new("t.su2"))
+    }
+
+    fn error(text: &str) -> String {
+        parse_str(text).unwrap_err().to_string()
+    }
+
+    /// `SQUARE` with line `n` (1-based) replaced by `by`.
+    fn square_with(n: usize, by: &str) -> String {
+        let mut lines: Vec<&str> = SQUARE.lines().collect();
+        lines[n - 1] = by;
+        lines.join("\n") + "\n"
+    }
+
+    fn real(name: &str) -> Mesh {
+        crate::io::read(Path::new(&format!("{DIR}{name}"))).unwrap()
+    }
+
+    fn count(cells: &Cells, kind: CellKind) -> usize {
+        cells.kinds.iter().filter(|&&k| k == kind).count()
+    }
+
+    fn group_sizes(mesh: &Mesh) -> Vec<(String, usize)> {
+        mesh.groups
+            .iter()
+            .map(|g| (g.name.clone(), g.nodes().len()))
+            .collect()
+    }
+
+    fn round_trip(mesh: &Mesh) {
+        let mut text = Vec::new();
+        write_to(&mut text, mesh).unwrap();
+        let back = parse(&text, Path::new("rt.su2")).unwrap();
+        assert_eq!(&back, mesh);
+        let bits = |m: &Mesh| m.coords.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&back), bits(mesh));
+        let mut again = Vec::new();
+        write_to(&mut again, &back).unwrap();
+        assert_eq!(again, text);
+    }
+
+    #[test]
+    fn naca0012() {
+        let m = real("mesh_NACA0012_inv.su2");
+        assert_eq!((m.dim, m.node_count()), (2, 5233));
+        assert_eq!(count(&m.cells, CellKind::Triangle), 10216);
+        assert_eq!(m.cell_count(), 10216);
+        assert_eq!(
+            group_sizes(&m),
+            [("airfoil".to_string(), 200), ("farfield".to_string(), 50)]
+        );
+        assert!(m
+            .groups
+            .iter()
+            .all(|g| count(&g.facets, CellKind::Line) == g.facets.len()));
+        assert_eq!(m.cells.cell(0), &[417, 69, 311]);
+        assert_eq!(m.point(0), &[9.9975001812e-01, -3.632896519016437e-05]);
+        assert_eq!((m.node_tags[0], m.node_tags[5232]), (1, 5233));
+        assert_eq!((m.cell_tags[0], m.cell_tags[10215]), (1, 10216));
+        round_trip(&m);
+    }
+
+    #[test]
+    fn rae2822_hybrid_with_ffd_and_periodic_blocks() {
+        let m = real("mesh_RAE2822_turb_ffd.su2");
+        assert_eq!((m.dim, m.node_count()), (2, 13937));
+        assert_eq!(count(&m.cells, CellKind::Triangle), 18042);
+        assert_eq!(count(&m.cells, CellKind::Quad), 4800);
+        assert_eq!(m.cell_count(), 22842);
+        assert_eq!(
+            group_sizes(&m),
+            [("AIRFOIL".to_string(), 192), ("FARFIELD".to_string(), 40)]
+        );
+        round_trip(&m);
+    }
+
+    /// A brick mesh on [0,2]×[0,1]×[0,1]: six markers, each on its face.
+    fn check_brick(m: &Mesh, nodes: usize, kind: CellKind, cells: usize, facet: CellKind) {
+        assert_eq!((m.dim, m.node_count()), (3, nodes));
+        assert_eq!((count(&m.cells, kind), m.cell_count()), (cells, cells));
+        let sizes: Vec<_> = [400, 400, 800, 800, 800, 800]
+            .into_iter()
+            .zip(["x_m", "x_p", "y_m", "y_p", "z_m", "z_p"])
+            .map(|(n, name)| (name.to_string(), n))
+            .collect();
+        assert_eq!(group_sizes(m), sizes);
+        for (g, (axis, value)) in
+            m.groups
+                .iter()
+                .zip([(0, 0.0), (0, 2.0), (1, 0.0), (1, 1.0), (2, 0.0), (2, 1.0)])
+        {
+            assert_eq!(count(&g.facets, facet), g.facets.len(), "{}", g.name);
+            for n in g.nodes() {
+                assert!(
+                    (m.point(n)[axis] - value).abs() < 1e-12,
+                    "{} node {n}",
+                    g.name
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn brick_tets() {
+        let m = real("mesh_brick_tets_ffd.su2");
+        check_brick(&m, 11703, CellKind::Tetra, 59156, CellKind::Triangle);
+        round_trip(&m);
+    }
+
+    #[test]
+    fn brick_hexes() {
+        let m = real("mesh_brick_hex_ffd.su2");
+        check_brick(&m, 16000, CellKind::Hexahedron, 14079, CellKind::Quad);
+        round_trip(&m);
+    }
+
+    #[test]
+    fn square_reads_and_round_trips() {
+        let m = parse_str(SQUARE).unwrap();
+        assert_eq!(m.coords, [0., 0., 1., 0., 1., 1., 0., 1.]);
+        assert_eq!(m.cells.nodes, [0, 1, 2, 0, 2, 3]);
+        assert_eq!(m.group("wall").unwrap().facets.nodes, [0, 1]);
+        round_trip(&m);
+    }
+
+    #[test]
+    fn every_kind_and_vertex_markers_round_trip() {
+        let text = "\
+NDIME= 3
+NELEM= 4
+10 0 1 2 3
+12 0 1 2 3 4 5 6 7
+13 0 1 2 3 4 5
+14 0 1 2 3 4
+NPOIN= 8
+0 0 0
+1 0 0
+1 1 0
+0 1 0
+0 0 1
+1 0 1
+1 1 1
+0 1 1
+NMARK= 2
+MARKER_TAG= bottom
+MARKER_ELEMS= 2
+9 0 1 2 3
+5 0 1 2
+MARKER_TAG= probe
+MARKER_ELEMS= 1
+1 6
+";
+        let m = parse_str(text).unwrap();
+        let kinds = [
+            CellKind::Tetra,
+            CellKind::Hexahedron,
+            CellKind::Wedge,
+            CellKind::Pyramid,
+        ];
+        assert_eq!(m.cells.kinds, kinds);
+        assert_eq!(m.groups[1].facets.kinds, [CellKind::Vertex]);
+        let mut out = Vec::new();
+        write_to(&mut out, &m).unwrap();
+        assert!(String::from_utf8(out)
+            .unwrap()
+            .ends_with("MARKER_ELEMS= 1\n1\t6\n"));
+        round_trip(&m);
+    }
+
+    #[test]
+    fn coordinates_keep_every_bit() {
+        let coords = vec![
+            0.1 + 0.2,
+            -0.0,
+            1e-300,
+            -123456.789e10,
+            f64::MIN_POSITIVE,
+            f64::MAX,
+        ];
+        let mut cells = Cells::new();
+        cells.push(CellKind::Triangle, &[0, 1, 2]);
+        let m = Mesh::new(2, coords, cells, Vec::new()).unwrap();
+        round_trip(&m);
+    }
+
+    #[test]
+    fn quirks_order_spellings_comments_trailing_indices_and_skipped_blocks() {
+        let text = "\
+% written by hand\r
+NDIME=2\r
+\r
+NPOIN= 4 4\r
+0 0 0 7\r
+1 0 1\r
+1 1\r
+0 1 3 % last point\r
+  ndime_extra = ignored\r
+1 2 3\r
+NMARK = 1\r
+markertag=wall\r
+Marker_Elems =1\r
+3 0 1 0\r
+NELEM= 2\r
+5 0 1 2 0\r
+5 0 2 3\r
+NPERIODIC= 1\r
+PERIODIC_INDEX= 0\r
+0.0 0.0 0.0\r
+FFD_NBOX= 1\r
+FFD_TAG= MAIN_BOX\r
+FFD_CORNER_POINTS= 4\r
+-1e-08\t-0.07\r
+FFD_SURFACE_POINTS= 1\r
+wall\t0\t1.0\t2.0\r
+";
+        let m = parse_str(text).unwrap();
+        assert_eq!(m, parse_str(SQUARE).unwrap());
+    }
+
+    #[test]
+    fn writer_rejects_names_su2_cannot_hold() {
+        let mut m = parse_str(SQUARE).unwrap();
+        m.groups[0].name = "50% span".into();
+        let e = write_to(&mut Vec::new(), &m).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "group name \"50% span\" cannot be written as an SU2 MARKER_TAG"
+        );
+    }
+
+    #[test]
+    fn missing_file() {
+        let path = format!("{DIR}no_such_mesh.su2");
+        let e = crate::io::read(Path::new(&path)).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            format!("{path}: No such file or directory (os error 2)")
+        );
+    }
+
+    #[test]
+    fn truncated_file() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../assets/meshes/bad/truncated.su2"
+        );
+        let e = crate::io::read(Path::new(path)).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            format!("{path}:7: file ends after 2 of the 4 points announced by NPOIN= at line 5")
+        );
+        let cut: String = SQUARE.lines().take(11).map(|l| format!("{l}\n")).collect();
+        assert_eq!(
+            error(&cut),
+            "t.su2:11: marker 'wall' (MARKER_TAG= at line 11) has no MARKER_ELEMS="
+        );
+        let cut: String = SQUARE.lines().take(3).map(|l| format!("{l}\n")).collect();
+        assert_eq!(
+            error(&cut),
+            "t.su2:3: file ends after 1 of the 2 elements announced by NELEM= at line 2"
+        );
+    }
+
+    #[test]
+    fn counts_that_disagree_with_the_data() {
+        assert_eq!(
+            error(&square_with(5, "NPOIN= 5")),
+            "t.su2:10: found NMARK= after 4 of the 5 points announced by NPOIN= at line 5 \
+             (the count disagrees with the data)"
+        );
+        assert_eq!(
+            error(&square_with(5, "NPOIN= 3")),
+            "t.su2:9: unexpected data line '0 1 3' after the 3 points announced by NPOIN= \
+             at line 5 (the count disagrees with the data)"
+        );
+        assert_eq!(
+            error(&square_with(2, "NELEM= 3")),
+            "t.su2:5: found NPOIN= after 2 of the 3 elements announced by NELEM= at line 2 \
+             (the count disagrees with the data)"
+        );
+        assert_eq!(
+            error(&square_with(10, "NMARK= 2")),
+            "t.su2:13: file ends after 1 of the 2 markers announced by NMARK= at line 10"
+        );
+        assert_eq!(
+            error(&format!("{SQUARE}MARKER_TAG= top\nMARKER_ELEMS= 0\n")),
+            "t.su2:14: MARKER_TAG= top is one more marker than the 1 announced by NMARK= at \
+             line 10 (the count disagrees with the data)"
+        );
+        assert_eq!(
+            error(&square_with(12, "MARKER_ELEMS= 0")),
+            "t.su2:13: unexpected data line '3 0 1' after the 0 marker elements announced by \
+             MARKER_ELEMS= at line 12 (the count disagrees with the data)"
+        );
+    }
+
+    #[test]
+    fn huge_counts_do_not_allocate() {
+        assert_eq!(
+            error("NDIME= 3\nNPOIN= 18446744073709551615\n0 0 0\n"),
+            "t.su2:3: file ends after 1 of the 18446744073709551615 points announced by \
+             NPOIN= at line 2"
+        );
+        assert_eq!(
+            error("NDIME= 3\nNELEM= 99999999999999\n"),
+            "t.su2:2: file ends after 0 of the 99999999999999 elements announced by NELEM= \
+             at line 2"
+        );
+    }
+
+    #[test]
+    fn node_index_out_of_range() {
+        assert_eq!(
+            error(&square_with(4, "5 0 2 4 1")),
+            "t.su2:4: node index 4 out of range (NPOIN= 4 at line 5: indices 0 to 3)"
+        );
+        assert_eq!(
+            error(&square_with(13, "3 0 9")),
+            "t.su2:13: node index 9 out of range (NPOIN= 4 at line 5: indices 0 to 3)"
+        );
+    }
+
+    #[test]
+    fn non_finite_coordinates() {
+        assert_eq!(
+            error(&square_with(7, "nan 0 1")),
+            "t.su2:7: non-finite coordinate 'nan' (expected a finite number)"
+        );
+        assert_eq!(
+            error(&square_with(8, "1 -inf 2")),
+            "t.su2:8: non-finite coordinate '-inf' (expected a finite number)"
+        );
+    }
+
+    #[test]
+    fn element_types() {
+        assert_eq!(
+            error(&square_with(3, "7 0 1 2 0")),
+            "t.su2:3: unsupported SU2 element type 7 (expected 5 triangle or 9 quadrilateral)"
+        );
+        assert_eq!(
+            error(&square_with(4, "10 0 1 2 3")),
+            "t.su2:4: SU2 element type 10 (tetrahedron) does not belong in the elements of a \
+             2D mesh (expected 5 triangle or 9 quadrilateral)"
+        );
+        assert_eq!(
+            error(&square_with(13, "5 0 1 2")),
+            "t.su2:13: SU2 element type 5 (triangle) does not belong in the marker elements \
+             of a 2D mesh (expected 1 vertex or 3 line)"
+        );
+        assert_eq!(
+            error("NDIME= 3\nNELEM= 1\n22 0 1 2 3 4 5\n"),
+            "t.su2:3: unsupported SU2 element type 22 (expected 10 tetrahedron, \
+             12 hexahedron, 13 prism or 14 pyramid)"
+        );
+        assert_eq!(
+            error(&square_with(3, "5 0 1")),
+            "t.su2:3: triangle (type 5) needs 3 node indices, found 2"
+        );
+    }
+
+    #[test]
+    fn non_numeric_junk() {
+        assert_eq!(
+            error(&square_with(3, "5 0 x 2 0")),
+            "t.su2:3: expected a node index, found 'x'"
+        );
+        assert_eq!(
+            error(&square_with(3, "triangle 0 1 2")),
+            "t.su2:3: expected an SU2 element type (5 triangle or 9 quadrilateral), \
+             found 'triangle'"
+        );
+        assert_eq!(
+            error(&square_with(6, "0 zero 0")),
+            "t.su2:6: expected a coordinate, found 'zero'"
+        );
+        assert_eq!(
+            error(&square_with(6, "0 0 0.5 0")),
+            "t.su2:6: expected an index after the 2 coordinates, found '0.5'"
+        );
+        assert_eq!(
+            error(&square_with(6, "0")),
+            "t.su2:6: expected NDIME= 2 coordinates, found 1 in '0'"
+        );
+        assert_eq!(
+            error(&square_with(5, "NPOIN= many")),
+            "t.su2:5: expected a count after NPOIN=, found 'many'"
+        );
+        assert_eq!(
+            error(&square_with(10, "garbage")),
+            "t.su2:10: unexpected data line 'garbage' after the 4 points announced by NPOIN= \
+             at line 5 (the count disagrees with the data)"
+        );
+    }
+
+    #[test]
+    fn binary_junk() {
+        let mut bytes = SQUARE.as_bytes().to_vec();
+        let at = SQUARE.find("1 0 1").unwrap() + 2;
+        bytes[at] = 0xff;
+        let e = parse(&bytes, Path::new("t.su2")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "t.su2:7: non-UTF-8 byte 0xff at column 3 (expected SU2 ASCII text, found binary data)"
+        );
+    }
+
+    #[test]
+    fn dimension() {
+        assert_eq!(
+            error(&square_with(1, "NDIME= 4")),
+            "t.su2:1: NDIME= 4 (expected 2 or 3)"
+        );
+        assert_eq!(
+            error(&square_with(1, "NDIME= 1")),
+            "t.su2:1: NDIME= 1 (expected 2 or 3)"
+        );
+        assert_eq!(
+            error(&square_with(1, "% no dimension")),
+            "t.su2:2: NELEM= before NDIME= (expected NDIME= 2 or 3 first)"
+        );
+        assert_eq!(
+            error(""),
+            "t.su2:1: missing NDIME= (expected NDIME= 2 or 3)"
+        );
+        assert_eq!(
+            error(&format!("{SQUARE}NDIME= 2\n")),
+            "t.su2:14: NDIME= given twice (first at line 1; multi-zone files are not supported)"
+        );
+    }
+
+    #[test]
+    fn missing_sections_and_marker_structure() {
+        assert_eq!(
+            error("NDIME= 2\nNELEM= 0\n"),
+            "t.su2:2: missing NPOIN= (the file has no points)"
+        );
+        assert_eq!(
+            error("NDIME= 2\nNPOIN= 0\n"),
+            "t.su2:2: missing NELEM= (the file has no elements)"
+        );
+        assert_eq!(
+            error(&square_with(10, "% no NMARK")),
+            "t.su2:11: MARKER_TAG= before NMARK="
+        );
+        assert_eq!(
+            error(&square_with(11, "MARKER_TAG=")),
+            "t.su2:11: empty MARKER_TAG= (expected a name)"
+        );
+        assert_eq!(
+            error(&format!(
+                "{}MARKER_TAG= wall\nMARKER_ELEMS= 0\n",
+                square_with(10, "NMARK= 2")
+            )),
+            "t.su2:14: marker 'wall' given twice (first at line 11)"
+        );
+    }
 }
