@@ -11,6 +11,7 @@ use crate::mesh::Mesh;
 
 pub mod gmsh;
 pub mod positions;
+pub mod pvd;
 pub mod su2;
 pub mod vtu;
 
