@@ -33,19 +33,32 @@
 //! Per element, a number in `[0, 1]`, 1 for the ideal element and 0 for an
 //! inverted one (relative to `s`). Otherwise:
 //!
-//! | kind | measure | source |
-//! |---|---|---|
-//! | triangle | `ρ = 2r/R = 4J²/(P·abc)` (`J = 2A`, `P = a+b+c`) | VerBSS paper eq. 9; = 1 / Verdict `tri_radius_ratio` |
-//! | tetrahedron | `ρ = 3r/R = 3J²/(S·|n|)` (`J = 6V`, `S` total face area, `n = |a|²(b×c)+|b|²(c×a)+|c|²(a×b)`, edges `a b c` from node 0) | paper eq. 9; = 1 / Verdict `tet_radius_ratio` |
-//! | quad | `min_c s·σ_c` over the 4 corners | Verdict `quad_scaled_jacobian` |
-//! | hexahedron | `min(min_c s·σ_c, s·det(a,b,c)/(|a||b||c|))` over the 8 corners and the principal axes `a, b, c` at the centre | Verdict `hex_scaled_jacobian` |
-//! | prism (wedge) | `2/√3 · min_c s·σ_c` over the 6 corners | Verdict `wedge_scaled_jacobian` |
-//! | pyramid | `v = 2 · min_c s·J_c / max(ℓ_c, |J_c|)` over the 4 base corners, `ℓ_c` the largest product of the three edges at a vertex of the corner's tetrahedron (corner node, its base neighbours, apex); quality `v` if `v ≤ 1`, else `2 − v` | Verdict `pyramid_scaled_jacobian` (its four tetrahedra are exactly the four base corners) |
+//! - **triangle**: `ρ = 2r/R = 4J²/(P·abc)` (`J = 2A` the corner Jacobian,
+//!   `P = a+b+c`); the VerBSS paper's eq. 9, equal to 1 / Verdict's
+//!   `tri_radius_ratio`.
+//! - **tetrahedron**: `ρ = 3r/R = 3J²/(S·‖n‖)` (`J = 6V`, `S` the total face
+//!   area, `n = ‖a‖²(b×c) + ‖b‖²(c×a) + ‖c‖²(a×b)` with `a, b, c` the edges
+//!   from node 0); paper eq. 9, equal to 1 / Verdict's `tet_radius_ratio`.
+//! - **quad**: `min_c s·σ_c` over the 4 corners; Verdict's
+//!   `quad_scaled_jacobian`.
+//! - **hexahedron**: `min(min_c s·σ_c, s·det(a,b,c)/(‖a‖‖b‖‖c‖))` over the 8
+//!   corners and the principal axes `a, b, c` at the centre; Verdict's
+//!   `hex_scaled_jacobian`.
+//! - **prism (wedge)**: `2/√3 · min_c s·σ_c` over the 6 corners; Verdict's
+//!   `wedge_scaled_jacobian`.
+//! - **pyramid**: `v = 2 · min_c s·J_c / max(ℓ_c, |J_c|)` over the 4 base
+//!   corners, `ℓ_c` the largest product of the three edges at one vertex of
+//!   the corner's tetrahedron (corner node, its base neighbours, apex); the
+//!   quality is `v` if `v ≤ 1`, else `2 − v`. This is Verdict's
+//!   `pyramid_scaled_jacobian`, whose four tetrahedra are exactly the four
+//!   base corners.
 //!
 //! The result is clamped to `[0, 1]` (the wedge measure reaches `2/√3` at a
 //! right corner). These equal VTK's `vtkMeshQuality` (RadiusRatio for
 //! triangles and tetrahedra, inverted; ScaledJacobian, clamped, for the others)
-//! for cells positively oriented in Verdict's sense; the tests check them
+//! for cells positively oriented in Verdict's sense (for quads, whatever
+//! their orientation: Verdict measures a quad relative to its centre normal,
+//! whose sign is that of `Σ_c J_c`, the quad's orientation); the tests check them
 //! against values computed with VTK 9.7 (`scripts/reference_quality.py`).
 //! Where Verdict's conventions differ they are not followed, by design:
 //! - its scaled Jacobians of hexahedra, wedges and pyramids are signed by the

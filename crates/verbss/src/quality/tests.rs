@@ -389,3 +389,29 @@ fn wrong_coordinate_count_is_a_programming_error() {
     let mesh = small_mesh();
     qualities(&mesh, &[0.0; 4], &[1, 1, 1]);
 }
+
+#[test]
+fn results_do_not_depend_on_the_number_of_threads() {
+    let mesh = small_mesh();
+    let mut coords = mesh.coords.clone();
+    coords[4..6].copy_from_slice(&[1.5, -1.0]);
+    let run = || {
+        let reference = orientation(&mesh);
+        (
+            qualities(&mesh, &coords, &reference),
+            inversions(&mesh, &coords, &reference),
+            report(&mesh, &coords, &reference),
+        )
+    };
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(run);
+    let four = rayon::ThreadPoolBuilder::new()
+        .num_threads(4)
+        .build()
+        .unwrap()
+        .install(run);
+    assert_eq!(one, four);
+}
