@@ -1,0 +1,319 @@
+//! What a Gmsh file holds before it becomes a [`Mesh`]: nodes with their tags,
+//! elements sorted by dimension with their physical tags, physical names.
+
+use std::collections::{HashMap, HashSet};
+use std::ops::Range;
+
+use super::cursor::{Cursor, Mark};
+use crate::error::Result;
+use crate::mesh::{CellKind, Cells, Group, Mesh};
+
+/// Element types verbss reads, as Gmsh numbers them: `(type, kind)`.
+const TYPES: [(i32, CellKind); 8] = [
+    (15, CellKind::Vertex),
+    (1, CellKind::Line),
+    (2, CellKind::Triangle),
+    (3, CellKind::Quad),
+    (4, CellKind::Tetra),
+    (5, CellKind::Hexahedron),
+    (6, CellKind::Wedge),
+    (7, CellKind::Pyramid),
+];
+
+/// The kind of Gmsh element type `t`, or the error message for an unsupported one.
+pub(super) fn kind_of_type(t: i32) -> std::result::Result<CellKind, String> {
+    TYPES
+        .iter()
+        .find(|(n, _)| *n == t)
+        .map(|&(_, k)| k)
+        .ok_or_else(|| {
+            format!(
+                "element type {t} is not supported (verbss reads the linear types 15 point, \
+             1 line, 2 triangle, 3 quadrangle, 4 tetrahedron, 5 hexahedron, 6 prism, 7 pyramid)"
+            )
+        })
+}
+
+/// The Gmsh element type number of `kind`.
+pub(super) fn type_of_kind(kind: CellKind) -> i32 {
+    TYPES
+        .iter()
+        .find(|(_, k)| *k == kind)
+        .map_or(0, |&(t, _)| t)
+}
+
+/// The message for a node or element tag 0.
+pub(super) fn zero_tag(what: &str) -> String {
+    format!("{what} tag 0 is not allowed (tags start at 1)")
+}
+
+/// The message for an element node tag that no node has.
+pub(super) fn unknown_node(element: u64, node: impl std::fmt::Display) -> String {
+    format!("element {element} refers to node {node}, which $Nodes does not define")
+}
+
+/// Physical names by `(dimension, physical tag)`.
+pub(super) type Names = HashMap<(usize, i32), String>;
+
+/// The nodes of the file in file order, with their coordinates in 3D.
+#[derive(Default)]
+pub(super) struct Nodes {
+    /// Gmsh tag of each node.
+    pub tags: Vec<u64>,
+    /// `x y z` of each node.
+    pub xyz: Vec<f64>,
+    /// The first node with `z ≠ 0`: its tag, its `z` and where it was read.
+    off_plane: Option<(u64, f64, Mark)>,
+}
+
+impl Nodes {
+    /// Room for `n` more nodes.
+    pub fn reserve(&mut self, n: usize) {
+        self.tags.reserve(n);
+        self.xyz.reserve(3 * n);
+    }
+
+    /// Adds node `tag` at `p`, read at `mark`; rejects non-finite coordinates.
+    pub fn push(&mut self, c: &Cursor, mark: Mark, tag: u64, p: [f64; 3]) -> Result<()> {
+        if let Some(v) = p.iter().find(|v| !v.is_finite()) {
+            return Err(c.error_at(
+                mark,
+                format!("node {tag} has a non-finite coordinate ({v})"),
+            ));
+        }
+        if p[2] != 0.0 && self.off_plane.is_none() {
+            self.off_plane = Some((tag, p[2], mark));
+        }
+        self.tags.push(tag);
+        self.xyz.extend_from_slice(&p);
+        Ok(())
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.tags.len()
+    }
+}
+
+/// Node tag → node index: a table when tags are dense enough, a hash map otherwise.
+pub(super) enum NodeIndex {
+    /// `table[tag]` is the index, `usize::MAX` where no node has the tag.
+    Dense(Vec<usize>),
+    /// Sparse tags.
+    Sparse(HashMap<u64, usize>),
+}
+
+impl NodeIndex {
+    /// Indexes `tags`; fails with the first tag given twice.
+    pub fn build(tags: &[u64]) -> std::result::Result<NodeIndex, u64> {
+        let max = tags.iter().copied().max().unwrap_or(0);
+        if max <= 2 * tags.len() as u64 + 1024 {
+            let mut table = vec![usize::MAX; max as usize + 1];
+            for (i, &t) in tags.iter().enumerate() {
+                if table[t as usize] != usize::MAX {
+                    return Err(t);
+                }
+                table[t as usize] = i;
+            }
+            Ok(NodeIndex::Dense(table))
+        } else {
+            let mut map = HashMap::with_capacity(tags.len());
+            for (i, &t) in tags.iter().enumerate() {
+                if map.insert(t, i).is_some() {
+                    return Err(t);
+                }
+            }
+            Ok(NodeIndex::Sparse(map))
+        }
+    }
+
+    /// The index of the node with `tag`.
+    #[inline]
+    pub fn get(&self, tag: u64) -> Option<usize> {
+        match self {
+            NodeIndex::Dense(table) => usize::try_from(tag)
+                .ok()
+                .and_then(|t| table.get(t))
+                .copied()
+                .filter(|&i| i != usize::MAX),
+            NodeIndex::Sparse(map) => map.get(&tag).copied(),
+        }
+    }
+}
+
+/// Elements of one dimension, in file order, with runs of equal physical tags.
+struct Bucket {
+    cells: Cells,
+    tags: Vec<u64>,
+    /// `(first element, physical tags)` of each run; elements before the
+    /// first run carry no physical tag.
+    runs: Vec<(usize, Range<usize>)>,
+}
+
+impl Default for Bucket {
+    fn default() -> Self {
+        Bucket {
+            cells: Cells::new(),
+            tags: Vec::new(),
+            runs: Vec::new(),
+        }
+    }
+}
+
+/// All elements of the file, sorted into buckets by dimension 0–3.
+#[derive(Default)]
+pub(super) struct Elements {
+    buckets: [Bucket; 4],
+    /// Physical tags of all runs, concatenated.
+    physicals: Vec<i32>,
+    /// `(dimension, physical tag)` pairs in order of first appearance.
+    order: Vec<(usize, i32)>,
+    seen: HashSet<(usize, i32)>,
+}
+
+impl Elements {
+    /// Room for `n` more elements of `kind`.
+    pub fn reserve(&mut self, kind: CellKind, n: usize) {
+        let b = &mut self.buckets[kind.dim()];
+        b.cells.kinds.reserve(n);
+        b.cells.offsets.reserve(n);
+        b.cells.nodes.reserve(n * kind.node_count());
+        b.tags.reserve(n);
+    }
+
+    /// The elements of dimension `dim` pushed from now on carry `physicals`.
+    pub fn set_physicals(&mut self, dim: usize, physicals: &[i32]) {
+        let b = &mut self.buckets[dim];
+        let current = b
+            .runs
+            .last()
+            .map_or(&[][..], |(_, r)| &self.physicals[r.clone()]);
+        if current == physicals {
+            return;
+        }
+        let start = self.physicals.len();
+        self.physicals.extend_from_slice(physicals);
+        b.runs.push((b.cells.len(), start..self.physicals.len()));
+        for &p in physicals {
+            if self.seen.insert((dim, p)) {
+                self.order.push((dim, p));
+            }
+        }
+    }
+
+    /// Appends element `tag` of `kind` on node indices `nodes`.
+    #[inline]
+    pub fn push(&mut self, kind: CellKind, tag: u64, nodes: &[usize]) {
+        let b = &mut self.buckets[kind.dim()];
+        b.cells.push(kind, nodes);
+        b.tags.push(tag);
+    }
+}
+
+/// Assembles the mesh: the elements of the highest dimension become the
+/// cells, lower ones with physical tags the groups.
+///
+/// `copies`: MSH 2 writes an element once per physical group it belongs to;
+/// consecutive identical cells are then one cell. `end` locates errors that
+/// concern the file as a whole.
+pub(super) fn finish(
+    c: &Cursor,
+    nodes: Nodes,
+    mut elements: Elements,
+    names: &Names,
+    copies: bool,
+    end: Mark,
+) -> Result<Mesh> {
+    let Some(dim) = (0..4)
+        .rev()
+        .find(|&d| !elements.buckets[d].cells.is_empty())
+    else {
+        return Err(c.error_at(end, "the file has no elements"));
+    };
+    if dim < 2 {
+        return Err(c.error_at(
+            end,
+            format!("the file has no 2D or 3D elements (highest element dimension: {dim})"),
+        ));
+    }
+    let mut coords = nodes.xyz;
+    if dim == 2 {
+        if let Some((tag, z, mark)) = nodes.off_plane {
+            return Err(c.error_at(
+                mark,
+                format!(
+                    "node {tag} has z = {z}, but a mesh without 3D elements must lie in the \
+                     plane z = 0 (a surface mesh in 3D space is not a planar 2D mesh)"
+                ),
+            ));
+        }
+        coords = coords.chunks_exact(3).flat_map(|p| [p[0], p[1]]).collect();
+    }
+    let top = std::mem::take(&mut elements.buckets[dim]);
+    let (cells, cell_tags) = if copies {
+        drop_copies(top.cells, top.tags)
+    } else {
+        (top.cells, top.tags)
+    };
+    if let Some(t) = repeated(&cell_tags) {
+        return Err(c.error_at(end, format!("element tag {t} is used by two elements")));
+    }
+    let mut index = HashMap::new();
+    let mut groups: Vec<Group> = Vec::new();
+    for &(d, p) in elements.order.iter().filter(|(d, _)| *d < dim) {
+        index.insert((d, p), groups.len());
+        groups.push(Group {
+            name: names.get(&(d, p)).cloned().unwrap_or_else(|| p.to_string()),
+            tag: Some(p),
+            facets: Cells::new(),
+        });
+    }
+    for (d, b) in elements.buckets[..dim].iter().enumerate() {
+        for (r, (start, phys)) in b.runs.iter().enumerate() {
+            let end = b.runs.get(r + 1).map_or(b.cells.len(), |(s, _)| *s);
+            for p in &elements.physicals[phys.clone()] {
+                let g = &mut groups[index[&(d, *p)]];
+                for e in *start..end {
+                    g.facets.push(b.cells.kinds[e], b.cells.cell(e));
+                }
+            }
+        }
+    }
+    let mesh = Mesh {
+        dim,
+        coords,
+        node_tags: nodes.tags,
+        cells,
+        cell_tags,
+        groups,
+    };
+    mesh.validate()?;
+    Ok(mesh)
+}
+
+/// Removes each cell identical (same kind, same nodes) to the one before it.
+fn drop_copies(cells: Cells, tags: Vec<u64>) -> (Cells, Vec<u64>) {
+    let same = |e: usize| {
+        e > 0 && cells.kinds[e] == cells.kinds[e - 1] && cells.cell(e) == cells.cell(e - 1)
+    };
+    if !(0..cells.len()).any(same) {
+        return (cells, tags);
+    }
+    let mut kept = Cells::new();
+    let mut kept_tags = Vec::new();
+    for e in (0..cells.len()).filter(|&e| !same(e)) {
+        kept.push(cells.kinds[e], cells.cell(e));
+        kept_tags.push(tags[e]);
+    }
+    (kept, kept_tags)
+}
+
+/// A value that occurs twice in `tags`, if any.
+fn repeated(tags: &[u64]) -> Option<u64> {
+    if tags.windows(2).all(|w| w[0] < w[1]) {
+        return None;
+    }
+    let mut sorted = tags.to_vec();
+    sorted.sort_unstable();
+    sorted.windows(2).find(|w| w[0] == w[1]).map(|w| w[0])
+}

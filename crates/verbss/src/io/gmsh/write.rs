@@ -1,0 +1,248 @@
+//! What both MSH writers share: the plan (physical tags, entities, fresh
+//! facet tags) and an output that writes the same records as ASCII or binary.
+
+use std::collections::HashSet;
+use std::io::{self, Write};
+
+use crate::mesh::{CellKind, Cells, Group, Mesh};
+
+/// A group as it will be written: its dimension, physical tag and entity tag.
+pub(super) struct PlannedGroup<'a> {
+    /// The group.
+    pub group: &'a Group,
+    /// Dimension of its facets.
+    pub dim: usize,
+    /// Physical tag: the group's own if it has a positive, unused one, else a fresh one.
+    pub physical: i32,
+    /// Entity tag, numbered from 1 within each dimension; the volume cells are
+    /// entity 1 of dimension `mesh.dim`.
+    pub entity: i32,
+}
+
+/// Everything the writers need beyond the mesh itself.
+pub(super) struct Plan<'a> {
+    /// The mesh.
+    pub mesh: &'a Mesh,
+    /// Its groups, in order.
+    pub groups: Vec<PlannedGroup<'a>>,
+    /// Tag of the first group facet (facets are numbered on from here):
+    /// one more than the largest cell tag.
+    pub first_facet_tag: u64,
+}
+
+/// An `InvalidInput` error.
+pub(super) fn invalid(message: String) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidInput, message)
+}
+
+impl<'a> Plan<'a> {
+    /// Checks the mesh and assigns physical tags and entities.
+    pub fn new(mesh: &'a Mesh) -> io::Result<Plan<'a>> {
+        mesh.validate().map_err(|e| invalid(e.to_string()))?;
+        let mut next = mesh
+            .groups
+            .iter()
+            .filter_map(|g| g.tag)
+            .max()
+            .unwrap_or(0)
+            .max(0)
+            + 1;
+        let mut used = HashSet::new();
+        let mut entities = [0i32; 4];
+        let mut groups = Vec::with_capacity(mesh.groups.len());
+        for group in &mesh.groups {
+            if group.name.contains(['"', '\n', '\r']) {
+                return Err(invalid(format!(
+                    "group name {:?} holds a quote or a line break, which MSH cannot store",
+                    group.name
+                )));
+            }
+            let dims: Vec<usize> = group.facets.kinds.iter().map(|k| k.dim()).collect();
+            let dim = dims.first().copied().unwrap_or(mesh.dim - 1);
+            if let Some(other) = dims.iter().find(|&&d| d != dim) {
+                return Err(invalid(format!(
+                    "group '{}' mixes facets of dimension {dim} and {other}; \
+                     a Gmsh physical group has one dimension",
+                    group.name
+                )));
+            }
+            let physical = match group.tag {
+                Some(t) if t > 0 && used.insert((dim, t)) => t,
+                _ => {
+                    let t = next;
+                    next += 1;
+                    used.insert((dim, t));
+                    t
+                }
+            };
+            entities[dim] += 1;
+            groups.push(PlannedGroup {
+                group,
+                dim,
+                physical,
+                entity: entities[dim],
+            });
+        }
+        let first_facet_tag = mesh.cell_tags.iter().copied().max().unwrap_or(0) + 1;
+        Ok(Plan {
+            mesh,
+            groups,
+            first_facet_tag,
+        })
+    }
+
+    /// Number of group facets.
+    pub fn facet_count(&self) -> usize {
+        self.groups.iter().map(|g| g.group.facets.len()).sum()
+    }
+
+    /// `x y z` of node `i` (`z = 0` in 2D).
+    pub fn xyz(&self, i: usize) -> [f64; 3] {
+        let p = self.mesh.point(i);
+        [p[0], p[1], p.get(2).copied().unwrap_or(0.0)]
+    }
+}
+
+/// Runs of consecutive cells of one kind: `(kind, first, end)`.
+pub(super) fn runs(cells: &Cells) -> Vec<(CellKind, usize, usize)> {
+    let mut out: Vec<(CellKind, usize, usize)> = Vec::new();
+    for (c, &kind) in cells.kinds.iter().enumerate() {
+        match out.last_mut() {
+            Some(run) if run.0 == kind => run.2 = c + 1,
+            _ => out.push((kind, c, c + 1)),
+        }
+    }
+    out
+}
+
+/// Bytes are handed to the writer in chunks of about this size.
+const CHUNK: usize = 1 << 16;
+
+/// Writes records either as ASCII (values separated by spaces, one record a
+/// line, floats in shortest round-trip form) or as little-endian binary.
+pub(super) struct Out<'w> {
+    w: &'w mut dyn Write,
+    buf: Vec<u8>,
+    binary: bool,
+    line_start: bool,
+}
+
+impl<'w> Out<'w> {
+    /// An output on `w`.
+    pub fn new(w: &'w mut dyn Write, binary: bool) -> Self {
+        Out {
+            w,
+            buf: Vec::with_capacity(CHUNK + 256),
+            binary,
+            line_start: true,
+        }
+    }
+
+    /// Whether the output is binary.
+    pub fn binary(&self) -> bool {
+        self.binary
+    }
+
+    fn spill(&mut self) -> io::Result<()> {
+        if self.buf.len() >= CHUNK {
+            self.w.write_all(&self.buf)?;
+            self.buf.clear();
+        }
+        Ok(())
+    }
+
+    fn separate(&mut self) {
+        if !self.line_start {
+            self.buf.push(b' ');
+        }
+        self.line_start = false;
+    }
+
+    /// Raw text, in either encoding.
+    pub fn text(&mut self, s: &str) -> io::Result<()> {
+        self.buf.extend_from_slice(s.as_bytes());
+        self.line_start = s.ends_with('\n');
+        self.spill()
+    }
+
+    /// A `size_t` value (8 bytes in binary).
+    pub fn size(&mut self, v: u64) -> io::Result<()> {
+        if self.binary {
+            self.buf.extend_from_slice(&v.to_le_bytes());
+        } else {
+            self.separate();
+            write!(self.buf, "{v}")?;
+        }
+        self.spill()
+    }
+
+    /// An `int` value (4 bytes in binary).
+    pub fn int(&mut self, v: i32) -> io::Result<()> {
+        if self.binary {
+            self.buf.extend_from_slice(&v.to_le_bytes());
+        } else {
+            self.separate();
+            write!(self.buf, "{v}")?;
+        }
+        self.spill()
+    }
+
+    /// A `double` value (8 bytes in binary; shortest round-trip text in ASCII).
+    pub fn float(&mut self, v: f64) -> io::Result<()> {
+        if self.binary {
+            self.buf.extend_from_slice(&v.to_le_bytes());
+        } else {
+            self.separate();
+            write!(self.buf, "{v:?}")?;
+        }
+        self.spill()
+    }
+
+    /// Ends an ASCII record line (nothing in binary).
+    pub fn end_line(&mut self) -> io::Result<()> {
+        if !self.binary {
+            self.buf.push(b'\n');
+            self.line_start = true;
+        }
+        Ok(())
+    }
+
+    /// `$MeshFormat` for `version`, with the binary check integer 1.
+    pub fn format(&mut self, version: &str) -> io::Result<()> {
+        let kind = if self.binary { 1 } else { 0 };
+        self.text(&format!("$MeshFormat\n{version} {kind} 8\n"))?;
+        if self.binary {
+            self.buf.extend_from_slice(&1i32.to_le_bytes());
+            self.text("\n")?;
+        }
+        self.text("$EndMeshFormat\n")
+    }
+
+    /// `$PhysicalNames` (always ASCII), when there are groups.
+    pub fn names(&mut self, plan: &Plan) -> io::Result<()> {
+        if plan.groups.is_empty() {
+            return Ok(());
+        }
+        self.text(&format!("$PhysicalNames\n{}\n", plan.groups.len()))?;
+        for g in &plan.groups {
+            self.text(&format!("{} {} \"{}\"\n", g.dim, g.physical, g.group.name))?;
+        }
+        self.text("$EndPhysicalNames\n")
+    }
+
+    /// Closes a section: a line break after binary data, then `keyword`.
+    pub fn close(&mut self, keyword: &str) -> io::Result<()> {
+        if self.binary {
+            self.buf.push(b'\n');
+        }
+        self.text(keyword)?;
+        self.text("\n")
+    }
+
+    /// Hands the rest of the bytes to the writer.
+    pub fn finish(mut self) -> io::Result<()> {
+        self.w.write_all(&self.buf)?;
+        self.buf.clear();
+        self.w.flush()
+    }
+}
