@@ -56,6 +56,24 @@ pub enum Error {
         /// The groups that exist, comma separated.
         available: String,
     },
+    /// A step inverted elements (relative to the input mesh's orientation).
+    #[error(
+        "step {step}: element {element} inverted at {}, signed volume {volume:.3e} ({count} inverted element(s))",
+        crate::deform::format_point(.centroid)
+    )]
+    Inverted {
+        /// The step.
+        step: usize,
+        /// How many elements inverted.
+        count: usize,
+        /// The worst one's number in the file.
+        element: u64,
+        /// Its centroid.
+        centroid: Vec<f64>,
+        /// Its worst corner's signed area (2D) or volume (3D), relative to the
+        /// input orientation (≤ 0).
+        volume: f64,
+    },
 }
 
 /// Result with the library's [`Error`].

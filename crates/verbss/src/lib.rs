@@ -24,3 +24,7 @@ pub use error::{Error, Result};
 pub use mesh::{CellKind, Cells, Group, Mesh};
 pub mod solve;
 pub mod generate;
+pub mod case;
+pub mod deform;
+pub mod motion;
+pub mod report;

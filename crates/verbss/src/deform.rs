@@ -1,0 +1,772 @@
+//! The stepper: boundary motion → spring system → solve → update → check.
+//!
+//! A [`Deformer`] holds a mesh in motion. Each call of [`Deformer::step`]
+//! moves the boundary to where its motions put it at that step, moves the
+//! interior nodes by the springs and checks that no element inverted relative
+//! to the input mesh's orientation; it is the call a flow solver makes once per
+//! time step.
+//!
+//! Which node does what (the rule): a node of a moving group follows
+//! that group's motions, even where it also lies on a fixed or sliding group
+//! (on several moving groups: the first named); a node only on sliding groups
+//! of one plane slides in it; every other boundary node is fixed; all other
+//! nodes are free.
+//!
+//! Two ways to step (paper §3.2, step 6):
+//! - [`Reference::Updated`] (option 1, default): the springs are rebuilt on the
+//!   current coordinates `x` and the step solves for the increment
+//!   `Δu`, `x ← x + Δu`.
+//! - [`Reference::Fixed`] (option 2): the springs stay those of the input mesh
+//!   `X` and each step solves for the total displacement `u`, `x = X + u`.
+//!
+//! Either way the previous step's solution is the next step's initial guess,
+//! and prescribed nodes are set exactly to their motion's positions.
+
+use std::collections::HashMap;
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::error::{Error, Result};
+use crate::geometry::{cross, norm};
+use crate::mesh::{CellKind, Mesh};
+use crate::motion::{Attachment, Clock, Motion};
+use crate::quality::{self, Inversion, Summary};
+use crate::solve::{Engine, NodeRole, SolveParams};
+use crate::topology;
+
+/// Which configuration the springs are built on (the paper's options 1 and 2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Reference {
+    /// Option 1: springs on the current coordinates, solve for the increment.
+    #[default]
+    Updated,
+    /// Option 2: springs on the input mesh, solve for the total displacement.
+    Fixed,
+}
+
+/// Settings of a run.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct Settings {
+    /// The number of steps `N` of the run (the motions' `n/N`).
+    pub steps: usize,
+    /// Time per step (`t = n · dt`, used by undulation).
+    pub dt: f64,
+    /// Updated or fixed reference.
+    pub reference: Reference,
+    /// The solver's settings for every step.
+    pub solve: SolveParams,
+}
+
+impl Settings {
+    /// `steps` steps of `dt = 1/steps`, updated reference, default solver.
+    pub fn new(steps: usize) -> Settings {
+        Settings {
+            steps,
+            dt: 1.0 / steps.max(1) as f64,
+            reference: Reference::Updated,
+            solve: SolveParams::default(),
+        }
+    }
+}
+
+/// What one step did (one line of `report.json`).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+#[non_exhaustive]
+pub struct StepReport {
+    /// The step `n` (0: the input mesh).
+    pub step: usize,
+    /// Solver sweeps.
+    pub iterations: usize,
+    /// The final eq.-8 value (mean absolute change in the last sweep).
+    pub residual: f64,
+    /// Whether the solver's stop test was met.
+    pub converged: bool,
+    /// Wall seconds of the whole step (motion, solve, update, check).
+    pub seconds: f64,
+    /// Seconds forming the system (paper's Part I).
+    pub form_seconds: f64,
+    /// Seconds solving it (paper's Part II).
+    pub solve_seconds: f64,
+    /// The smallest element quality.
+    pub min_quality: f64,
+    /// The number of inverted elements.
+    pub inverted: usize,
+    /// Element counts in the paper's quality bins 0–0.02, 0.02–0.1, 0.1–0.4, 0.4–0.7, 0.7–1.
+    pub bins: [usize; 5],
+}
+
+/// A configuration of the mesh with its check.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Snapshot {
+    /// Node coordinates (D·N).
+    pub coords: Vec<f64>,
+    /// Quality of each cell.
+    pub quality: Vec<f64>,
+    /// Whether each cell is inverted relative to the input mesh.
+    pub inverted: Vec<bool>,
+    /// The step's report.
+    pub report: StepReport,
+}
+
+/// A mesh in motion (see the module documentation).
+pub struct Deformer {
+    mesh: Mesh,
+    settings: Settings,
+    engine: Engine,
+    roles: Vec<NodeRole>,
+    normals: Vec<[f64; 3]>,
+    motions: Vec<Motion>,
+    /// Moving nodes and the motions (indices into `motions`) they follow, in order.
+    moving: Vec<(usize, Vec<usize>)>,
+    orientation: Vec<i8>,
+    guess: Vec<f64>,
+    current: Snapshot,
+    failed: Option<Snapshot>,
+}
+
+impl Deformer {
+    /// Prepares `mesh` for the motions in `attachments`: resolves each node's
+    /// role, builds the solver's topology and checks the input mesh (which
+    /// must have no degenerate element).
+    pub fn new(mesh: &Mesh, attachments: &[Attachment], settings: Settings) -> Result<Deformer> {
+        if settings.steps == 0 {
+            return Err(Error::InvalidSetting(
+                "the number of steps must be at least 1".into(),
+            ));
+        }
+        let motions: Vec<Motion> = attachments.iter().map(|a| a.motion.clone()).collect();
+        for m in &motions {
+            m.validate(mesh.dim)?;
+        }
+        let plan = plan_roles(mesh, attachments)?;
+        let engine = Engine::new(mesh, &plan.roles, &plan.normals)?;
+        let orientation = quality::orientation(mesh);
+        let start = Instant::now();
+        let (quality, inversions) = check(mesh, &mesh.coords, &orientation);
+        if let Some(first) = inversions.first() {
+            return Err(Error::InvalidMesh(format!(
+                "element {} is degenerate (zero area or volume) at {}",
+                mesh.cell_tags[first.cell],
+                format_point(&first.centroid)
+            )));
+        }
+        let mut report = summarize(&quality, &inversions);
+        report.converged = true;
+        report.seconds = start.elapsed().as_secs_f64();
+        Ok(Deformer {
+            guess: vec![0.0; mesh.coords.len()],
+            current: Snapshot {
+                coords: mesh.coords.clone(),
+                inverted: vec![false; quality.len()],
+                quality,
+                report,
+            },
+            mesh: mesh.clone(),
+            settings,
+            engine,
+            roles: plan.roles,
+            normals: plan.normals,
+            motions,
+            moving: plan.moving,
+            orientation,
+            failed: None,
+        })
+    }
+
+    /// The run's settings.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// The role of each node.
+    pub fn roles(&self) -> &[NodeRole] {
+        &self.roles
+    }
+
+    /// The last accepted step (0 before the first).
+    pub fn current_step(&self) -> usize {
+        self.current.report.step
+    }
+
+    /// The last accepted configuration.
+    pub fn current(&self) -> &Snapshot {
+        &self.current
+    }
+
+    /// The configuration of the step that failed the inversion check, if any.
+    pub fn failed(&self) -> Option<&Snapshot> {
+        self.failed.as_ref()
+    }
+
+    /// The input mesh.
+    pub fn initial(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// The displacement of every node from the input mesh, `x − X` (D·N).
+    pub fn displacement(&self) -> Vec<f64> {
+        displacement(&self.current.coords, &self.mesh.coords)
+    }
+
+    /// The input mesh with the current coordinates.
+    pub fn mesh(&self) -> Mesh {
+        let mut mesh = self.mesh.clone();
+        mesh.coords.clone_from(&self.current.coords);
+        mesh
+    }
+
+    /// Moves the boundary to its position at step `n` and the interior with
+    /// it, from the last accepted configuration. On success the new
+    /// configuration is accepted and its report returned. When an element
+    /// inverts the configuration is rejected (kept in [`Deformer::failed`],
+    /// the current one stays) and [`Error::Inverted`] names the worst element.
+    pub fn step(&mut self, n: usize) -> Result<StepReport> {
+        let start = Instant::now();
+        let clock = Clock {
+            step: n,
+            steps: self.settings.steps,
+            dt: self.settings.dt,
+        };
+        let frames = self
+            .motions
+            .iter()
+            .map(|m| m.frame(clock, self.mesh.node_count(), self.mesh.dim))
+            .collect::<Result<Vec<_>>>()?;
+        let dim = self.mesh.dim;
+        let base = match self.settings.reference {
+            Reference::Updated => &self.current.coords,
+            Reference::Fixed => &self.mesh.coords,
+        };
+        let mut u = self.guess.clone();
+        for (i, role) in self.roles.iter().enumerate() {
+            let ui = &mut u[dim * i..dim * (i + 1)];
+            match *role {
+                NodeRole::Free => {}
+                NodeRole::Fixed => ui.fill(0.0),
+                NodeRole::Slide(k) => {
+                    let nrm = &self.normals[k];
+                    let along: f64 = (0..dim).map(|d| ui[d] * nrm[d]).sum();
+                    for d in 0..dim {
+                        ui[d] -= along * nrm[d];
+                    }
+                }
+            }
+        }
+        let mut targets = Vec::with_capacity(self.moving.len());
+        for (node, chain) in &self.moving {
+            let mut p = self.mesh.point(*node).to_vec();
+            for &m in chain {
+                self.motions[m].apply(*node, &mut p, clock, &frames[m])?;
+            }
+            for d in 0..dim {
+                u[dim * node + d] = p[d] - base[dim * node + d];
+            }
+            targets.push(p);
+        }
+        let info = self.engine.solve(base, &mut u, &self.settings.solve)?;
+        let mut coords: Vec<f64> = base.iter().zip(&u).map(|(x, d)| x + d).collect();
+        for ((node, _), p) in self.moving.iter().zip(&targets) {
+            coords[dim * node..dim * (node + 1)].copy_from_slice(p);
+        }
+        let (quality, inversions) = check(&self.mesh, &coords, &self.orientation);
+        let mut report = summarize(&quality, &inversions);
+        report.step = n;
+        report.iterations = info.iterations;
+        report.residual = info.residual;
+        report.converged = info.converged;
+        report.form_seconds = info.form_seconds;
+        report.solve_seconds = info.solve_seconds;
+        report.seconds = start.elapsed().as_secs_f64();
+        let mut inverted = vec![false; quality.len()];
+        for inv in &inversions {
+            inverted[inv.cell] = true;
+        }
+        let snapshot = Snapshot {
+            coords,
+            quality,
+            inverted,
+            report: report.clone(),
+        };
+        if let Some(worst) = inversions
+            .iter()
+            .min_by(|a, b| a.volume.total_cmp(&b.volume))
+        {
+            let err = Error::Inverted {
+                step: n,
+                count: inversions.len(),
+                element: self.mesh.cell_tags[worst.cell],
+                centroid: worst.centroid.clone(),
+                volume: worst.volume,
+            };
+            self.failed = Some(snapshot);
+            return Err(err);
+        }
+        self.guess = u;
+        self.current = snapshot;
+        Ok(report)
+    }
+
+    /// [`Deformer::step`] to the step after the current one.
+    pub fn advance(&mut self) -> Result<StepReport> {
+        self.step(self.current_step() + 1)
+    }
+}
+
+/// `x − X`.
+fn displacement(x: &[f64], reference: &[f64]) -> Vec<f64> {
+    x.iter().zip(reference).map(|(a, b)| a - b).collect()
+}
+
+/// Per-cell quality and the inverted cells of `coords`, relative to `orientation`.
+fn check(mesh: &Mesh, coords: &[f64], orientation: &[i8]) -> (Vec<f64>, Vec<Inversion>) {
+    (
+        quality::qualities(mesh, coords, orientation),
+        quality::inversions(mesh, coords, orientation),
+    )
+}
+
+/// Minimum quality, inverted count and the paper's bins.
+fn summarize(quality: &[f64], inversions: &[Inversion]) -> StepReport {
+    let summary = Summary::new(quality);
+    let mut bins = [0; 5];
+    for (b, bin) in bins.iter_mut().zip(&summary.bins) {
+        *b = bin.count;
+    }
+    StepReport {
+        min_quality: summary.min,
+        inverted: inversions.len(),
+        bins,
+        ..StepReport::default()
+    }
+}
+
+/// Node roles, slide normals and the motions of moving nodes.
+struct Plan {
+    roles: Vec<NodeRole>,
+    normals: Vec<[f64; 3]>,
+    moving: Vec<(usize, Vec<usize>)>,
+}
+
+/// What a group does, from all attachments naming it.
+enum GroupRole {
+    Moving(Vec<usize>),
+    Fixed,
+    Slide(usize),
+}
+
+fn plan_roles(mesh: &Mesh, attachments: &[Attachment]) -> Result<Plan> {
+    // Per group (in order of first mention): its role.
+    let mut order: Vec<usize> = Vec::new();
+    let mut roles: HashMap<usize, GroupRole> = HashMap::new();
+    let mut normals: Vec<[f64; 3]> = Vec::new();
+    for (a, att) in attachments.iter().enumerate() {
+        for name in &att.groups {
+            mesh.group(name)?;
+            let g = mesh
+                .groups
+                .iter()
+                .position(|g| &g.name == name)
+                .unwrap_or(0);
+            if !roles.contains_key(&g) {
+                order.push(g);
+            }
+            let entry = roles.remove(&g);
+            let next = match (&att.motion, entry) {
+                (m, Some(GroupRole::Moving(mut chain))) if m.moves() => {
+                    chain.push(a);
+                    GroupRole::Moving(chain)
+                }
+                (m, _) if m.moves() => GroupRole::Moving(vec![a]),
+                (_, Some(GroupRole::Moving(chain))) => GroupRole::Moving(chain),
+                (Motion::Slide { normal }, None) => {
+                    normals.push(match normal {
+                        Some(n) => unit3(n),
+                        None => group_normal(mesh, g)?,
+                    });
+                    GroupRole::Slide(normals.len() - 1)
+                }
+                (Motion::Slide { .. }, Some(GroupRole::Slide(k))) => GroupRole::Slide(k),
+                _ => GroupRole::Fixed,
+            };
+            roles.insert(g, next);
+        }
+    }
+    let n = mesh.node_count();
+    let boundary = topology::boundary_nodes(mesh);
+    let mut node_role: Vec<NodeRole> = boundary
+        .iter()
+        .map(|&b| if b { NodeRole::Fixed } else { NodeRole::Free })
+        .collect();
+    // Sliding: nodes whose every group slides in one plane.
+    let mut slide: Vec<Option<usize>> = vec![None; n];
+    let mut blocked = vec![false; n];
+    for (g, group) in mesh.groups.iter().enumerate() {
+        for i in group.nodes() {
+            match roles.get(&g) {
+                Some(GroupRole::Slide(k)) => match slide[i] {
+                    Some(j) if !parallel(&normals[j], &normals[*k]) => blocked[i] = true,
+                    _ => slide[i] = Some(*k),
+                },
+                _ => blocked[i] = true,
+            }
+        }
+    }
+    for i in 0..n {
+        if let (Some(k), false) = (slide[i], blocked[i]) {
+            node_role[i] = NodeRole::Slide(k);
+        }
+    }
+    let mut moving = Vec::new();
+    let mut taken = vec![false; n];
+    for &g in &order {
+        if let Some(GroupRole::Moving(chain)) = roles.get(&g) {
+            for i in mesh.groups[g].nodes() {
+                if !taken[i] {
+                    taken[i] = true;
+                    node_role[i] = NodeRole::Fixed;
+                    moving.push((i, chain.clone()));
+                }
+            }
+        }
+    }
+    Ok(Plan {
+        roles: node_role,
+        normals,
+        moving,
+    })
+}
+
+fn unit3(v: &[f64; 3]) -> [f64; 3] {
+    let l = norm(v);
+    [v[0] / l, v[1] / l, v[2] / l]
+}
+
+fn parallel(a: &[f64; 3], b: &[f64; 3]) -> bool {
+    norm(&cross(a, b)) < 1e-9
+}
+
+/// The unit normal of a planar group: the sum of its facets' normals, each
+/// turned to agree with the first (a line's normal in 2D, a triangle's cross
+/// product, a quad's diagonals' cross product). Errors when the group is not
+/// planar.
+fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
+    let group = &mesh.groups[g];
+    let dim = mesh.dim;
+    let p = |i: usize| -> [f64; 3] {
+        let x = mesh.point(i);
+        [x[0], x[1], if dim == 3 { x[2] } else { 0.0 }]
+    };
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let mut sum = [0.0; 3];
+    for (kind, nodes) in group.facets.iter() {
+        let n = match (kind, dim) {
+            (CellKind::Line, 2) => {
+                let d = sub(p(nodes[1]), p(nodes[0]));
+                [-d[1], d[0], 0.0]
+            }
+            (CellKind::Triangle, 3) => cross(
+                &sub(p(nodes[1]), p(nodes[0])),
+                &sub(p(nodes[2]), p(nodes[0])),
+            ),
+            (CellKind::Quad, 3) => cross(
+                &sub(p(nodes[2]), p(nodes[0])),
+                &sub(p(nodes[3]), p(nodes[1])),
+            ),
+            _ => continue,
+        };
+        let sign = if sum.iter().zip(&n).map(|(a, b)| a * b).sum::<f64>() < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
+        for d in 0..3 {
+            sum[d] += sign * n[d];
+        }
+    }
+    let not_planar = || {
+        Error::InvalidSetting(format!(
+            "group '{}' does not lie in one plane: give the slide motion a `normal`",
+            group.name
+        ))
+    };
+    if norm(&sum) == 0.0 {
+        return Err(not_planar());
+    }
+    let nrm = unit3(&sum);
+    let nodes = group.nodes();
+    let x0 = p(nodes[0]);
+    let offsets: Vec<f64> = nodes
+        .iter()
+        .map(|&i| {
+            sub(p(i), x0)
+                .iter()
+                .zip(&nrm)
+                .map(|(a, b)| a * b)
+                .sum::<f64>()
+        })
+        .collect();
+    let extent = nodes
+        .iter()
+        .map(|&i| norm(&sub(p(i), x0)))
+        .fold(0.0, f64::max);
+    if offsets
+        .iter()
+        .any(|o| o.abs() > 1e-9 * extent.max(f64::MIN_POSITIVE))
+    {
+        return Err(not_planar());
+    }
+    Ok(nrm)
+}
+
+/// `(x, y[, z])` with 6 significant digits, for messages.
+pub fn format_point(p: &[f64]) -> String {
+    let parts: Vec<String> = p.iter().map(|x| format!("{x:.6}")).collect();
+    format!("({})", parts.join(", "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{Cells, Group};
+    use crate::motion::PositionSource;
+    use std::path::Path;
+
+    const NACA: &str = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../assets/meshes/su2/mesh_NACA0012_inv.su2"
+    );
+    const BUMP: &str = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../assets/meshes/su2/surface_bump.dat"
+    );
+
+    /// The unit square as an `n × n` grid of triangles, with groups `left`,
+    /// `right`, `bottom` and `top`.
+    fn square(n: usize) -> Mesh {
+        let node = |i: usize, j: usize| j * (n + 1) + i;
+        let mut coords = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                coords.extend([i as f64 / n as f64, j as f64 / n as f64]);
+            }
+        }
+        let mut cells = Cells::new();
+        for j in 0..n {
+            for i in 0..n {
+                let (a, b, c, d) = (
+                    node(i, j),
+                    node(i + 1, j),
+                    node(i + 1, j + 1),
+                    node(i, j + 1),
+                );
+                cells.push(CellKind::Triangle, &[a, b, c]);
+                cells.push(CellKind::Triangle, &[a, c, d]);
+            }
+        }
+        let side = |name: &str, f: &dyn Fn(usize) -> [usize; 2]| {
+            let mut facets = Cells::new();
+            for k in 0..n {
+                facets.push(CellKind::Line, &f(k));
+            }
+            Group {
+                name: name.into(),
+                tag: None,
+                facets,
+            }
+        };
+        let groups = vec![
+            side("left", &|k| [node(0, k), node(0, k + 1)]),
+            side("right", &|k| [node(n, k), node(n, k + 1)]),
+            side("bottom", &|k| [node(k, 0), node(k + 1, 0)]),
+            side("top", &|k| [node(k, n), node(k + 1, n)]),
+        ];
+        Mesh::new(2, coords, cells, groups).unwrap()
+    }
+
+    fn attach(groups: &[&str], motion: Motion) -> Attachment {
+        Attachment {
+            groups: groups.iter().map(|g| g.to_string()).collect(),
+            motion,
+        }
+    }
+
+    #[test]
+    fn naca0012_rotated_40_degrees_in_40_steps_stays_valid() {
+        let mesh = crate::io::read(Path::new(NACA)).unwrap();
+        let rotation = Motion::Rotation {
+            center: [0.25, 0.0, 0.0],
+            axis: [0.0, 0.0, 1.0],
+            angle: 40f64.to_radians(),
+        };
+        let mut d =
+            Deformer::new(&mesh, &[attach(&["airfoil"], rotation)], Settings::new(40)).unwrap();
+        for n in 1..=40 {
+            let r = d.step(n).unwrap();
+            assert_eq!(r.inverted, 0);
+            assert!(r.min_quality > 0.0);
+        }
+        // The airfoil turned rigidly by 40° about (0.25, 0); the farfield stayed.
+        let (s, c) = 40f64.to_radians().sin_cos();
+        let x = &d.current().coords;
+        for i in mesh.group("airfoil").unwrap().nodes() {
+            let p = mesh.point(i);
+            let (dx, dy) = (p[0] - 0.25, p[1]);
+            assert!((x[2 * i] - (0.25 + c * dx - s * dy)).abs() < 1e-12);
+            assert!((x[2 * i + 1] - (s * dx + c * dy)).abs() < 1e-12);
+        }
+        for i in mesh.group("farfield").unwrap().nodes() {
+            assert_eq!(&x[2 * i..2 * i + 2], mesh.point(i));
+        }
+    }
+
+    #[test]
+    fn surface_file_puts_every_node_where_the_file_says() {
+        let mesh = crate::io::read(Path::new(NACA)).unwrap();
+        let table = crate::io::positions::read(Path::new(BUMP), 2).unwrap();
+        let map = (0..table.len())
+            .map(|k| (table.ids[k], table.point(k).to_vec()))
+            .collect();
+        let motion = Motion::Positions(PositionSource::Final(map));
+        let mut d =
+            Deformer::new(&mesh, &[attach(&["airfoil"], motion)], Settings::new(2)).unwrap();
+        d.step(1).unwrap();
+        d.step(2).unwrap();
+        assert_eq!(table.len(), 200);
+        for k in 0..table.len() {
+            let i = table.ids[k];
+            assert_eq!(&d.current().coords[2 * i..2 * i + 2], table.point(k));
+        }
+    }
+
+    #[test]
+    fn translation_is_reproduced_by_both_references() {
+        let mesh = square(6);
+        let shift = Motion::Translation {
+            displacement: [0.0, 0.0, 0.0],
+        };
+        for reference in [Reference::Updated, Reference::Fixed] {
+            let mut settings = Settings::new(3);
+            settings.reference = reference;
+            settings.solve.tolerance = 1e-12;
+            let all = ["left", "right", "bottom", "top"];
+            let mut d = Deformer::new(&mesh, &[attach(&all, shift.clone())], settings).unwrap();
+            for n in 1..=3 {
+                let r = d.step(n).unwrap();
+                assert_eq!(r.step, n);
+            }
+            assert!(d.displacement().iter().all(|u| u.abs() < 1e-12));
+        }
+        let moved = Motion::Translation {
+            displacement: [0.3, 0.0, 0.0],
+        };
+        for reference in [Reference::Updated, Reference::Fixed] {
+            let mut settings = Settings::new(3);
+            settings.reference = reference;
+            settings.solve.tolerance = 1e-12;
+            let all = ["left", "right", "bottom", "top"];
+            let mut d = Deformer::new(&mesh, &[attach(&all, moved.clone())], settings).unwrap();
+            for _ in 0..3 {
+                d.advance().unwrap();
+            }
+            let u = d.displacement();
+            for i in 0..mesh.node_count() {
+                assert!(
+                    (u[2 * i] - 0.3).abs() < 1e-9,
+                    "{reference:?} node {i}: {}",
+                    u[2 * i]
+                );
+                assert!(u[2 * i + 1].abs() < 1e-9);
+            }
+        }
+    }
+
+    #[test]
+    fn sliding_walls_let_nodes_move_along_them() {
+        let mesh = square(6);
+        let attachments = [
+            attach(
+                &["right"],
+                Motion::Translation {
+                    displacement: [0.2, 0.0, 0.0],
+                },
+            ),
+            attach(&["bottom", "top"], Motion::Slide { normal: None }),
+        ];
+        let mut settings = Settings::new(2);
+        settings.solve.tolerance = 1e-12;
+        let mut d = Deformer::new(&mesh, &attachments, settings).unwrap();
+        // Corner nodes lie on the fixed left wall or the moving right wall.
+        assert_eq!(d.roles()[0], NodeRole::Fixed);
+        assert_eq!(d.roles()[1], NodeRole::Slide(0));
+        assert_eq!(d.roles()[6], NodeRole::Fixed);
+        d.step(2).unwrap();
+        let x = &d.current().coords;
+        for i in 1..6 {
+            // Bottom nodes stay on y = 0 and moved right.
+            assert!(x[2 * i + 1].abs() < 1e-12);
+            assert!(x[2 * i] > mesh.coords[2 * i] + 1e-3);
+        }
+        // The right wall moved by 0.2 exactly.
+        assert_eq!(x[2 * 6], 1.2);
+    }
+
+    #[test]
+    fn moving_group_wins_over_fixed_group() {
+        let mesh = square(4);
+        let attachments = [
+            attach(&["bottom"], Motion::Fixed),
+            attach(
+                &["left"],
+                Motion::Translation {
+                    displacement: [0.0, 0.1, 0.0],
+                },
+            ),
+        ];
+        let mut d = Deformer::new(&mesh, &attachments, Settings::new(1)).unwrap();
+        d.step(1).unwrap();
+        // Node 0 is on both groups and follows the moving one.
+        assert_eq!(&d.current().coords[0..2], &[0.0, 0.1]);
+        // Node 1 is only on the fixed group.
+        assert_eq!(&d.current().coords[2..4], &[0.25, 0.0]);
+    }
+
+    #[test]
+    fn inversion_stops_with_the_step_element_place_and_volume() {
+        let mesh = square(1);
+        let push = Motion::Translation {
+            displacement: [2.0, 0.0, 0.0],
+        };
+        let mut d = Deformer::new(&mesh, &[attach(&["left"], push)], Settings::new(2)).unwrap();
+        // Step 1: the left wall reaches x = 1, the cells are flat.
+        let e = d.step(1).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "step 1: element 1 inverted at (1.000000, 0.333333), signed volume 0.000e0 (2 inverted element(s))"
+        );
+        assert_eq!(d.current_step(), 0);
+        assert_eq!(d.current().coords, mesh.coords);
+        let failed = d.failed().unwrap();
+        assert_eq!(failed.report.inverted, 2);
+        assert_eq!(failed.inverted, vec![true, true]);
+        let e = d.step(2).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "step 2: element 1 inverted at (1.333333, 0.333333), signed volume -5.000e-1 (2 inverted element(s))"
+        );
+    }
+
+    #[test]
+    fn unknown_group_is_named() {
+        let mesh = square(2);
+        let e = Deformer::new(&mesh, &[attach(&["wing"], Motion::Fixed)], Settings::new(1))
+            .err()
+            .unwrap();
+        assert_eq!(
+            e.to_string(),
+            "unknown group 'wing' (the mesh has: left, right, bottom, top)"
+        );
+    }
+}

@@ -1,0 +1,578 @@
+//! Boundary motions: where a boundary node is at step `n` of a run.
+//!
+//! A [`Motion`] maps a node's position in the input mesh `X` to its position
+//! at step `n` of `N` ([`Clock`]). Motions are attached to boundary groups
+//! ([`Attachment`]); several attachments naming the same group compose in
+//! order (the second acts on the output of the first), so a pitching–plunging
+//! wing that also bends is two attachments. The rules that decide which node
+//! follows which motion live in [`crate::deform`].
+//!
+//! Monotone motions (translation, rotation, bending, positions from one file)
+//! grow linearly with the run: their amount at step `n` is `n/N` of the
+//! final amount.
+
+use std::collections::HashMap;
+use std::path::PathBuf;
+
+use crate::error::{Error, Result};
+use crate::geometry::{cross, dot, norm};
+use crate::io::positions;
+
+/// Step `step` of a run of `steps` steps, with physical time `step × dt`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Clock {
+    /// The step, 0 for the input mesh.
+    pub step: usize,
+    /// The number of steps of the run, `N`.
+    pub steps: usize,
+    /// Time per step (used by [`Motion::Undulation`]).
+    pub dt: f64,
+}
+
+impl Clock {
+    /// `n / N`, the fraction of the run done.
+    pub fn fraction(&self) -> f64 {
+        self.step as f64 / self.steps.max(1) as f64
+    }
+
+    /// The time `t = n · dt`.
+    pub fn time(&self) -> f64 {
+        self.step as f64 * self.dt
+    }
+}
+
+/// Where prescribed node positions come from ([`Motion::Positions`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum PositionSource {
+    /// Final positions (node index → point), reached linearly:
+    /// `x(n) = (1 − n/N) X + (n/N) P`, exactly `P` at the last step.
+    Final(HashMap<usize, Vec<f64>>),
+    /// One file per step ([`positions`] format: SU2 surface file or CSV, node
+    /// IDs are 0-based node indices): `pattern` with `{step}` (or `{step:0W}`,
+    /// zero-padded to W digits) replaced by the step number; the file of step
+    /// `n` holds the positions at step `n`.
+    PerStep(PathBuf),
+}
+
+/// A boundary motion. Points are `D` numbers (2 or 3); 3-vectors given for a
+/// 2D mesh use their first two components.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Motion {
+    /// The nodes stay where they are.
+    Fixed,
+    /// The nodes slide within their plane (a symmetry plane): the normal
+    /// component of their displacement is zero, the tangential ones are
+    /// unknowns. `normal: None` takes the plane of the group's facets.
+    Slide {
+        /// The plane's normal, or `None` for the group's own plane.
+        normal: Option<[f64; 3]>,
+    },
+    /// Rigid translation: `x(n) = X + (n/N) d`.
+    Translation {
+        /// The displacement `d` reached at the last step.
+        displacement: [f64; 3],
+    },
+    /// Rigid rotation about `center` by `(n/N) α`, counter-clockwise about
+    /// `axis` (right-hand rule; in 2D the axis is `z`):
+    /// `x(n) = c + R(α n/N) (X − c)`.
+    Rotation {
+        /// The centre of rotation.
+        center: [f64; 3],
+        /// The rotation axis (3D; normalised on use).
+        axis: [f64; 3],
+        /// The final angle α in radians.
+        angle: f64,
+    },
+    /// The paper's pitching–plunging (eq. 10): `θₙ = θ₀ sin(2πn/T)`,
+    /// `hₙ = h₀ sin(2πn/T)`; `x(n) = c + R(θₙ) (X − c) + hₙ e`, a rotation
+    /// about the pitch centre `c` (counter-clockwise positive: an airfoil
+    /// pointing its nose to −x pitches nose-up for θ < 0), then a plunge
+    /// along `e`.
+    PitchPlunge {
+        /// The pitch centre `c`.
+        center: [f64; 3],
+        /// The pitch axis (3D; normalised on use).
+        axis: [f64; 3],
+        /// The pitch amplitude θ₀ in radians.
+        pitch: f64,
+        /// The plunge `h₀ e`: amplitude times direction.
+        plunge: [f64; 3],
+        /// The period `T` in steps; `None` for the run's `N` (paper).
+        period: Option<usize>,
+    },
+    /// Travelling-wave undulation of a body (paper eq. 11):
+    /// `x(n) = X + y(ξ, t) e_y` with `y = A(ξ) cos(2π/λ (ξ − c t))`,
+    /// `ξ = (X − head)·e_x` the distance from the head along the body axis
+    /// `e_x`, `A(ξ) = Σₖ aₖ ξᵏ`, `t = n·dt`. With `ramp > 0` the wave grows in
+    /// over the first `ramp` steps (factor `min(1, n/ramp)`), so that the
+    /// first step does not jump from the straight body to the full wave.
+    Undulation {
+        /// The head position.
+        head: [f64; 3],
+        /// The body axis `e_x`, head to tail (normalised on use).
+        axis: [f64; 3],
+        /// The lateral direction `e_y` (normalised on use).
+        lateral: [f64; 3],
+        /// The envelope's polynomial coefficients `a₀, a₁, …`.
+        amplitude: Vec<f64>,
+        /// The wavelength λ.
+        wavelength: f64,
+        /// The phase speed c.
+        speed: f64,
+        /// Steps over which the wave grows in (0: none).
+        ramp: usize,
+    },
+    /// Bending of a body clamped at `root` (a wing, paper §5.3). With `s` the
+    /// span coordinate `(X − root)·e_s` (negative values count as 0), `b` the
+    /// offset `(X − root)·e_b` along the bending direction and `δ = (n/N) δ_tip`,
+    /// the deflection is `w(s) = δ (s/L)²` and each section turns with the
+    /// bent axis by `φ(s) = atan(2 δ s / L²)`:
+    /// `x(n) = X + (w + b(cos φ − 1)) e_b − b sin φ e_s`. A tip deflection of
+    /// 0.4 L turns the tip section by atan(0.8) ≈ 38.7°.
+    Bending {
+        /// A point of the clamped root section.
+        root: [f64; 3],
+        /// The span direction `e_s` (normalised on use).
+        span_axis: [f64; 3],
+        /// The bending direction `e_b` (made normal to `e_s` and normalised on use).
+        direction: [f64; 3],
+        /// The span `L`.
+        span: f64,
+        /// The tip deflection `δ_tip` reached at the last step.
+        tip: f64,
+    },
+    /// Node positions prescribed from data (a structural solver's output).
+    Positions(PositionSource),
+}
+
+/// A motion attached to boundary groups.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Attachment {
+    /// The groups that follow the motion.
+    pub groups: Vec<String>,
+    /// The motion.
+    pub motion: Motion,
+}
+
+/// A motion's data for one step, loaded by [`Motion::frame`] (files of
+/// [`PositionSource::PerStep`]).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Frame {
+    /// Node index → position at this step.
+    pub positions: HashMap<usize, Vec<f64>>,
+}
+
+fn unit(v: &[f64; 3], what: &str) -> Result<[f64; 3]> {
+    let l = norm(v);
+    if !(l > 0.0 && l.is_finite()) {
+        return Err(Error::InvalidSetting(format!(
+            "{what} must be a non-zero vector"
+        )));
+    }
+    Ok([v[0] / l, v[1] / l, v[2] / l])
+}
+
+/// Rotates `p − c` by `angle` about `axis` (Rodrigues; in 2D about z) and adds `c` back.
+fn rotate(p: &mut [f64], c: &[f64; 3], axis: &[f64; 3], angle: f64) {
+    let (s, co) = angle.sin_cos();
+    if p.len() == 2 {
+        let (x, y) = (p[0] - c[0], p[1] - c[1]);
+        p[0] = c[0] + co * x - s * y;
+        p[1] = c[1] + s * x + co * y;
+        return;
+    }
+    let v = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
+    let kxv = cross(axis, &v);
+    let kv = dot(axis, &v);
+    for d in 0..3 {
+        p[d] = c[d] + v[d] * co + kxv[d] * s + axis[d] * kv * (1.0 - co);
+    }
+}
+
+/// `(X − a)·e` over the first `p.len()` components.
+fn along(p: &[f64], a: &[f64; 3], e: &[f64; 3]) -> f64 {
+    p.iter().enumerate().map(|(d, x)| (x - a[d]) * e[d]).sum()
+}
+
+impl Motion {
+    /// Whether the nodes of the motion's groups are prescribed (not free or sliding).
+    pub fn moves(&self) -> bool {
+        !matches!(self, Motion::Fixed | Motion::Slide { .. })
+    }
+
+    /// Checks the motion's settings (non-zero axes, positive lengths) for a
+    /// mesh of dimension `dim`.
+    pub fn validate(&self, dim: usize) -> Result<()> {
+        let bad = |m: String| Err(Error::InvalidSetting(m));
+        match self {
+            Motion::Rotation { axis, .. } | Motion::PitchPlunge { axis, .. } if dim == 3 => {
+                unit(axis, "the rotation axis").map(|_| ())
+            }
+            Motion::PitchPlunge {
+                period: Some(0), ..
+            } => bad("the pitch-plunge period must be at least 1 step".into()),
+            Motion::Undulation {
+                axis,
+                lateral,
+                wavelength,
+                ..
+            } => {
+                unit(axis, "the body axis")?;
+                unit(lateral, "the lateral direction")?;
+                if *wavelength > 0.0 {
+                    Ok(())
+                } else {
+                    bad(format!(
+                        "the wavelength must be positive (got {wavelength})"
+                    ))
+                }
+            }
+            Motion::Bending {
+                span_axis,
+                direction,
+                span,
+                ..
+            } => {
+                let es = unit(span_axis, "the span axis")?;
+                let k = dot(direction, &es);
+                let b = std::array::from_fn(|d| direction[d] - k * es[d]);
+                unit(&b, "the bending direction (normal to the span axis)")?;
+                if *span > 0.0 {
+                    Ok(())
+                } else {
+                    bad(format!("the span must be positive (got {span})"))
+                }
+            }
+            Motion::Slide { normal: Some(n) } => unit(n, "the slide normal").map(|_| ()),
+            _ => Ok(()),
+        }
+    }
+
+    /// Loads what the motion needs at `clock.step` (the step's positions
+    /// file) for a mesh of `nodes` nodes in dimension `dim`.
+    pub fn frame(&self, clock: Clock, nodes: usize, dim: usize) -> Result<Frame> {
+        let Motion::Positions(PositionSource::PerStep(pattern)) = self else {
+            return Ok(Frame::default());
+        };
+        if clock.step == 0 {
+            return Ok(Frame::default());
+        }
+        let path = step_path(pattern, clock.step);
+        let table = positions::read(&path, dim)?;
+        table.check_against(nodes, &path)?;
+        let positions = (0..table.len())
+            .map(|k| (table.ids[k], table.point(k).to_vec()))
+            .collect();
+        Ok(Frame { positions })
+    }
+
+    /// Moves point `p` (node `node`, `D` numbers) to where the motion puts it
+    /// at `clock`; `frame` is the motion's [`Motion::frame`] for that step.
+    /// Returns an error when the motion prescribes no position for the node.
+    pub fn apply(&self, node: usize, p: &mut [f64], clock: Clock, frame: &Frame) -> Result<()> {
+        let dim = p.len();
+        let f = clock.fraction();
+        match self {
+            Motion::Fixed | Motion::Slide { .. } => {}
+            Motion::Translation { displacement } => {
+                for d in 0..dim {
+                    p[d] += f * displacement[d];
+                }
+            }
+            Motion::Rotation {
+                center,
+                axis,
+                angle,
+            } => rotate(p, center, &unit_or_z(axis, dim), f * angle),
+            Motion::PitchPlunge {
+                center,
+                axis,
+                pitch,
+                plunge,
+                period,
+            } => {
+                let t = period.unwrap_or(clock.steps).max(1) as f64;
+                let s = (2.0 * std::f64::consts::PI * clock.step as f64 / t).sin();
+                rotate(p, center, &unit_or_z(axis, dim), pitch * s);
+                for d in 0..dim {
+                    p[d] += s * plunge[d];
+                }
+            }
+            Motion::Undulation {
+                head,
+                axis,
+                lateral,
+                amplitude,
+                wavelength,
+                speed,
+                ramp,
+            } => {
+                let ex = unit(axis, "the body axis")?;
+                let ey = unit(lateral, "the lateral direction")?;
+                let xi = along(p, head, &ex);
+                let a = amplitude.iter().rev().fold(0.0, |acc, c| acc * xi + c);
+                let phase = 2.0 * std::f64::consts::PI / wavelength * (xi - speed * clock.time());
+                let grow = if *ramp == 0 {
+                    1.0
+                } else {
+                    (clock.step as f64 / *ramp as f64).min(1.0)
+                };
+                let y = grow * a * phase.cos();
+                for d in 0..dim {
+                    p[d] += y * ey[d];
+                }
+            }
+            Motion::Bending {
+                root,
+                span_axis,
+                direction,
+                span,
+                tip,
+            } => {
+                let es = unit(span_axis, "the span axis")?;
+                let k = dot(direction, &es);
+                let eb = unit(
+                    &std::array::from_fn(|d| direction[d] - k * es[d]),
+                    "the bending direction",
+                )?;
+                let s = along(p, root, &es).max(0.0);
+                let b = along(p, root, &eb);
+                let delta = f * tip;
+                let w = delta * (s / span).powi(2);
+                let phi = (2.0 * delta * s / (span * span)).atan();
+                let (sin, cos) = phi.sin_cos();
+                for d in 0..dim {
+                    p[d] += (w + b * (cos - 1.0)) * eb[d] - b * sin * es[d];
+                }
+            }
+            Motion::Positions(PositionSource::Final(table)) => {
+                let target = table.get(&node).ok_or_else(|| missing(node))?;
+                for d in 0..dim {
+                    p[d] = (1.0 - f) * p[d] + f * target[d];
+                }
+            }
+            Motion::Positions(PositionSource::PerStep(_)) => {
+                if clock.step > 0 {
+                    let target = frame.positions.get(&node).ok_or_else(|| missing(node))?;
+                    p.copy_from_slice(&target[..dim]);
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+fn missing(node: usize) -> Error {
+    Error::InvalidSetting(format!(
+        "the positions give no position for node index {node} of a moving group"
+    ))
+}
+
+fn unit_or_z(axis: &[f64; 3], dim: usize) -> [f64; 3] {
+    if dim == 2 {
+        return [0.0, 0.0, 1.0];
+    }
+    unit(axis, "the rotation axis").unwrap_or([0.0, 0.0, 1.0])
+}
+
+/// The file of step `step` for a pattern with `{step}` or `{step:0W}`.
+pub fn step_path(pattern: &std::path::Path, step: usize) -> PathBuf {
+    let s = pattern.to_string_lossy();
+    let Some(start) = s.find("{step") else {
+        return pattern.to_path_buf();
+    };
+    let Some(len) = s[start..].find('}') else {
+        return pattern.to_path_buf();
+    };
+    let spec = &s[start + 5..start + len];
+    let number = match spec
+        .strip_prefix(":0")
+        .and_then(|w| w.parse::<usize>().ok())
+    {
+        Some(width) => format!("{step:0width$}"),
+        None => step.to_string(),
+    };
+    PathBuf::from(format!(
+        "{}{}{}",
+        &s[..start],
+        number,
+        &s[start + len + 1..]
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    fn clock(step: usize, steps: usize) -> Clock {
+        Clock {
+            step,
+            steps,
+            dt: 0.1,
+        }
+    }
+
+    fn moved(m: &Motion, p: &[f64], c: Clock) -> Vec<f64> {
+        let mut q = p.to_vec();
+        m.apply(0, &mut q, c, &Frame::default()).unwrap();
+        q
+    }
+
+    fn close(a: &[f64], b: &[f64]) {
+        for (x, y) in a.iter().zip(b) {
+            assert!((x - y).abs() < 1e-12, "{a:?} vs {b:?}");
+        }
+    }
+
+    #[test]
+    fn translation_grows_linearly() {
+        let m = Motion::Translation {
+            displacement: [1.0, -2.0, 0.5],
+        };
+        close(&moved(&m, &[1.0, 1.0], clock(1, 4)), &[1.25, 0.5]);
+        close(&moved(&m, &[0.0, 0.0, 0.0], clock(4, 4)), &[1.0, -2.0, 0.5]);
+    }
+
+    #[test]
+    fn rotation_2d_and_3d() {
+        let m = Motion::Rotation {
+            center: [1.0, 0.0, 0.0],
+            axis: [0.0, 0.0, 1.0],
+            angle: PI,
+        };
+        close(&moved(&m, &[2.0, 0.0], clock(1, 2)), &[1.0, 1.0]);
+        close(&moved(&m, &[2.0, 0.0], clock(2, 2)), &[0.0, 0.0]);
+        let m = Motion::Rotation {
+            center: [0.0; 3],
+            axis: [2.0, 0.0, 0.0],
+            angle: PI / 2.0,
+        };
+        close(&moved(&m, &[5.0, 1.0, 0.0], clock(1, 1)), &[5.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn pitch_plunge_follows_eq_10() {
+        let (t0, h0, n_steps) = (40f64.to_radians(), 0.2, 160);
+        let m = Motion::PitchPlunge {
+            center: [0.25, 0.0, 0.0],
+            axis: [0.0, 0.0, 1.0],
+            pitch: t0,
+            plunge: [0.0, h0, 0.0],
+            period: None,
+        };
+        for n in [0, 13, 40, 100, 160] {
+            let s = (2.0 * PI * n as f64 / n_steps as f64).sin();
+            let (th, h) = (t0 * s, h0 * s);
+            let expected = [0.25 + 0.75 * th.cos(), 0.75 * th.sin() + h];
+            close(&moved(&m, &[1.0, 0.0], clock(n, n_steps)), &expected);
+        }
+    }
+
+    #[test]
+    fn undulation_follows_eq_11() {
+        let m = Motion::Undulation {
+            head: [1.0, 0.0, 0.0],
+            axis: [1.0, 0.0, 0.0],
+            lateral: [0.0, 1.0, 0.0],
+            amplitude: vec![0.02, -0.08, 0.16],
+            wavelength: 1.0,
+            speed: 1.5,
+            ramp: 0,
+        };
+        for (n, x) in [(0, 1.0), (3, 1.4), (7, 2.0)] {
+            let xi: f64 = x - 1.0;
+            let t = n as f64 * 0.1;
+            let a = 0.02 - 0.08 * xi + 0.16 * xi * xi;
+            let y = a * (2.0 * PI / 1.0 * (xi - 1.5 * t)).cos();
+            close(
+                &moved(&m, &[x, 0.3, -1.0], clock(n, 60)),
+                &[x, 0.3 + y, -1.0],
+            );
+        }
+    }
+
+    #[test]
+    fn bending_deflects_the_tip_and_turns_its_section() {
+        let m = Motion::Bending {
+            root: [0.0; 3],
+            span_axis: [0.0, 1.0, 0.0],
+            direction: [0.0, 0.0, 1.0],
+            span: 2.0,
+            tip: 0.8,
+        };
+        // The clamped root and inboard points do not move.
+        close(
+            &moved(&m, &[0.3, 0.0, 0.1], clock(40, 40)),
+            &[0.3, 0.0, 0.1],
+        );
+        close(
+            &moved(&m, &[0.3, -0.5, 0.1], clock(40, 40)),
+            &[0.3, -0.5, 0.1],
+        );
+        // The tip's axis point moves by δ_tip, half-way by δ_tip/2 at n = N/2.
+        close(
+            &moved(&m, &[0.3, 2.0, 0.0], clock(40, 40)),
+            &[0.3, 2.0, 0.8],
+        );
+        close(
+            &moved(&m, &[0.3, 2.0, 0.0], clock(20, 40)),
+            &[0.3, 2.0, 0.4],
+        );
+        // A point above the tip's axis turns with the section: φ = atan(0.8).
+        let phi = 0.8f64.atan();
+        assert!((phi.to_degrees() - 38.66).abs() < 0.01);
+        close(
+            &moved(&m, &[0.3, 2.0, 0.1], clock(40, 40)),
+            &[0.3, 2.0 - 0.1 * phi.sin(), 0.8 + 0.1 * phi.cos()],
+        );
+        // Mid-span: w = δ/4, φ = atan(δ/L).
+        let phi = 0.4f64.atan();
+        close(
+            &moved(&m, &[0.0, 1.0, -0.2], clock(40, 40)),
+            &[0.0, 1.0 + 0.2 * phi.sin(), 0.2 - 0.2 * phi.cos()],
+        );
+    }
+
+    #[test]
+    fn final_positions_are_reached_exactly() {
+        let p = vec![0.1 + 0.2, 0.7];
+        let m = Motion::Positions(PositionSource::Final(HashMap::from([(3, p.clone())])));
+        let mut q = vec![0.3, -1.0 / 3.0];
+        m.apply(3, &mut q, clock(5, 5), &Frame::default()).unwrap();
+        assert_eq!(q, p);
+        let mut q = vec![0.3, 0.0];
+        m.apply(3, &mut q, clock(1, 2), &Frame::default()).unwrap();
+        close(&q, &[0.3 / 2.0 + p[0] / 2.0, 0.35]);
+        let e = m
+            .apply(4, &mut q, clock(1, 2), &Frame::default())
+            .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid setting: the positions give no position for node index 4 of a moving group"
+        );
+    }
+
+    #[test]
+    fn step_file_patterns() {
+        let p = std::path::Path::new("d/pos_{step:04}.csv");
+        assert_eq!(step_path(p, 7), PathBuf::from("d/pos_0007.csv"));
+        let p = std::path::Path::new("pos_{step}.dat");
+        assert_eq!(step_path(p, 12), PathBuf::from("pos_12.dat"));
+    }
+
+    #[test]
+    fn invalid_settings_are_named() {
+        let m = Motion::Bending {
+            root: [0.0; 3],
+            span_axis: [0.0, 1.0, 0.0],
+            direction: [0.0, 2.0, 0.0],
+            span: 1.0,
+            tip: 0.1,
+        };
+        assert_eq!(
+            m.validate(3).unwrap_err().to_string(),
+            "invalid setting: the bending direction (normal to the span axis) must be a non-zero vector"
+        );
+    }
+}
