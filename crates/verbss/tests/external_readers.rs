@@ -1,0 +1,210 @@
+//! Files written by verbss open in other tools: meshio reads every format,
+//! Gmsh's own API reads the `.msh` files, and both report the node and cell
+//! counts verbss wrote (scripts/check_external_readers.py does the reading).
+//!
+//! Needs `python3` with `meshio`, `gmsh` and `numpy`. Without them the tests
+//! print "skipped: …" and pass, unless the `CI` environment variable is set,
+//! in which case they fail.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use verbss::io::{MshVersion, WriteOptions};
+use verbss::{CellKind, Cells, Group, Mesh};
+
+const SCRIPT: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../scripts/check_external_readers.py"
+);
+
+fn cells(list: &[(CellKind, &[usize])]) -> Cells {
+    let mut cells = Cells::new();
+    for (kind, nodes) in list {
+        cells.push(*kind, nodes);
+    }
+    cells
+}
+
+fn group(name: &str, tag: i32, facets: &[(CellKind, &[usize])]) -> Group {
+    Group {
+        name: name.into(),
+        tag: Some(tag),
+        facets: cells(facets),
+    }
+}
+
+/// Two triangles and a quad on [0,2]×[0,1]; bottom and top boundary lines.
+fn mesh_2d() -> Mesh {
+    let coords = vec![0., 0., 1., 0., 2., 0., 0., 1., 1., 1., 2., 1.];
+    let volume = cells(&[
+        (CellKind::Triangle, &[1, 2, 5]),
+        (CellKind::Triangle, &[1, 5, 4]),
+        (CellKind::Quad, &[0, 1, 4, 3]),
+    ]);
+    let groups = vec![
+        group(
+            "bottom",
+            1,
+            &[(CellKind::Line, &[0, 1]), (CellKind::Line, &[1, 2])],
+        ),
+        group(
+            "top",
+            2,
+            &[(CellKind::Line, &[5, 4]), (CellKind::Line, &[4, 3])],
+        ),
+    ];
+    Mesh::new(2, coords, volume, groups).unwrap()
+}
+
+/// A hexahedron, a wedge beside it, a pyramid on top and a tetrahedron;
+/// two boundary groups of quads and triangles.
+fn mesh_3d() -> Mesh {
+    let coords = vec![
+        0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0., 0., 0., 1., 1., 0., 1., 1., 1., 1., 0., 1.,
+        1., 2., 0., 0., 2., 0., 1., 0.5, 0.5, 1.5, 1.5, 0.25, 1.5,
+    ];
+    let volume = cells(&[
+        (CellKind::Hexahedron, &[0, 1, 2, 3, 4, 5, 6, 7]),
+        (CellKind::Wedge, &[1, 8, 2, 5, 9, 6]),
+        (CellKind::Pyramid, &[4, 5, 6, 7, 10]),
+        (CellKind::Tetra, &[5, 9, 6, 11]),
+    ]);
+    let groups = vec![
+        group(
+            "floor",
+            1,
+            &[
+                (CellKind::Quad, &[0, 3, 2, 1]),
+                (CellKind::Triangle, &[1, 2, 8]),
+            ],
+        ),
+        group("roof", 2, &[(CellKind::Triangle, &[4, 5, 10])]),
+    ];
+    Mesh::new(3, coords, volume, groups).unwrap()
+}
+
+/// Whether python3 can import meshio and gmsh; otherwise fails under CI and
+/// says "skipped" elsewhere.
+fn python_ready() -> bool {
+    let probe = Command::new("python3")
+        .args(["-c", "import meshio, gmsh, numpy"])
+        .output();
+    let why = match probe {
+        Ok(out) if out.status.success() => return true,
+        Ok(out) => String::from_utf8_lossy(&out.stderr).trim().to_string(),
+        Err(e) => format!("python3: {e}"),
+    };
+    if std::env::var_os("CI").is_some() {
+        panic!("python3 with meshio, gmsh and numpy is required under CI: {why}");
+    }
+    println!("skipped: python3 with meshio, gmsh and numpy is not available ({why})");
+    false
+}
+
+/// Writes each mesh under `dir` with the given file name (format chosen by
+/// extension), runs the check script on all of them and compares the counts
+/// it reports with the mesh.
+fn check(dir: &Path, files: &[(&str, &Mesh, WriteOptions)]) {
+    let paths: Vec<PathBuf> = files
+        .iter()
+        .map(|(name, mesh, options)| {
+            let path = dir.join(name);
+            verbss::io::write(&path, mesh, options).unwrap();
+            path
+        })
+        .collect();
+    let out = Command::new("python3")
+        .arg(SCRIPT)
+        .args(&paths)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{SCRIPT} failed:\n{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let reports: Vec<serde_json::Value> = stdout
+        .lines()
+        .filter(|l| l.starts_with('{'))
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(reports.len(), files.len(), "{stdout}");
+    for ((name, mesh, _), report) in files.iter().zip(&reports) {
+        let facets: usize = mesh.groups.iter().map(|g| g.facets.len()).sum();
+        let cells = (mesh.cell_count() + facets) as u64;
+        let nodes = mesh.node_count() as u64;
+        let m = &report["meshio"];
+        assert_eq!(m["points"], nodes, "{name}: meshio points");
+        assert_eq!(m["cells"], cells, "{name}: meshio cells");
+        if name.ends_with(".msh") {
+            assert_eq!(report["gmsh"]["nodes"], nodes, "{name}: gmsh nodes");
+            assert_eq!(report["gmsh"]["elements"], cells, "{name}: gmsh elements");
+        }
+        if name.ends_with(".vtu") {
+            let mut names = mesh.group_names();
+            names.sort();
+            assert_eq!(m["field_data"], serde_json::json!(names), "{name}");
+        }
+    }
+}
+
+fn msh(version: MshVersion, binary: bool) -> WriteOptions {
+    let mut options = WriteOptions::default();
+    options.msh_version = version;
+    options.binary = binary;
+    options
+}
+
+#[test]
+fn vtu_files_open_in_meshio() {
+    if !python_ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let (m2, m3) = (mesh_2d(), mesh_3d());
+    check(
+        dir.path(),
+        &[
+            ("hybrid_2d.vtu", &m2, WriteOptions::default()),
+            ("mixed_3d.vtu", &m3, WriteOptions::default()),
+        ],
+    );
+}
+
+#[test]
+fn msh_files_open_in_meshio_and_gmsh() {
+    if !python_ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let (m2, m3) = (mesh_2d(), mesh_3d());
+    let mut files = Vec::new();
+    for (version, v) in [(MshVersion::V22, "v22"), (MshVersion::V41, "v41")] {
+        for (binary, b) in [(false, "ascii"), (true, "binary")] {
+            files.push((format!("hybrid_2d_{v}_{b}.msh"), &m2, msh(version, binary)));
+            files.push((format!("mixed_3d_{v}_{b}.msh"), &m3, msh(version, binary)));
+        }
+    }
+    let files: Vec<_> = files
+        .iter()
+        .map(|(name, mesh, options)| (name.as_str(), *mesh, options.clone()))
+        .collect();
+    check(dir.path(), &files);
+}
+
+#[test]
+fn su2_files_open_in_meshio() {
+    if !python_ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let (m2, m3) = (mesh_2d(), mesh_3d());
+    check(
+        dir.path(),
+        &[
+            ("hybrid_2d.su2", &m2, WriteOptions::default()),
+            ("mixed_3d.su2", &m3, WriteOptions::default()),
+        ],
+    );
+}
