@@ -1,0 +1,216 @@
+//! The `.vtu` writer (layout in the parent module's doc).
+
+use std::io::Write;
+
+use base64::engine::general_purpose::STANDARD;
+use base64::Engine;
+
+use super::{vtk_local, vtk_type, Fields, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY};
+use crate::mesh::{CellKind, Mesh};
+
+/// Writes `mesh` and `fields` as a `.vtu` file (layout in the module doc).
+///
+/// Fails with [`std::io::ErrorKind::InvalidInput`] if a field has the wrong
+/// length (`components × nodes` or `components × volume cells`), no
+/// component, a duplicate name, or one of the reserved names `node_tag`
+/// (point data), `group` or `cell_tag` (cell data).
+pub fn write_to(w: &mut dyn Write, mesh: &Mesh, fields: &Fields) -> std::io::Result<()> {
+    check_fields(mesh, fields)?;
+    let n = mesh.node_count();
+    let volume = mesh.cell_count();
+    let facets: Vec<(i32, CellKind, &[usize])> = mesh
+        .groups
+        .iter()
+        .zip(1..)
+        .flat_map(|(g, id)| g.facets.iter().map(move |(kind, nodes)| (id, kind, nodes)))
+        .collect();
+    let total = volume + facets.len();
+    let all_cells = || {
+        mesh.cells
+            .iter()
+            .chain(facets.iter().map(|&(_, kind, nodes)| (kind, nodes)))
+    };
+    let connectivity = all_cells().map(|(_, nodes)| nodes.len()).sum();
+
+    writeln!(w, r#"<?xml version="1.0"?>"#)?;
+    writeln!(
+        w,
+        r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">"#
+    )?;
+    writeln!(w, "  <UnstructuredGrid>")?;
+    write_group_names(w, mesh)?;
+    writeln!(
+        w,
+        r#"    <Piece NumberOfPoints="{n}" NumberOfCells="{total}">"#
+    )?;
+    writeln!(w, "      <Points>")?;
+    let z = |i: usize| if mesh.dim == 3 { mesh.point(i)[2] } else { 0.0 };
+    let points = (0..n).flat_map(|i| [mesh.point(i)[0], mesh.point(i)[1], z(i)]);
+    data_array(w, "Points", 3, 3 * n, points)?;
+    writeln!(w, "      </Points>")?;
+
+    writeln!(w, "      <Cells>")?;
+    let nodes = all_cells()
+        .flat_map(|(kind, nodes)| (0..nodes.len()).map(move |i| nodes[vtk_local(kind, i)] as i64));
+    data_array(w, "connectivity", 1, connectivity, nodes)?;
+    let ends = all_cells().scan(0i64, |end, (_, nodes)| {
+        *end += nodes.len() as i64;
+        Some(*end)
+    });
+    data_array(w, "offsets", 1, total, ends)?;
+    data_array(w, "types", 1, total, all_cells().map(|(k, _)| vtk_type(k)))?;
+    writeln!(w, "      </Cells>")?;
+
+    writeln!(w, "      <PointData>")?;
+    let node_tags = mesh.node_tags.iter().map(|&t| t as i64);
+    data_array(w, NODE_TAG_ARRAY, 1, n, node_tags)?;
+    for (name, comps, values) in &fields.point {
+        data_array(w, name, *comps, values.len(), values.iter().copied())?;
+    }
+    writeln!(w, "      </PointData>")?;
+
+    writeln!(w, "      <CellData>")?;
+    let groups = std::iter::repeat_n(0, volume).chain(facets.iter().map(|f| f.0));
+    data_array(w, GROUP_ARRAY, 1, total, groups)?;
+    let tags = mesh.cell_tags.iter().map(|&t| t as i64);
+    let tags = tags.chain(std::iter::repeat_n(0, facets.len()));
+    data_array(w, CELL_TAG_ARRAY, 1, total, tags)?;
+    for (name, comps, values) in &fields.cell {
+        let pad = std::iter::repeat_n(f64::NAN, comps * facets.len());
+        let values = values.iter().copied().chain(pad);
+        data_array(w, name, *comps, comps * total, values)?;
+    }
+    writeln!(w, "      </CellData>")?;
+    writeln!(w, "    </Piece>")?;
+    writeln!(w, "  </UnstructuredGrid>")?;
+    writeln!(w, "</VTKFile>")
+}
+
+/// Rejects fields that do not fit the mesh (see [`write_to`]).
+fn check_fields(mesh: &Mesh, fields: &Fields) -> std::io::Result<()> {
+    let lists = [
+        (
+            "point",
+            &fields.point,
+            mesh.node_count(),
+            &[NODE_TAG_ARRAY][..],
+        ),
+        (
+            "cell",
+            &fields.cell,
+            mesh.cell_count(),
+            &[GROUP_ARRAY, CELL_TAG_ARRAY][..],
+        ),
+    ];
+    for (what, list, count, reserved) in lists {
+        for (i, (name, comps, values)) in list.iter().enumerate() {
+            let message = if reserved.contains(&name.as_str()) {
+                format!("{what} field name '{name}' is reserved")
+            } else if list[..i].iter().any(|f| &f.0 == name) {
+                format!("{what} field '{name}' is given twice")
+            } else if *comps == 0 || values.len() != comps * count {
+                format!(
+                    "{what} field '{name}' has {} values (expected {comps} × {count})",
+                    values.len()
+                )
+            } else {
+                continue;
+            };
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                message,
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Writes `<FieldData>` with one `Int32` array `[k + 1, dim, (tag)]` per group.
+fn write_group_names(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
+    if mesh.groups.is_empty() {
+        return Ok(());
+    }
+    writeln!(w, "    <FieldData>")?;
+    for (k, g) in mesh.groups.iter().enumerate() {
+        let dim = g.facets.kinds.iter().map(|k| k.dim()).max();
+        let mut values = vec![k as i64 + 1, dim.unwrap_or(mesh.dim - 1) as i64];
+        values.extend(g.tag.map(i64::from));
+        let text: Vec<String> = values.iter().map(i64::to_string).collect();
+        writeln!(
+            w,
+            r#"      <DataArray type="Int32" Name="{}" NumberOfTuples="{}" format="ascii">{}</DataArray>"#,
+            quick_xml::escape::escape(g.name.as_str()),
+            values.len(),
+            text.join(" ")
+        )?;
+    }
+    writeln!(w, "    </FieldData>")
+}
+
+/// A number type that [`data_array`] writes.
+trait Scalar: Copy {
+    /// The VTK type name.
+    const VTK: &'static str;
+    /// Size in bytes.
+    const SIZE: usize;
+    /// Appends the little-endian bytes.
+    fn put(self, out: &mut Vec<u8>);
+}
+
+macro_rules! scalar {
+    ($t:ty, $name:literal) => {
+        impl Scalar for $t {
+            const VTK: &'static str = $name;
+            const SIZE: usize = std::mem::size_of::<$t>();
+            fn put(self, out: &mut Vec<u8>) {
+                out.extend_from_slice(&self.to_le_bytes());
+            }
+        }
+    };
+}
+scalar!(u8, "UInt8");
+scalar!(i32, "Int32");
+scalar!(i64, "Int64");
+scalar!(f64, "Float64");
+
+/// Writes one binary `<DataArray>` of `count` values: base64 of the `UInt64`
+/// byte count, then base64 of the values, streamed.
+fn data_array<T: Scalar>(
+    w: &mut dyn Write,
+    name: &str,
+    components: usize,
+    count: usize,
+    values: impl Iterator<Item = T>,
+) -> std::io::Result<()> {
+    const CHUNK: usize = 1 << 16;
+    let comps = if components == 1 {
+        String::new()
+    } else {
+        format!(r#" NumberOfComponents="{components}""#)
+    };
+    write!(
+        w,
+        r#"        <DataArray type="{}" Name="{}"{comps} format="binary">"#,
+        T::VTK,
+        quick_xml::escape::escape(name)
+    )?;
+    let bytes = (count * T::SIZE) as u64;
+    w.write_all(STANDARD.encode(bytes.to_le_bytes()).as_bytes())?;
+    let mut written = 0;
+    {
+        let mut encoder = base64::write::EncoderWriter::new(&mut *w, &STANDARD);
+        let mut buf = Vec::with_capacity(CHUNK + 8);
+        for v in values {
+            v.put(&mut buf);
+            written += 1;
+            if buf.len() >= CHUNK {
+                encoder.write_all(&buf)?;
+                buf.clear();
+            }
+        }
+        encoder.write_all(&buf)?;
+        encoder.finish()?;
+    }
+    debug_assert_eq!(written, count, "DataArray '{name}'");
+    writeln!(w, "</DataArray>")
+}
