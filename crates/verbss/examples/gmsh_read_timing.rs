@@ -8,7 +8,9 @@
 //! cargo run --release -p verbss --example gmsh_read_timing -- 20    # smaller
 //! ```
 //!
-//! The files go to the system's temporary folder and are removed afterwards.
+//! The files go to the system's temporary folder and are removed afterwards;
+//! `--keep FILE.msh` also leaves the MSH 4.1 binary file at `FILE.msh`, e.g. to
+//! time `verbss quality FILE.msh` on it.
 
 use std::time::Instant;
 
@@ -89,7 +91,12 @@ fn tet_box(n: usize) -> Mesh {
 }
 
 fn main() {
-    let n: usize = match std::env::args().nth(1) {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let keep = args
+        .iter()
+        .position(|a| a == "--keep")
+        .map(|k| std::path::PathBuf::from(args.get(k + 1).expect("--keep FILE.msh")));
+    let n: usize = match args.first().filter(|a| *a != "--keep") {
         Some(a) => a.parse().expect("the number of cubes a side"),
         None => 70,
     };
@@ -102,6 +109,12 @@ fn main() {
         mesh.groups.iter().map(|g| g.facets.len()).sum::<usize>(),
         t.elapsed().as_secs_f64()
     );
+    if let Some(path) = &keep {
+        let mut options = WriteOptions::default();
+        options.binary = true;
+        verbss::io::write(path, &mesh, &options).expect("write the kept file");
+        println!("kept MSH 4.1 binary at {}", path.display());
+    }
     for (version, binary) in [
         (MshVersion::V41, true),
         (MshVersion::V22, true),

@@ -20,7 +20,8 @@
 //!
 //! Node indices are 0-based positions in the `NPOIN=` list. Element type ids
 //! are VTK's: 1 vertex, 3 line, 5 triangle, 9 quadrilateral, 10 tetrahedron,
-//! 12 hexahedron, 13 prism, 14 pyramid.
+//! 12 hexahedron, 13 prism, 14 pyramid. SU2 numbers nodes as VTK does, which
+//! differs from verbss (Gmsh) for the prism only: see [`CellKind::vtk_local`].
 //!
 //! The reader accepts what SU2 and other tools write: `%` comments, blank
 //! lines, sections in any order after `NDIME=`, keywords in any case with or
@@ -110,11 +111,11 @@ pub fn write_to(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
     Ok(())
 }
 
-/// Writes `type n1 … nk` without the end of line.
+/// Writes `type n1 … nk` without the end of line, in SU2's (VTK's) node order.
 fn write_element(w: &mut dyn Write, kind: CellKind, nodes: &[usize]) -> std::io::Result<()> {
     write!(w, "{}", type_id(kind))?;
-    for n in nodes {
-        write!(w, "\t{n}")?;
+    for i in 0..nodes.len() {
+        write!(w, "\t{}", nodes[kind.vtk_local(i)])?;
     }
     Ok(())
 }
@@ -673,6 +674,11 @@ impl<'a> Parser<'a> {
             };
             cells.nodes.push(i);
         }
+        let mut stored = [0usize; 8];
+        stored[..n].copy_from_slice(&cells.nodes[start..]);
+        for (k, slot) in cells.nodes[start..].iter_mut().enumerate() {
+            *slot = stored[kind.vtk_local(k)];
+        }
         cells.kinds.push(kind);
         cells.offsets.push(cells.nodes.len());
         let top = cells.nodes[start..].iter().copied().max().unwrap_or(0);
@@ -783,6 +789,21 @@ fn shown(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_vtk_numbered_prism_reads_positively_oriented_and_writes_back() {
+        // VTK/SU2 prism: triangle 0-1-2 faces away from 3-4-5.
+        let text = "NDIME= 3\nNPOIN= 6\n0 0 0\n0 1 0\n1 0 0\n0 0 1\n0 1 1\n1 0 1\n\
+                    NELEM= 1\n13 0 1 2 3 4 5\nNMARK= 0\n";
+        let m = parse(text.as_bytes(), Path::new("prism.su2")).unwrap();
+        assert_eq!(m.cells.cell(0), &[0, 2, 1, 3, 5, 4]);
+        assert_eq!(crate::quality::orientation(&m), vec![1]);
+        let mut out = Vec::new();
+        write_to(&mut out, &m).unwrap();
+        assert!(String::from_utf8(out)
+            .unwrap()
+            .contains("13\t0\t1\t2\t3\t4\t5"));
+    }
 
     const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/meshes/su2/");
 

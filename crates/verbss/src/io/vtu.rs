@@ -108,18 +108,6 @@ fn vtk_type(kind: CellKind) -> u8 {
     }
 }
 
-/// VTK numbers a wedge's triangles the other way round (its triangle 0-1-2
-/// faces away from 3-4-5, the mesh's faces towards it): local node `i` of a
-/// VTK cell is local node `vtk_local(kind, i)` of the mesh's cell, and back.
-fn vtk_local(kind: CellKind, i: usize) -> usize {
-    const WEDGE: [usize; 6] = [0, 2, 1, 3, 5, 4];
-    if kind == CellKind::Wedge {
-        WEDGE[i]
-    } else {
-        i
-    }
-}
-
 /// The kind with VTK cell-type number `t`, if verbss supports it.
 fn kind_of_vtk(t: i64) -> Option<CellKind> {
     CellKind::ALL

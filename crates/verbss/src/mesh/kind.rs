@@ -95,6 +95,20 @@ impl CellKind {
         CellKind::ALL.into_iter().find(|k| k.name() == name)
     }
 
+    /// Local node `i` of a cell numbered as VTK and SU2 number it is local
+    /// node `vtk_local(i)` of the same cell numbered as verbss (and Gmsh) do,
+    /// and back (the map is its own inverse). They differ only for the wedge,
+    /// whose triangles VTK numbers the other way round (VTK's triangle 0-1-2
+    /// faces away from 3-4-5, Gmsh's towards it).
+    pub fn vtk_local(self, i: usize) -> usize {
+        const WEDGE: [usize; 6] = [0, 2, 1, 3, 5, 4];
+        if self == CellKind::Wedge {
+            WEDGE[i]
+        } else {
+            i
+        }
+    }
+
     /// The kind of a facet with `n` nodes (2: line, 3: triangle, 4: quad).
     pub fn facet_kind(n: usize) -> CellKind {
         match n {

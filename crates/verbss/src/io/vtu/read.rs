@@ -12,8 +12,7 @@ use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 
 use super::{
-    kind_of_vtk, vtk_local, Fields, VtuData, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY,
-    UNNAMED_GROUP,
+    kind_of_vtk, Fields, VtuData, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY, UNNAMED_GROUP,
 };
 use crate::error::{Error, Result};
 use crate::mesh::{Cells, Group, Mesh};
@@ -753,7 +752,7 @@ impl<'a, 'c> VtkFile<'a, 'c> {
             }
             let mut local = [0usize; 8];
             for (k, &i) in nodes[start..end].iter().enumerate() {
-                local[vtk_local(kind, k)] = match usize::try_from(i) {
+                local[kind.vtk_local(k)] = match usize::try_from(i) {
                     Ok(i) if i < n => i,
                     _ => {
                         return Err(at(

@@ -5,7 +5,7 @@ use std::io::Write;
 use base64::engine::general_purpose::STANDARD;
 use base64::Engine;
 
-use super::{vtk_local, vtk_type, Fields, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY};
+use super::{vtk_type, Fields, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY};
 use crate::mesh::{CellKind, Mesh};
 
 /// Writes `mesh` and `fields` as a `.vtu` file (layout in the module doc).
@@ -51,7 +51,7 @@ pub fn write_to(w: &mut dyn Write, mesh: &Mesh, fields: &Fields) -> std::io::Res
 
     writeln!(w, "      <Cells>")?;
     let nodes = all_cells()
-        .flat_map(|(kind, nodes)| (0..nodes.len()).map(move |i| nodes[vtk_local(kind, i)] as i64));
+        .flat_map(|(kind, nodes)| (0..nodes.len()).map(move |i| nodes[kind.vtk_local(i)] as i64));
     data_array(w, "connectivity", 1, connectivity, nodes)?;
     let ends = all_cells().scan(0i64, |end, (_, nodes)| {
         *end += nodes.len() as i64;
