@@ -37,10 +37,18 @@ pub fn naca0012_thickness(x: f64) -> f64 {
 /// A triangular O-grid around a NACA0012 airfoil of unit chord (leading edge
 /// at the origin, trailing edge at (1, 0), closed).
 ///
-/// Surface node `j` sits at `β = 2πj/n`, `x = (1 + cos β)/2` (cosine spacing:
-/// clustered at both edges), on the upper side for `β ≤ π`, counter-clockwise
-/// from the trailing edge. Its ray runs straight to the farfield point
-/// `(½ + R cos β, R sin β)`; the nodes along a ray follow a geometric series
+/// Surface node `j` sits at `β = 2πj/n`, on the upper side for `β ≤ π`,
+/// counter-clockwise from the trailing edge, at
+/// `x = ¼ (1 − cos πu) + ½ (1 − cos(πu/2))` with `u = |1 − β/π|` (0 at the
+/// leading edge, 1 at the trailing edge): quadratic clustering at the
+/// leading edge and half the mid-chord spacing at the trailing edge (full
+/// cosine spacing would make trailing-edge cells so thin that the wake
+/// behind them is a sliver of ρ ≈ 0.002 elements). Its ray leaves the wall
+/// along the wall normal `n` (smoothed over a few neighbours, so that the
+/// trailing edge's turn is shared by the rays beside it) and bends to the
+/// straight line towards the farfield point `F = (½ + R cos β, R sin β)`:
+/// `x(t) = S + t (F − S) + L t (1 − t)⁴ (n − e)`, `L = |F − S|`,
+/// `e = (F − S)/L`. The nodes along a ray follow a geometric series in `t L`
 /// whose first spacing is the local surface spacing (near-square cells at the
 /// wall) and whose ratio is chosen to reach the farfield. Each quad is split
 /// into two counter-clockwise triangles along alternating diagonals, so that
@@ -54,11 +62,12 @@ pub fn naca0012(grid: &AirfoilGrid) -> Result<Mesh> {
             grid.farfield_radius
         )));
     }
-    let tau = 2.0 * std::f64::consts::PI;
+    let pi = std::f64::consts::PI;
+    let tau = 2.0 * pi;
     let surface: Vec<[f64; 2]> = (0..n)
         .map(|j| {
-            let beta = tau * j as f64 / n as f64;
-            let x = 0.5 * (1.0 + beta.cos());
+            let u = (1.0 - 2.0 * j as f64 / n as f64).abs();
+            let x = 0.25 * (1.0 - (pi * u).cos()) + 0.5 * (1.0 - (0.5 * pi * u).cos());
             let y = naca0012_thickness(x);
             match j {
                 0 => [1.0, 0.0],
@@ -68,6 +77,7 @@ pub fn naca0012(grid: &AirfoilGrid) -> Result<Mesh> {
         })
         .collect();
     let dist = |a: [f64; 2], b: [f64; 2]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+    let normals = smoothed_normals(&surface);
     let mut coords = vec![0.0; 2 * n * m];
     for j in 0..n {
         let s = surface[j];
@@ -78,14 +88,17 @@ pub fn naca0012(grid: &AirfoilGrid) -> Result<Mesh> {
         ];
         let spacing = 0.5 * (dist(s, surface[(j + 1) % n]) + dist(s, surface[(j + n - 1) % n]));
         let length = dist(s, far);
+        let e = [(far[0] - s[0]) / length, (far[1] - s[1]) / length];
+        let bend = [normals[j][0] - e[0], normals[j][1] - e[1]];
         let ratio = growth_ratio(spacing, length, m - 1);
         let mut d = 0.0;
         let mut step = spacing;
         for k in 0..m {
             let t = if k == m - 1 { 1.0 } else { d / length };
+            let w = length * t * (1.0 - t).powi(BEND_DECAY);
             let node = k * n + j;
-            coords[2 * node] = s[0] + t * (far[0] - s[0]);
-            coords[2 * node + 1] = s[1] + t * (far[1] - s[1]);
+            coords[2 * node] = s[0] + t * (far[0] - s[0]) + w * bend[0];
+            coords[2 * node + 1] = s[1] + t * (far[1] - s[1]) + w * bend[1];
             d += step;
             step *= ratio;
         }
@@ -122,6 +135,41 @@ pub fn naca0012(grid: &AirfoilGrid) -> Result<Mesh> {
     };
     let groups = vec![ring("airfoil", 0), ring("farfield", m - 1)];
     Mesh::new(2, coords, cells, groups)
+}
+
+/// How fast a ray turns from the wall normal to the straight line to the farfield.
+const BEND_DECAY: i32 = 4;
+
+/// Smoothing passes of the wall normals (spreads the trailing edge's turn
+/// over the rays beside it).
+const NORMAL_PASSES: usize = 4;
+
+/// Outward unit normals of a closed counter-clockwise polygon at its
+/// vertices (bisectors of the adjacent edges' normals), smoothed by
+/// [`NORMAL_PASSES`] passes of `n_j ← unit(n_{j−1} + 2 n_j + n_{j+1})`.
+fn smoothed_normals(p: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let n = p.len();
+    let unit = |v: [f64; 2]| {
+        let l = (v[0] * v[0] + v[1] * v[1]).sqrt();
+        [v[0] / l, v[1] / l]
+    };
+    let edge_normal = |a: [f64; 2], b: [f64; 2]| unit([b[1] - a[1], a[0] - b[0]]);
+    let mut normals: Vec<[f64; 2]> = (0..n)
+        .map(|j| {
+            let before = edge_normal(p[(j + n - 1) % n], p[j]);
+            let after = edge_normal(p[j], p[(j + 1) % n]);
+            unit([before[0] + after[0], before[1] + after[1]])
+        })
+        .collect();
+    for _ in 0..NORMAL_PASSES {
+        normals = (0..n)
+            .map(|j| {
+                let (a, b, c) = (normals[(j + n - 1) % n], normals[j], normals[(j + 1) % n]);
+                unit([a[0] + 2.0 * b[0] + c[0], a[1] + 2.0 * b[1] + c[1]])
+            })
+            .collect();
+    }
+    normals
 }
 
 /// The ratio `r ≥ 1` of a geometric series of `cells` spacings starting at

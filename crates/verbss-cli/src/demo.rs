@@ -1,0 +1,75 @@
+//! `verbss demo [--out DIR]`: the paper's §4.2 case with no input files — a
+//! NACA0012 airfoil pitching (θ₀ = 40°) and plunging (h₀ = 0.2 chord) about
+//! its quarter chord over N = 160 steps (eq. 10), on a 4,500-node O-grid
+//! built in process, moved by VerBSS (ω = 1.6, ε = 10⁻⁵ relative to each
+//! step's largest boundary displacement).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+use verbss::deform::Settings;
+use verbss::generate::{naca0012, AirfoilGrid};
+use verbss::motion::{Attachment, Motion};
+
+use crate::run::{execute, Job};
+
+/// Arguments of `verbss demo`.
+#[derive(Args)]
+pub struct DemoArgs {
+    /// Output folder.
+    #[arg(long, default_value = "out/demo")]
+    out: PathBuf,
+    /// No progress output.
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+/// The demo's job: mesh, motion and the paper's solver settings.
+pub fn job(out: PathBuf) -> anyhow::Result<Job> {
+    let mesh = naca0012(&AirfoilGrid::default())?;
+    let motion = Motion::PitchPlunge {
+        center: [0.25, 0.0, 0.0],
+        axis: [0.0, 0.0, 1.0],
+        pitch: 40f64.to_radians(),
+        plunge: [0.0, 0.2, 0.0],
+        period: None,
+    };
+    // ε = 10⁻⁵ relative to the step's largest boundary displacement. The
+    // paper's absolute ε = 10⁻⁵ on the eq.-8 mean stops after ~10 sweeps
+    // here (most of the 4,500 nodes barely move, so the mean is small long
+    // before the nodes next to the trailing edge have followed it) and the
+    // trailing-edge cells invert within a few steps; the exact solution of
+    // every step stays valid.
+    let mut settings = Settings::new(160);
+    settings.solve.tolerance = 1e-5;
+    Ok(Job {
+        name: "naca0012".into(),
+        source: "built-in NACA0012 O-grid".into(),
+        mesh,
+        attachments: vec![Attachment {
+            groups: vec!["airfoil".into()],
+            motion,
+        }],
+        settings,
+        every: 1,
+        series: true,
+        final_mesh: true,
+        report: true,
+        extension: "su2".into(),
+        dir: out,
+    })
+}
+
+/// Runs `verbss demo`.
+pub fn run(args: DemoArgs) -> anyhow::Result<ExitCode> {
+    let job = job(args.out)?;
+    println!(
+        "NACA0012 pitching (40°) and plunging (0.2 chord) about the quarter chord, {} steps, {} nodes, {} triangles",
+        job.settings.steps,
+        job.mesh.node_count(),
+        job.mesh.cell_count()
+    );
+    let summary = execute(&job, args.quiet)?;
+    Ok(summary.print(&job))
+}

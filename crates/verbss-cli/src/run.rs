@@ -1,0 +1,250 @@
+//! `verbss run CASE.toml [--out DIR]`: a case file's run, with its outputs.
+//!
+//! Writes to DIR: the `.vtu` series `NAME_NNNN.vtu` (every k-th step, the
+//! input as step 0 and the last step always; point data `displacement`, cell
+//! data `quality` and `inverted`) with `NAME.pvd` for ParaView, the final
+//! mesh `NAME.EXT` in the input's format and `report.json`. When a step
+//! inverts an element the run stops with exit code 3: `NAME.EXT` holds the
+//! last valid mesh and `NAME.failed.vtu` the failed state.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::Context;
+use clap::Args;
+use verbss::case::Case;
+use verbss::deform::{Deformer, Settings, Snapshot};
+use verbss::io::{self, vtu, WriteOptions};
+use verbss::mesh::Mesh;
+use verbss::motion::Attachment;
+use verbss::report::Report;
+use verbss::Error;
+
+use crate::progress::Progress;
+
+/// Arguments of `verbss run`.
+#[derive(Args)]
+pub struct RunArgs {
+    /// The case file (TOML; see docs/case-file.md).
+    case: PathBuf,
+    /// Output folder [default: the case's `output.dir`, else out/CASE-NAME].
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// No progress output.
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+/// Runs `verbss run`.
+pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
+    let case = Case::read(&args.case)?;
+    let mesh = io::read(&case.mesh)?;
+    let attachments = case.attachments(&mesh)?;
+    let name = file_stem(&case.mesh);
+    let dir = args
+        .out
+        .or_else(|| case.output.dir.clone())
+        .unwrap_or_else(|| Path::new("out").join(file_stem(&args.case)));
+    let extension = case
+        .mesh
+        .extension()
+        .map(|e| e.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "vtu".into());
+    let job = Job {
+        name,
+        source: case.mesh.display().to_string(),
+        mesh,
+        attachments,
+        settings: case.settings.clone(),
+        every: case.output.every,
+        series: case.output.series,
+        final_mesh: case.output.final_mesh,
+        report: case.output.report,
+        extension,
+        dir,
+    };
+    let summary = execute(&job, args.quiet)?;
+    Ok(summary.print(&job))
+}
+
+fn file_stem(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "mesh".into())
+}
+
+/// Everything a run needs: the mesh, its motions, the settings and the outputs.
+pub struct Job {
+    /// Base name of the output files.
+    pub name: String,
+    /// Where the mesh came from (for the report).
+    pub source: String,
+    /// The input mesh.
+    pub mesh: Mesh,
+    /// The motions.
+    pub attachments: Vec<Attachment>,
+    /// Steps, reference and solver settings.
+    pub settings: Settings,
+    /// Write every k-th step of the series.
+    pub every: usize,
+    /// Write the `.vtu` series and `.pvd`.
+    pub series: bool,
+    /// Write the final mesh.
+    pub final_mesh: bool,
+    /// Write `report.json`.
+    pub report: bool,
+    /// Extension (format) of the final mesh.
+    pub extension: String,
+    /// The output folder.
+    pub dir: PathBuf,
+}
+
+/// What a run did.
+pub struct Summary {
+    /// Steps done (accepted).
+    pub steps: usize,
+    /// Wall seconds of all steps.
+    pub seconds: f64,
+    /// The smallest element quality over all accepted steps, and its step.
+    pub min_quality: (f64, usize),
+    /// Total solver sweeps.
+    pub iterations: usize,
+    /// The inversion that stopped the run, with the paths written for it.
+    pub failure: Option<(Error, PathBuf, PathBuf)>,
+}
+
+impl Summary {
+    /// Prints the summary (or the failure) and gives the exit code: 0, or 3
+    /// when a step inverted an element.
+    pub fn print(&self, job: &Job) -> ExitCode {
+        let per_step = self.seconds / self.steps.max(1) as f64;
+        println!(
+            "{} steps in {:.2} s ({:.1} ms per step, {:.1} sweeps per step); min quality {:.4} (step {}); outputs in {}",
+            self.steps,
+            self.seconds,
+            1e3 * per_step,
+            self.iterations as f64 / self.steps.max(1) as f64,
+            self.min_quality.0,
+            self.min_quality.1,
+            job.dir.display()
+        );
+        match &self.failure {
+            None => ExitCode::SUCCESS,
+            Some((e, last, failed)) => {
+                eprintln!("error: {e}");
+                eprintln!(
+                    "the last valid mesh (step {}) is in {}; the failed state in {}",
+                    self.steps,
+                    last.display(),
+                    failed.display()
+                );
+                ExitCode::from(3)
+            }
+        }
+    }
+}
+
+/// Runs a job: steps `1..=N`, writing the outputs as it goes (every file
+/// atomically), and stops at the first inverted element.
+pub fn execute(job: &Job, quiet: bool) -> anyhow::Result<Summary> {
+    std::fs::create_dir_all(&job.dir)
+        .with_context(|| format!("cannot create the output folder {}", job.dir.display()))?;
+    let mut deformer = Deformer::new(&job.mesh, &job.attachments, job.settings.clone())?;
+    let steps = job.settings.steps;
+    let mut report = Report::new(&job.source, &job.mesh, &job.settings);
+    let mut series = Vec::new();
+    let initial = deformer.current().clone();
+    report.steps.push(initial.report.clone());
+    if job.series {
+        write_step(job, &initial, &mut series)?;
+    }
+    let progress = Progress::new(steps, quiet);
+    let start = Instant::now();
+    let mut summary = Summary {
+        steps: 0,
+        seconds: 0.0,
+        min_quality: (initial.report.min_quality, 0),
+        iterations: 0,
+        failure: None,
+    };
+    for n in 1..=steps {
+        match deformer.step(n) {
+            Ok(r) => {
+                progress.step(&r);
+                summary.steps = n;
+                summary.iterations += r.iterations;
+                if r.min_quality < summary.min_quality.0 {
+                    summary.min_quality = (r.min_quality, n);
+                }
+                report.steps.push(r);
+                if job.series && (n % job.every == 0 || n == steps) {
+                    write_step(job, deformer.current(), &mut series)?;
+                }
+            }
+            Err(e @ Error::Inverted { .. }) => {
+                progress.finish();
+                let failed = deformer.failed().expect("a failed step keeps its state");
+                report.steps.push(failed.report.clone());
+                let failed_path = job.dir.join(format!("{}.failed.vtu", job.name));
+                let mut mesh = job.mesh.clone();
+                mesh.coords.clone_from(&failed.coords);
+                vtu::write(&failed_path, &mesh, &fields(&job.mesh, failed))?;
+                let last = job.dir.join(format!("{}.{}", job.name, job.extension));
+                io::write(&last, &deformer.mesh(), &WriteOptions::default())?;
+                report.outcome = e.to_string();
+                if job.report {
+                    report.write(&job.dir.join("report.json"))?;
+                }
+                summary.seconds = start.elapsed().as_secs_f64();
+                summary.failure = Some((e, last, failed_path));
+                return Ok(summary);
+            }
+            Err(e) => return Err(e.into()),
+        }
+    }
+    progress.finish();
+    summary.seconds = start.elapsed().as_secs_f64();
+    if job.final_mesh {
+        let path = job.dir.join(format!("{}.{}", job.name, job.extension));
+        io::write(&path, &deformer.mesh(), &WriteOptions::default())?;
+    }
+    report.outcome = "completed".into();
+    if job.report {
+        report.write(&job.dir.join("report.json"))?;
+    }
+    Ok(summary)
+}
+
+/// Point data `displacement` (3 components, as ParaView's vectors), cell data
+/// `quality` and `inverted` (0 or 1).
+fn fields(mesh: &Mesh, s: &Snapshot) -> vtu::Fields {
+    let dim = mesh.dim;
+    let mut displacement = vec![0.0; 3 * mesh.node_count()];
+    for i in 0..mesh.node_count() {
+        for d in 0..dim {
+            displacement[3 * i + d] = s.coords[dim * i + d] - mesh.coords[dim * i + d];
+        }
+    }
+    let mut f = vtu::Fields::default();
+    f.point.push(("displacement".into(), 3, displacement));
+    f.cell.push(("quality".into(), 1, s.quality.clone()));
+    f.cell.push((
+        "inverted".into(),
+        1,
+        s.inverted.iter().map(|&b| f64::from(u8::from(b))).collect(),
+    ));
+    f
+}
+
+/// Writes step `s` as `NAME_NNNN.vtu` and rewrites `NAME.pvd` with it added
+/// (time `n·dt`).
+fn write_step(job: &Job, s: &Snapshot, series: &mut Vec<(f64, String)>) -> anyhow::Result<()> {
+    let file = format!("{}_{:04}.vtu", job.name, s.report.step);
+    let mut mesh = job.mesh.clone();
+    mesh.coords.clone_from(&s.coords);
+    vtu::write(&job.dir.join(&file), &mesh, &fields(&job.mesh, s))?;
+    series.push((s.report.step as f64 * job.settings.dt, file));
+    io::pvd::write(&job.dir.join(format!("{}.pvd", job.name)), series)?;
+    Ok(())
+}
