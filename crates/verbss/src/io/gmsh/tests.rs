@@ -161,7 +161,10 @@ fn groups_without_tags_get_fresh_ones_and_facets_fresh_tags() {
     mesh.groups[1].tag = None;
     mesh.groups[2].tag = Some(3);
     let text = String::from_utf8(written(&mesh, MshVersion::V41, false)).unwrap();
-    assert!(text.contains("$PhysicalNames\n3\n1 3 \"wall\"\n1 4 \"far field\"\n0 3 \"corner\"\n"));
+    // The volume cells get the next fresh tag, 5, named "domain".
+    assert!(text.contains(
+        "$PhysicalNames\n4\n1 3 \"wall\"\n1 4 \"far field\"\n0 3 \"corner\"\n2 5 \"domain\"\n"
+    ));
     let back = parse(text.as_bytes(), Path::new("t.msh")).unwrap();
     let tags: Vec<_> = back.groups.iter().map(|g| g.tag).collect();
     assert_eq!(tags, [Some(3), Some(4), Some(3)]);

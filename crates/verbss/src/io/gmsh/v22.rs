@@ -190,7 +190,7 @@ pub(super) fn write(out: &mut Out, plan: &Plan) -> io::Result<()> {
     let total = mesh.cell_count() + plan.facet_count();
     out.text(&format!("$Elements\n{total}\n"))?;
     let mut tags = mesh.cell_tags.iter().copied();
-    write_cells(out, plan, &mesh.cells, &mut tags, 0, 1)?;
+    write_cells(out, plan, &mesh.cells, &mut tags, plan.domain, 1)?;
     let mut fresh = plan.first_facet_tag..;
     for g in &plan.groups {
         write_cells(out, plan, &g.group.facets, &mut fresh, g.physical, g.entity)?;

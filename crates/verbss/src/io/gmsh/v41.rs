@@ -359,7 +359,8 @@ pub(super) fn write(out: &mut Out, plan: &Plan) -> io::Result<()> {
         if d == dim {
             out.int(1)?;
             bounding_box(out, plan, 0..mesh.node_count())?;
-            out.size(0)?;
+            out.size(1)?;
+            out.int(plan.domain)?;
             out.size(0)?;
             out.end_line()?;
         }

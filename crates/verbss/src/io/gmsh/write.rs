@@ -28,7 +28,15 @@ pub(super) struct Plan<'a> {
     /// Tag of the first group facet (facets are numbered on from here):
     /// one more than the largest cell tag.
     pub first_facet_tag: u64,
+    /// Physical tag of the volume cells, named [`DOMAIN`]: Gmsh saves only
+    /// elements of physical groups once there are any, and meshio expects
+    /// every element block to carry one.
+    pub domain: i32,
 }
+
+/// Name of the physical group of the volume cells. The readers ignore
+/// physical groups of the mesh's own dimension, so it never becomes a group.
+pub(super) const DOMAIN: &str = "domain";
 
 /// An `InvalidInput` error.
 pub(super) fn invalid(message: String) -> io::Error {
@@ -88,6 +96,7 @@ impl<'a> Plan<'a> {
             mesh,
             groups,
             first_facet_tag,
+            domain: next,
         })
     }
 
@@ -218,15 +227,13 @@ impl<'w> Out<'w> {
         self.text("$EndMeshFormat\n")
     }
 
-    /// `$PhysicalNames` (always ASCII), when there are groups.
+    /// `$PhysicalNames` (always ASCII): the groups, then the volume cells' [`DOMAIN`].
     pub fn names(&mut self, plan: &Plan) -> io::Result<()> {
-        if plan.groups.is_empty() {
-            return Ok(());
-        }
-        self.text(&format!("$PhysicalNames\n{}\n", plan.groups.len()))?;
+        self.text(&format!("$PhysicalNames\n{}\n", plan.groups.len() + 1))?;
         for g in &plan.groups {
             self.text(&format!("{} {} \"{}\"\n", g.dim, g.physical, g.group.name))?;
         }
+        self.text(&format!("{} {} \"{DOMAIN}\"\n", plan.mesh.dim, plan.domain))?;
         self.text("$EndPhysicalNames\n")
     }
 
