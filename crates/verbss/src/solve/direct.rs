@@ -73,10 +73,10 @@ impl Lu {
                 let b = &blocks.blocks[s * e..s * (e + 1)];
                 // (R_p B R_qᵀ)_ab = r_p,a · B r_q,b
                 let cols = start[q + 1] - start[q];
-                for c in 0..cols {
-                    let bc = packed_mul::<D>(b, &rq[c]);
-                    for a in 0..rows {
-                        let v: f64 = (0..D).map(|l| rp[a][l] * bc[l]).sum();
+                for (c, rqc) in rq.iter().enumerate().take(cols) {
+                    let bc = packed_mul::<D>(b, rqc);
+                    for (a, rpa) in rp.iter().enumerate().take(rows) {
+                        let v: f64 = (0..D).map(|l| rpa[l] * bc[l]).sum();
                         entries.push(Triplet::new(start[p] + a, start[q] + c, -v));
                     }
                 }

@@ -725,11 +725,11 @@ fn run<const D: usize>(
             (System::Blocks { blocks, .. }, Method::BallVertex, Solver::Direct) => {
                 let lu = lu.as_ref().expect("factored before the solve");
                 pool.install(|| lu.solve::<D>(layout, blocks, constant, work))?;
-                SolveInfo {
+                Ok(SolveInfo {
                     iterations: 1,
                     converged: true,
                     ..SolveInfo::default()
-                }
+                })
             }
             (
                 System::Blocks {
@@ -776,7 +776,7 @@ fn run<const D: usize>(
                     |p, w| weights.update::<D>(layout, constant, omega, p, w),
                 )
             }
-        }
+        }?
     };
     for (p, &i) in layout.order.iter().enumerate() {
         displacement[D * i..D * (i + 1)].copy_from_slice(&work[D * p..D * (p + 1)]);
@@ -827,6 +827,9 @@ fn block_constants<const D: usize>(
 /// Sweeps until the eq.-8 value is below `threshold` or `max_iterations` sweeps.
 /// `update(p, work)` returns position `p`'s new displacement and the sum of
 /// the absolute changes of its unknown components.
+///
+/// Fails when the sweeps diverge: an eq.-8 value that is not finite or more
+/// than 10⁶ times the first sweep's.
 #[allow(clippy::too_many_arguments)]
 fn iterate<const D: usize, F>(
     pool: &rayon::ThreadPool,
@@ -837,11 +840,12 @@ fn iterate<const D: usize, F>(
     params: &SolveParams,
     threshold: f64,
     update: F,
-) -> SolveInfo
+) -> Result<SolveInfo>
 where
     F: Fn(usize, &[f64]) -> ([f64; D], f64) + Sync,
 {
     let mut info = SolveInfo::default();
+    let mut first = None;
     pool.install(|| {
         while info.iterations < params.max_iterations {
             let value = sweep::<D, F>(layout, work, next, partials, &update) / layout.dofs as f64;
@@ -850,13 +854,22 @@ where
             if params.record_history {
                 info.history.push(value);
             }
+            let first = *first.get_or_insert(value);
+            if !value.is_finite() || value > 1e6 * first {
+                return Err(Error::InvalidSetting(format!(
+                    "the sweeps diverged (eq.-8 value {value:.3e} at sweep {}, {first:.3e} at \
+                     the first); omega {} is too large for this mesh",
+                    info.iterations, params.omega
+                )));
+            }
             if value < threshold {
                 info.converged = true;
                 break;
             }
         }
-    });
-    info
+        Ok(())
+    })?;
+    Ok(info)
 }
 
 /// One sweep, colour by colour, each colour's nodes in parallel chunks.
