@@ -55,7 +55,7 @@ pub fn job(out: PathBuf) -> anyhow::Result<Job> {
         every: 1,
         series: true,
         final_mesh: true,
-        report: true,
+        report: Some(out.join("report.json")),
         extension: "su2".into(),
         dir: out,
     })

@@ -60,7 +60,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         every: case.output.every,
         series: case.output.series,
         final_mesh: case.output.final_mesh,
-        report: case.output.report,
+        report: case.output.report.then(|| dir.join("report.json")),
         extension,
         dir,
     };
@@ -92,8 +92,8 @@ pub struct Job {
     pub series: bool,
     /// Write the final mesh.
     pub final_mesh: bool,
-    /// Write `report.json`.
-    pub report: bool,
+    /// Where to write `report.json`, if at all.
+    pub report: Option<PathBuf>,
     /// Extension (format) of the final mesh.
     pub extension: String,
     /// The output folder.
@@ -193,8 +193,8 @@ pub fn execute(job: &Job, quiet: bool) -> anyhow::Result<Summary> {
                 let last = job.dir.join(format!("{}.{}", job.name, job.extension));
                 io::write(&last, &deformer.mesh(), &WriteOptions::default())?;
                 report.outcome = e.to_string();
-                if job.report {
-                    report.write(&job.dir.join("report.json"))?;
+                if let Some(path) = &job.report {
+                    report.write(path)?;
                 }
                 summary.seconds = start.elapsed().as_secs_f64();
                 summary.failure = Some((e, last, failed_path));
@@ -210,8 +210,8 @@ pub fn execute(job: &Job, quiet: bool) -> anyhow::Result<Summary> {
         io::write(&path, &deformer.mesh(), &WriteOptions::default())?;
     }
     report.outcome = "completed".into();
-    if job.report {
-        report.write(&job.dir.join("report.json"))?;
+    if let Some(path) = &job.report {
+        report.write(path)?;
     }
     Ok(summary)
 }

@@ -11,7 +11,6 @@ use serde::Deserialize;
 
 use crate::deform::{Reference, Settings};
 use crate::error::{Error, Result};
-use crate::io::positions;
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Motion, PositionSource};
 use crate::solve::{Method, SolveParams, Solver};
@@ -441,13 +440,7 @@ impl Case {
                 },
                 MotionSpec::Positions { file, files, .. } => match (file, files) {
                     (Some(f), None) => {
-                        let path = base.join(f);
-                        let table = positions::read(&path, dim)?;
-                        table.check_against(mesh.node_count(), &path)?;
-                        let map = (0..table.len())
-                            .map(|k| (table.ids[k], table.point(k).to_vec()))
-                            .collect();
-                        Motion::Positions(PositionSource::Final(map))
+                        Motion::Positions(PositionSource::from_file(&base.join(f), mesh.node_count(), dim)?)
                     }
                     (None, Some(pattern)) => {
                         Motion::Positions(PositionSource::PerStep(base.join(pattern)))

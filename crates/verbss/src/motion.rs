@@ -362,6 +362,20 @@ impl Motion {
     }
 }
 
+impl PositionSource {
+    /// Final positions from one positions file (SU2 surface format or CSV,
+    /// 0-based node indices), each checked against a mesh of `nodes` nodes.
+    pub fn from_file(path: &std::path::Path, nodes: usize, dim: usize) -> Result<PositionSource> {
+        let table = positions::read(path, dim)?;
+        table.check_against(nodes, path)?;
+        Ok(PositionSource::Final(
+            (0..table.len())
+                .map(|k| (table.ids[k], table.point(k).to_vec()))
+                .collect(),
+        ))
+    }
+}
+
 fn missing(node: usize) -> Error {
     Error::InvalidSetting(format!(
         "the positions give no position for node index {node} of a moving group"

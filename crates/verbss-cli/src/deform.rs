@@ -1,0 +1,211 @@
+//! `verbss deform MESH -o OUT --moving GROUP … (--translate | --rotate | --positions)`:
+//! one total motion of some groups, reached in `--steps` equal increments.
+//!
+//! OUT is written in the format of its extension with the input's numbering;
+//! `--report FILE.json` writes the per-step report. An inverted element stops
+//! the run with exit code 3, the last valid mesh in OUT and the failed state
+//! beside it (`OUT-STEM.failed.vtu`).
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::bail;
+use clap::{ArgGroup, Args, ValueEnum};
+use verbss::deform::{Reference, Settings};
+use verbss::io::{self, Format};
+use verbss::motion::{Attachment, Motion, PositionSource};
+use verbss::solve::{Method, Solver};
+
+use crate::run::{execute, Job};
+
+/// Arguments of `verbss deform`.
+#[derive(Args)]
+#[command(group(ArgGroup::new("motion").required(true).args(["translate", "rotate", "positions"])))]
+pub struct DeformArgs {
+    /// The input mesh (.msh, .su2, .vtu).
+    mesh: PathBuf,
+    /// The output mesh; its extension chooses the format.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// The moving groups, comma separated; every other boundary node is fixed.
+    #[arg(long, value_delimiter = ',', required = true)]
+    moving: Vec<String>,
+    /// Total translation DX,DY[,DZ].
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_negative_numbers = true,
+        num_args = 1
+    )]
+    translate: Option<Vec<f64>>,
+    /// Total rotation in degrees (counter-clockwise about the axis), with --center.
+    #[arg(long, allow_negative_numbers = true, requires = "center")]
+    rotate: Option<f64>,
+    /// Centre of the rotation CX,CY[,CZ].
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    center: Option<Vec<f64>>,
+    /// Rotation axis AX,AY,AZ (3D; default z).
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    axis: Option<Vec<f64>>,
+    /// New node positions (SU2 surface file `GlobalID x y [z]`, or CSV), reached at the last step.
+    #[arg(long)]
+    positions: Option<PathBuf>,
+    /// The spring system and its solution strategy.
+    #[arg(long, value_enum, default_value = "verbss")]
+    method: MethodArg,
+    /// The global solver of `--method ball-vertex`.
+    #[arg(long, value_enum, default_value = "sor")]
+    solver: SolverArg,
+    /// Number of equal increments.
+    #[arg(long, default_value_t = 1)]
+    steps: usize,
+    /// Springs on the current mesh each step (updated) or on the input mesh (initial).
+    #[arg(long, value_enum, default_value = "updated")]
+    reference: ReferenceArg,
+    /// Eq.-8 stop, relative to the step's largest prescribed displacement.
+    #[arg(long, default_value_t = 1e-6)]
+    tolerance: f64,
+    /// Use --tolerance as the paper's absolute eq.-8 threshold.
+    #[arg(long)]
+    absolute_tolerance: bool,
+    /// Maximum sweeps per step.
+    #[arg(long, default_value_t = 2000)]
+    max_iterations: usize,
+    /// Over-relaxation factor ω.
+    #[arg(long, default_value_t = 1.6)]
+    omega: f64,
+    /// Worker threads (results do not depend on it).
+    #[arg(long, default_value_t = 1)]
+    threads: usize,
+    /// Write the per-step report (JSON) here.
+    #[arg(long)]
+    report: Option<PathBuf>,
+    /// No progress output.
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum MethodArg {
+    Verbss,
+    BallVertex,
+    Spring,
+    Laplacian,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum SolverArg {
+    Sor,
+    Direct,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum ReferenceArg {
+    Updated,
+    Initial,
+}
+
+/// A point of 2 or 3 numbers as 3 (z = 0).
+fn point3(name: &str, v: &[f64], dim: usize) -> anyhow::Result<[f64; 3]> {
+    if v.len() != dim {
+        bail!(
+            "--{name} needs {dim} numbers for a {dim}D mesh, got {}",
+            v.len()
+        );
+    }
+    if let Some(x) = v.iter().find(|x| !x.is_finite()) {
+        bail!("--{name} has a non-finite number ({x})");
+    }
+    Ok([v[0], v[1], v.get(2).copied().unwrap_or(0.0)])
+}
+
+/// Runs `verbss deform`.
+pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
+    let format = Format::from_path(&args.output)?;
+    let mesh = io::read(&args.mesh)?;
+    for g in &args.moving {
+        mesh.group(g)?;
+    }
+    let dim = mesh.dim;
+    let motion = if let Some(t) = &args.translate {
+        Motion::Translation {
+            displacement: point3("translate", t, dim)?,
+        }
+    } else if let Some(degrees) = args.rotate {
+        if !degrees.is_finite() {
+            bail!("--rotate has a non-finite angle ({degrees})");
+        }
+        let center = point3("center", args.center.as_deref().unwrap_or_default(), dim)?;
+        let axis = match (&args.axis, dim) {
+            (Some(a), 3) => point3("axis", a, 3)?,
+            (Some(_), _) => bail!("--axis applies to 3D meshes only"),
+            (None, _) => [0.0, 0.0, 1.0],
+        };
+        Motion::Rotation {
+            center,
+            axis,
+            angle: degrees.to_radians(),
+        }
+    } else if let Some(path) = &args.positions {
+        Motion::Positions(PositionSource::from_file(path, mesh.node_count(), dim)?)
+    } else {
+        unreachable!("clap requires one motion")
+    };
+    let mut settings = Settings::new(args.steps);
+    settings.reference = match args.reference {
+        ReferenceArg::Updated => Reference::Updated,
+        ReferenceArg::Initial => Reference::Fixed,
+    };
+    let s = &mut settings.solve;
+    s.method = match args.method {
+        MethodArg::Verbss => Method::Verbss,
+        MethodArg::BallVertex => Method::BallVertex,
+        MethodArg::Spring => Method::Spring,
+        MethodArg::Laplacian => Method::Laplacian,
+    };
+    s.solver = match args.solver {
+        SolverArg::Sor => Solver::Sor,
+        SolverArg::Direct => Solver::Direct,
+    };
+    s.tolerance = args.tolerance;
+    s.absolute_tolerance = args.absolute_tolerance;
+    s.max_iterations = args.max_iterations;
+    s.omega = args.omega;
+    s.threads = args.threads;
+    let dir = match args.output.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let job = Job {
+        name: stem(&args.output),
+        source: args.mesh.display().to_string(),
+        mesh,
+        attachments: vec![Attachment {
+            groups: args.moving.clone(),
+            motion,
+        }],
+        settings,
+        every: 1,
+        series: false,
+        final_mesh: true,
+        report: args.report.clone(),
+        extension: extension(format).into(),
+        dir,
+    };
+    let summary = execute(&job, args.quiet)?;
+    Ok(summary.print(&job))
+}
+
+fn stem(path: &Path) -> String {
+    path.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "mesh".into())
+}
+
+fn extension(format: Format) -> &'static str {
+    match format {
+        Format::Msh => "msh",
+        Format::Su2 => "su2",
+        Format::Vtu => "vtu",
+    }
+}
