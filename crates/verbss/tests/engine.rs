@@ -292,6 +292,23 @@ fn zero_motion_gives_zero_displacement() {
 }
 
 #[test]
+fn a_mesh_without_unknowns_keeps_its_prescribed_values() {
+    let mesh = grid(Layout::Hex, 1);
+    let roles = default_roles(&mesh);
+    assert!(roles.iter().all(|&r| r == NodeRole::Fixed));
+    for (method, solver) in METHODS {
+        let mut u: Vec<f64> = (0..mesh.coords.len()).map(|k| k as f64).collect();
+        let before = u.clone();
+        let info = solve(&mesh, &roles, &[], &mut u, &params(method, solver, 1e-6));
+        assert!(
+            info.converged && info.iterations == 0,
+            "{method:?}: {info:?}"
+        );
+        assert_eq!(u, before);
+    }
+}
+
+#[test]
 fn results_do_not_depend_on_the_thread_count() {
     for mesh in [grid(Layout::MixedTriQuad, 64), grid(Layout::Hex, 16)] {
         let roles = default_roles(&mesh);

@@ -20,14 +20,14 @@
 //!
 //! * [`Method::Verbss`]: edge + ball-vertex springs, node by node: each
 //!   `K_ii` is factored once as LDLᵀ, then each sweep sets
-//!   `u_i ← ω K_ii⁻¹ (Σ_j B_ij u_j) + (1 − ω) u_i` (block SOR, [`verbss`]);
+//!   `u_i ← ω K_ii⁻¹ (Σ_j B_ij u_j) + (1 − ω) u_i` (block SOR, `solve/verbss.rs`);
 //! * [`Method::BallVertex`]: the same system as one global system:
-//!   [`Solver::Sor`], scalar SOR over all unknown components ([`sor`]), or
-//!   [`Solver::Direct`], an exact sparse LU ([`direct`]; the system is not
+//!   [`Solver::Sor`], scalar SOR over all unknown components (`solve/sor.rs`), or
+//!   [`Solver::Direct`], an exact sparse LU (`solve/direct.rs`; the system is not
 //!   symmetric), the reference the sweeps are checked against;
 //! * [`Method::Spring`]: edge springs only, swept like `Verbss`;
 //! * [`Method::Laplacian`]: `Σ_j k_ij (u_j − u_i) = 0` per component with
-//!   `k_ij = 1/L_ij` ([`laplacian`]).
+//!   `k_ij = 1/L_ij` (`solve/laplacian.rs`).
 //!
 //! # Sliding nodes
 //!
@@ -420,6 +420,7 @@ impl Engine {
         if params.method == Method::BallVertex
             && params.solver == Solver::Direct
             && built.lu.is_none()
+            && built.layout.len() > 0
         {
             let blocks = system_blocks(&built.system);
             built.lu = Some(match conn.dim {
