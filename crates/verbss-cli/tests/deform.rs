@@ -1,0 +1,192 @@
+//! `verbss deform` end to end on the real NACA0012 mesh.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn verbss(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_verbss"))
+        .args(args)
+        .output()
+        .expect("run verbss")
+}
+
+fn naca() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/meshes/su2/mesh_NACA0012_inv.su2")
+}
+
+fn bump() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/meshes/su2/surface_bump.dat")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn positions_put_every_listed_node_where_the_file_says() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bump.msh");
+    let report = dir.path().join("report.json");
+    let o = verbss(&[
+        "deform",
+        naca().to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "airfoil",
+        "--positions",
+        bump().to_str().unwrap(),
+        "--report",
+        report.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let input = verbss::io::read(&naca()).unwrap();
+    let moved = verbss::io::read(&out).unwrap();
+    assert_eq!(moved.node_tags, input.node_tags);
+    assert_eq!(moved.cells, input.cells);
+    let table = verbss::io::positions::read(&bump(), 2).unwrap();
+    for k in 0..table.len() {
+        assert_eq!(
+            moved.point(table.ids[k]),
+            table.point(k),
+            "node {}",
+            table.ids[k]
+        );
+    }
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(report).unwrap()).unwrap();
+    let last = r["steps"].as_array().unwrap().last().unwrap().clone();
+    for key in [
+        "step",
+        "iterations",
+        "residual",
+        "seconds",
+        "min_quality",
+        "inverted",
+        "bins",
+    ] {
+        assert!(last.get(key).is_some(), "report step lacks {key}");
+    }
+    assert_eq!(last["inverted"], 0);
+}
+
+#[test]
+fn a_rotation_with_every_method_keeps_the_mesh_valid() {
+    let dir = tempfile::tempdir().unwrap();
+    for (method, solver) in [
+        ("verbss", "sor"),
+        ("ball-vertex", "sor"),
+        ("ball-vertex", "direct"),
+        ("spring", "sor"),
+        ("laplacian", "sor"),
+    ] {
+        let out = dir.path().join(format!("{method}-{solver}.vtu"));
+        let o = verbss(&[
+            "deform",
+            naca().to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--moving",
+            "airfoil",
+            "--rotate",
+            "-5",
+            "--center",
+            "0.25,0",
+            "--steps",
+            "2",
+            "--method",
+            method,
+            "--solver",
+            solver,
+            "--quiet",
+        ]);
+        assert!(o.status.success(), "{method}/{solver}: {}", stderr(&o));
+        let moved = verbss::io::read(&out).unwrap();
+        // The trailing edge (1, 0) turned by −5° about the quarter chord.
+        let input = verbss::io::read(&naca()).unwrap();
+        let te = input
+            .group("airfoil")
+            .unwrap()
+            .nodes()
+            .into_iter()
+            .max_by(|&a, &b| input.point(a)[0].total_cmp(&input.point(b)[0]))
+            .unwrap();
+        let (x, y) = (input.point(te)[0] - 0.25, input.point(te)[1]);
+        let a = (-5f64).to_radians();
+        let expect = [0.25 + a.cos() * x - a.sin() * y, a.sin() * x + a.cos() * y];
+        let got = moved.point(te);
+        assert!(
+            (got[0] - expect[0]).abs() < 1e-12 && (got[1] - expect[1]).abs() < 1e-12,
+            "{method}/{solver}: trailing edge at {got:?}, expected {expect:?}"
+        );
+    }
+}
+
+#[test]
+fn unknown_group_lists_the_groups_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.su2");
+    let o = verbss(&[
+        "deform",
+        naca().to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "wing",
+        "--translate",
+        "0,1",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr(&o).trim(),
+        "error: unknown group 'wing' (the mesh has: airfoil, farfield)"
+    );
+    assert!(!out.exists());
+}
+
+#[test]
+fn a_motion_of_the_wrong_dimension_is_refused() {
+    let o = verbss(&[
+        "deform",
+        naca().to_str().unwrap(),
+        "-o",
+        "x.su2",
+        "--moving",
+        "airfoil",
+        "--translate",
+        "0,1,2",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(
+        stderr(&o).trim(),
+        "error: --translate needs 2 numbers for a 2D mesh, got 3"
+    );
+}
+
+#[test]
+fn pushing_the_airfoil_through_the_farfield_stops_with_exit_3() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("far.su2");
+    let o = verbss(&[
+        "deform",
+        naca().to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "airfoil",
+        "--translate",
+        "0,200",
+        "--steps",
+        "4",
+        "--quiet",
+    ]);
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    let msg = stderr(&o);
+    assert!(msg.contains("inverted"), "{msg}");
+    assert!(dir.path().join("far.failed.vtu").exists());
+    // The last valid mesh is in OUT and has no inverted element.
+    let last = verbss::io::read(&out).unwrap();
+    let reference = verbss::quality::orientation(&verbss::io::read(&naca()).unwrap());
+    assert!(verbss::quality::inverted_cells(&last, &last.coords, &reference).is_empty());
+}
