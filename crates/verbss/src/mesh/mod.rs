@@ -104,7 +104,7 @@ pub struct Mesh {
 impl Mesh {
     /// A mesh with tags `1..=n` for nodes and cells, checked with [`Mesh::validate`].
     pub fn new(dim: usize, coords: Vec<f64>, cells: Cells, groups: Vec<Group>) -> Result<Mesh> {
-        let n = if dim == 0 { 0 } else { coords.len() / dim };
+        let n = coords.len().checked_div(dim).unwrap_or(0);
         let mesh = Mesh {
             dim,
             node_tags: (1..=n as u64).collect(),
@@ -156,7 +156,7 @@ impl Mesh {
         if self.dim != 2 && self.dim != 3 {
             return bad(format!("dimension {} (expected 2 or 3)", self.dim));
         }
-        if self.coords.len() % self.dim != 0 {
+        if !self.coords.len().is_multiple_of(self.dim) {
             return bad(format!(
                 "{} coordinates is not a multiple of the dimension {}",
                 self.coords.len(),
