@@ -90,13 +90,15 @@ fn box_with_body(dim: usize, n: usize, h: f64, b: f64) -> (Mesh, Vec<bool>) {
 }
 
 /// One step from scratch (a fresh engine: forming + solving), as option 1 does every step.
-fn solve(mesh: &Mesh, prescribed: &[f64], params: &SolveParams) -> (Vec<f64>, usize, f64) {
+/// Returns the solution, the sweeps, the seconds and the solver's bytes per unknown node.
+fn solve(mesh: &Mesh, prescribed: &[f64], params: &SolveParams) -> (Vec<f64>, usize, f64, f64) {
     let roles = default_roles(mesh);
     let mut engine = Engine::new(mesh, &roles, &[]).expect("engine");
     let mut u = prescribed.to_vec();
     let t = Instant::now();
     let info = engine.solve(&mesh.coords, &mut u, params).expect("solve");
-    (u, info.iterations, t.elapsed().as_secs_f64())
+    let seconds = t.elapsed().as_secs_f64();
+    (u, info.iterations, seconds, engine.bytes_per_node())
 }
 
 fn rel(a: &[f64], b: &[f64]) -> f64 {
@@ -121,8 +123,8 @@ fn main() {
             (3, 46),
         ]
     };
-    println!("| D | nodes | cells | verbss sweeps | verbss s | SOR sweeps | SOR s | direct s | SOR/verbss | verbss error |");
-    println!("|---|---|---|---|---|---|---|---|---|---|");
+    println!("| D | nodes | cells | verbss sweeps | verbss s | SOR sweeps | SOR s | direct s | SOR/verbss | verbss error | verbss bytes/node |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for (dim, n) in series {
         let (mesh, body) = box_with_body(dim, n, 10.0, if dim == 2 { 2.0 } else { 2.5 });
         let mut prescribed = vec![0.0; mesh.coords.len()];
@@ -134,13 +136,13 @@ fn main() {
         params.max_iterations = 20_000;
         params.method = Method::BallVertex;
         params.solver = Solver::Direct;
-        let (exact, _, direct_s) = solve(&mesh, &prescribed, &params);
+        let (exact, _, direct_s, _) = solve(&mesh, &prescribed, &params);
         params.solver = Solver::Sor;
-        let (_, sor_it, sor_s) = solve(&mesh, &prescribed, &params);
+        let (_, sor_it, sor_s, _) = solve(&mesh, &prescribed, &params);
         params.method = Method::Verbss;
-        let (u, vb_it, vb_s) = solve(&mesh, &prescribed, &params);
+        let (u, vb_it, vb_s, bytes) = solve(&mesh, &prescribed, &params);
         println!(
-            "| {dim} | {} | {} | {vb_it} | {vb_s:.4} | {sor_it} | {sor_s:.4} | {direct_s:.4} | {:.1} | {:.1e} |",
+            "| {dim} | {} | {} | {vb_it} | {vb_s:.4} | {sor_it} | {sor_s:.4} | {direct_s:.4} | {:.1} | {:.1e} | {bytes:.0} |",
             mesh.node_count(),
             mesh.cell_count(),
             sor_s / vb_s,

@@ -314,15 +314,13 @@ fn results_do_not_depend_on_the_thread_count() {
         let roles = default_roles(&mesh);
         let u0 = wavy_boundary(&mesh);
         for (method, solver) in METHODS {
-            if solver == Solver::Direct {
-                continue;
-            }
             let mut p = params(method, solver, 1e-5);
             p.record_history = true;
-            let mut engine = Engine::new(&mesh, &roles, &[]).unwrap();
             let runs: Vec<(Vec<f64>, SolveInfo)> = [1, 2, 3]
                 .into_iter()
                 .map(|threads| {
+                    // A fresh engine each time, so that the direct solver factors anew.
+                    let mut engine = Engine::new(&mesh, &roles, &[]).unwrap();
                     p.threads = threads;
                     let mut u = u0.clone();
                     let info = engine.solve(&mesh.coords, &mut u, &p).unwrap();
@@ -333,7 +331,8 @@ fn results_do_not_depend_on_the_thread_count() {
                 assert!(u == &runs[0].0, "{method:?}");
                 assert_eq!(info.history, runs[0].1.history, "{method:?}");
             }
-            assert!(runs[0].1.converged && runs[0].1.iterations > 5);
+            let sweeps = if solver == Solver::Direct { 1 } else { 6 };
+            assert!(runs[0].1.converged && runs[0].1.iterations >= sweeps);
         }
     }
 }

@@ -9,6 +9,11 @@
 //! correction `δ` of the initial guess `u⁰`, where
 //! `ρ_i(u) = Σ_j B_ij u_j − K_ii u_i` is the residual of node `i`'s equation.
 //! Working on the correction keeps the prescribed normal components exact.
+//!
+//! faer parallelises its factorisation and solve over the calling rayon pool,
+//! and their rounding depends on how the work is split; both run on a
+//! one-thread pool of their own so that the reference solution is the same
+//! bit for bit whatever `--threads` says.
 
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers;
@@ -23,6 +28,8 @@ use crate::springs::NodeBlocks;
 pub(crate) struct Lu {
     lu: solvers::Lu<usize, f64>,
     start: Vec<usize>,
+    /// The one-thread pool faer runs on.
+    serial: rayon::ThreadPool,
 }
 
 /// The frame of position `p`, the identity for a free node.
@@ -35,11 +42,7 @@ fn frame<const D: usize>(layout: &Layout, p: usize) -> [[f64; D]; D] {
 impl Lu {
     /// Assembles and factors the global matrix. `blocks.diag` holds `K_ii`
     /// (projected on the tangent frame for sliding nodes).
-    pub(crate) fn new<const D: usize>(
-        layout: &Layout,
-        blocks: &NodeBlocks,
-        pool: &rayon::ThreadPool,
-    ) -> Result<Lu> {
+    pub(crate) fn new<const D: usize>(layout: &Layout, blocks: &NodeBlocks) -> Result<Lu> {
         let s = packed_len(D);
         let m = layout.order.len();
         let mut start = Vec::with_capacity(m + 1);
@@ -86,10 +89,14 @@ impl Lu {
             SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &entries).map_err(|e| {
                 Error::InvalidMesh(format!("cannot assemble the ball-vertex matrix: {e:?}"))
             })?;
-        let lu = pool
+        let serial = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .map_err(|e| Error::InvalidSetting(format!("cannot start a thread: {e}")))?;
+        let lu = serial
             .install(|| matrix.sp_lu())
             .map_err(|e| Error::InvalidMesh(format!("the ball-vertex system is singular ({e})")))?;
-        Ok(Lu { lu, start })
+        Ok(Lu { lu, start, serial })
     }
 
     /// Replaces the initial guess `work` by the exact solution.
@@ -112,12 +119,14 @@ impl Lu {
                 rhs[self.start[p] + k] = b[k] - ka[k];
             }
         }
-        self.lu
-            .solve_in_place(faer::MatMut::from_column_major_slice_mut(
-                &mut rhs,
-                self.start[m],
-                1,
-            ));
+        self.serial.install(|| {
+            self.lu
+                .solve_in_place(faer::MatMut::from_column_major_slice_mut(
+                    &mut rhs,
+                    self.start[m],
+                    1,
+                ))
+        });
         if rhs.iter().any(|v| !v.is_finite()) {
             return Err(Error::InvalidMesh(
                 "the ball-vertex system is singular (its LU solve gave non-finite values)".into(),

@@ -424,8 +424,8 @@ impl Engine {
         {
             let blocks = system_blocks(&built.system);
             built.lu = Some(match conn.dim {
-                2 => direct::Lu::new::<2>(&built.layout, blocks, pool)?,
-                _ => direct::Lu::new::<3>(&built.layout, blocks, pool)?,
+                2 => direct::Lu::new::<2>(&built.layout, blocks)?,
+                _ => direct::Lu::new::<3>(&built.layout, blocks)?,
             });
         }
         let form_seconds = start.elapsed().as_secs_f64();
@@ -725,7 +725,7 @@ fn run<const D: usize>(
         match (&*system, params.method, params.solver) {
             (System::Blocks { blocks, .. }, Method::BallVertex, Solver::Direct) => {
                 let lu = lu.as_ref().expect("factored before the solve");
-                pool.install(|| lu.solve::<D>(layout, blocks, constant, work))?;
+                lu.solve::<D>(layout, blocks, constant, work)?;
                 Ok(SolveInfo {
                     iterations: 1,
                     converged: true,
