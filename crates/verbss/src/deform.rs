@@ -130,7 +130,7 @@ pub struct Deformer {
 impl Deformer {
     /// Prepares `mesh` for the motions in `attachments`: resolves each node's
     /// role, builds the solver's topology and checks the input mesh (which
-    /// must have no degenerate element).
+    /// must have no degenerate element and no two nodes at the same position).
     pub fn new(mesh: &Mesh, attachments: &[Attachment], settings: Settings) -> Result<Deformer> {
         if settings.steps == 0 {
             return Err(Error::InvalidSetting(
@@ -141,6 +141,14 @@ impl Deformer {
         for m in &motions {
             m.validate(mesh.dim)?;
         }
+        if let Some((a, b)) = duplicate_nodes(mesh) {
+            return Err(Error::InvalidMesh(format!(
+                "nodes {} and {} are at the same position {}: duplicate nodes",
+                mesh.node_tags[a],
+                mesh.node_tags[b],
+                format_point(mesh.point(a))
+            )));
+        }
         let plan = plan_roles(mesh, attachments)?;
         let engine = Engine::new(mesh, &plan.roles, &plan.normals)?;
         let orientation = quality::orientation(mesh);
@@ -148,7 +156,7 @@ impl Deformer {
         let (quality, inversions) = check(mesh, &mesh.coords, &orientation);
         if let Some(first) = inversions.first() {
             return Err(Error::InvalidMesh(format!(
-                "element {} is degenerate (zero area or volume) at {}",
+                "element {} is inverted or degenerate (tangled, or of zero area or volume) at {}",
                 mesh.cell_tags[first.cell],
                 format_point(&first.centroid)
             )));
@@ -343,6 +351,17 @@ fn summarize(quality: &[f64], inversions: &[Inversion]) -> StepReport {
     }
 }
 
+/// The first two nodes (in node order of the second) at exactly the same
+/// position, if any.
+fn duplicate_nodes(mesh: &Mesh) -> Option<(usize, usize)> {
+    let mut seen: HashMap<Vec<u64>, usize> = HashMap::with_capacity(mesh.node_count());
+    (0..mesh.node_count()).find_map(|i| {
+        // `+ 0.0` makes −0 and +0 the same key.
+        let key = mesh.point(i).iter().map(|x| (x + 0.0).to_bits()).collect();
+        seen.insert(key, i).map(|first| (first, i))
+    })
+}
+
 /// Node roles, slide normals and the motions of moving nodes.
 struct Plan {
     roles: Vec<NodeRole>,
@@ -370,6 +389,11 @@ fn plan_roles(mesh: &Mesh, attachments: &[Attachment]) -> Result<Plan> {
                 .iter()
                 .position(|g| &g.name == name)
                 .unwrap_or(0);
+            if att.motion.moves() && mesh.groups[g].facets.is_empty() {
+                return Err(Error::InvalidSetting(format!(
+                    "group '{name}' has no nodes: nothing to move"
+                )));
+            }
             if !roles.contains_key(&g) {
                 order.push(g);
             }
