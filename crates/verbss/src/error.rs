@@ -56,6 +56,9 @@ pub enum Error {
         /// The groups that exist, comma separated.
         available: String,
     },
+    /// A picture or chart could not be drawn or encoded.
+    #[error("cannot draw the picture: {0}")]
+    Render(String),
     /// A step inverted elements (relative to the input mesh's orientation).
     #[error(
         "step {step}: element {element} inverted at {}, signed volume {volume:.3e} ({count} inverted element(s))",

@@ -28,3 +28,4 @@ pub mod case;
 pub mod deform;
 pub mod motion;
 pub mod report;
+pub mod render;

@@ -1,0 +1,227 @@
+//! The picture's layout and everything drawn with plotters around the mesh:
+//! header, axes, colour bar, the inverted swatch.
+//!
+//! Sizes scale with the width `W` (`s = W/1600`): header 56s, margin 24s,
+//! legend column 210s, axis label areas 90s (left) and 64s (bottom) when the
+//! picture's axes are mesh coordinates. The plot keeps equal scales on both
+//! axes: its height is its width times `Δv/Δu`, with `Δv/Δu` first widened
+//! into `[1/4, 7/5]` about the window's centre.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+use crate::error::{Error, Result};
+
+use super::colour::{self, Rgb};
+use super::scene::Scene;
+use super::Options;
+
+/// Pixel layout of a picture and the window it shows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Layout {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// The plot rectangle `[x0, y0, x1, y1)` in pixels.
+    pub plot: [i64; 4],
+    /// The window `[u0, u1, v0, v1]` the plot shows.
+    pub window: [f64; 4],
+    scale: f64,
+    top: i64,
+    margin: i64,
+    legend: i64,
+    bar: i64,
+}
+
+impl Layout {
+    /// The layout of `scene` drawn with `options`.
+    pub fn new(scene: &Scene, options: &Options) -> Result<Layout> {
+        if !(200..=10_000).contains(&options.width) {
+            return Err(Error::InvalidSetting(format!(
+                "picture width {} (expected 200 to 10000 pixels)",
+                options.width
+            )));
+        }
+        let mut w = match options.view {
+            Some(v) => {
+                if !(v.iter().all(|x| x.is_finite()) && v[1] > v[0] && v[3] > v[2]) {
+                    return Err(Error::InvalidSetting(format!(
+                        "view window {},{},{},{} (expected x0 < x1 and y0 < y1)",
+                        v[0], v[1], v[2], v[3]
+                    )));
+                }
+                v
+            }
+            None => {
+                let b = scene.bounds();
+                let pad = 0.02 * (b[1] - b[0]).max(b[3] - b[2]).max(f64::MIN_POSITIVE);
+                [b[0] - pad, b[1] + pad, b[2] - pad, b[3] + pad]
+            }
+        };
+        let (du, dv) = (w[1] - w[0], w[3] - w[2]);
+        if dv < 0.25 * du {
+            let c = 0.5 * (w[2] + w[3]);
+            w[2] = c - 0.125 * du;
+            w[3] = c + 0.125 * du;
+        } else if dv > 1.4 * du {
+            let c = 0.5 * (w[0] + w[1]);
+            w[0] = c - dv / 2.8;
+            w[1] = c + dv / 2.8;
+        }
+        let s = f64::from(options.width) / 1600.0;
+        let px = |x: f64| (x * s).round() as i64;
+        let (top, margin, legend) = (px(56.0), px(24.0), px(210.0));
+        let (ylab, xlab) = match scene.axes {
+            Some(_) => (px(90.0), px(64.0)),
+            None => (0, 0),
+        };
+        let width = i64::from(options.width);
+        let plot_w = width - margin - ylab - legend;
+        let plot_h = (plot_w as f64 * (w[3] - w[2]) / (w[1] - w[0])).round() as i64;
+        let bar = ((0.7 * plot_h as f64) as i64).clamp(px(150.0), px(480.0));
+        let height = (top + plot_h + xlab + margin).max(top + bar + px(170.0));
+        Ok(Layout {
+            width: options.width,
+            height: height as u32,
+            plot: [margin + ylab, top, width - legend, top + plot_h],
+            window: w,
+            scale: s,
+            top,
+            margin,
+            legend,
+            bar,
+        })
+    }
+
+    /// Pixel position of picture point `(u, v, depth)` (depth kept).
+    pub fn map(&self, p: [f64; 3]) -> [f64; 3] {
+        let [x0, y0, x1, y1] = self.plot.map(|v| v as f64);
+        let w = &self.window;
+        [
+            x0 + (p[0] - w[0]) / (w[1] - w[0]) * (x1 - x0),
+            y1 - (p[1] - w[2]) / (w[3] - w[2]) * (y1 - y0),
+            p[2],
+        ]
+    }
+
+    fn px(&self, x: f64) -> i32 {
+        (x * self.scale).round() as i32
+    }
+
+    fn font(&self, size: f64) -> TextStyle<'static> {
+        ("sans-serif", size * self.scale).into_font().color(&BLACK)
+    }
+}
+
+fn rgb(c: Rgb) -> RGBColor {
+    RGBColor(c[0], c[1], c[2])
+}
+
+/// Draws the background, header, axes and legend of `scene` on `root`.
+pub fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    layout: &Layout,
+    scene: &Scene,
+    title: &str,
+) -> Result<()> {
+    draw_inner(root, layout, scene, title).map_err(|e| Error::Render(e.to_string()))
+}
+
+fn draw_inner<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    layout: &Layout,
+    scene: &Scene,
+    title: &str,
+) -> std::result::Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    super::register_font();
+    let l = layout;
+    root.fill(&WHITE)?;
+    let header = format!(
+        "{title}{}min quality {:.4}  ·  {} inverted  ·  {} cells",
+        if title.is_empty() { "" } else { "   —   " },
+        scene.min_quality,
+        scene.inverted,
+        scene.cells
+    );
+    root.draw(&Text::new(
+        header,
+        (l.margin as i32, l.px(16.0)),
+        l.font(26.0),
+    ))?;
+    if let Some([u, v]) = scene.axes {
+        let [x0, _, x1, y1] = l.plot;
+        let w = l.window;
+        let mut chart = ChartBuilder::on(root)
+            .margin_left(l.margin as i32)
+            .margin_top(l.top as i32)
+            .margin_right((i64::from(l.width) - x1) as i32)
+            .margin_bottom((i64::from(l.height) - y1 - i64::from(l.px(64.0))).max(0) as i32)
+            .x_label_area_size(l.px(64.0))
+            .y_label_area_size((x0 - l.margin) as i32)
+            .build_cartesian_2d(w[0]..w[1], w[2]..w[3])?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(u)
+            .y_desc(v)
+            .x_labels(8)
+            .y_labels(8)
+            .label_style(l.font(20.0))
+            .axis_desc_style(l.font(24.0))
+            .draw()?;
+    }
+    let bx = i64::from(l.width) - l.legend + (40.0 * l.scale) as i64;
+    let (bw, by, bh) = (l.px(30.0), (l.top + l.px(44.0) as i64) as i32, l.bar as i32);
+    let bx = bx as i32;
+    root.draw(&Text::new("quality", (bx, by - l.px(36.0)), l.font(24.0)))?;
+    for row in 0..bh {
+        let q = 1.0 - f64::from(row) / f64::from(bh - 1);
+        root.draw(&Rectangle::new(
+            [(bx, by + row), (bx + bw, by + row + 1)],
+            rgb(colour::quality(q)).filled(),
+        ))?;
+    }
+    root.draw(&Rectangle::new([(bx, by), (bx + bw, by + bh)], BLACK))?;
+    let y_of = |q: f64| by + ((1.0 - q) * f64::from(bh - 1)).round() as i32;
+    let label = l.font(20.0).pos(Pos::new(HPos::Left, VPos::Center));
+    for k in 0..=5 {
+        let q = f64::from(k) / 5.0;
+        let y = y_of(q);
+        root.draw(&PathElement::new(
+            vec![(bx + bw, y), (bx + bw + l.px(7.0), y)],
+            BLACK,
+        ))?;
+        root.draw(&Text::new(
+            format!("{q:.1}"),
+            (bx + bw + l.px(11.0), y),
+            label.clone(),
+        ))?;
+    }
+    if scene.min_quality.is_finite() {
+        let y = y_of(scene.min_quality);
+        let stroke = BLACK.stroke_width(l.px(3.0).max(1) as u32);
+        root.draw(&PathElement::new(
+            vec![(bx - l.px(8.0), y), (bx + bw, y)],
+            stroke,
+        ))?;
+        root.draw(&Text::new(
+            "min",
+            (bx - l.px(12.0), y),
+            l.font(18.0).pos(Pos::new(HPos::Right, VPos::Center)),
+        ))?;
+    }
+    let sy = by + bh + l.px(30.0);
+    root.draw(&Rectangle::new(
+        [(bx, sy), (bx + bw, sy + bw)],
+        rgb(colour::INVERTED).filled(),
+    ))?;
+    root.draw(&Rectangle::new([(bx, sy), (bx + bw, sy + bw)], BLACK))?;
+    root.draw(&Text::new(
+        format!("inverted: {}", scene.inverted),
+        (bx + bw + l.px(11.0), sy + bw / 2),
+        label,
+    ))?;
+    Ok(())
+}
