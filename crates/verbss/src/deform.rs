@@ -96,6 +96,11 @@ pub struct StepReport {
     pub inverted: usize,
     /// Element counts in the paper's quality bins 0–0.02, 0.02–0.1, 0.1–0.4, 0.4–0.7, 0.7–1.
     pub bins: [usize; 5],
+    /// The mean element quality.
+    pub mean_quality: f64,
+    /// The eq.-8 value of every sweep, when [`SolveParams::record_history`] is set.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub history: Vec<f64>,
 }
 
 /// A configuration of the mesh with its check.
@@ -287,6 +292,7 @@ impl Deformer {
         report.converged = info.converged;
         report.form_seconds = info.form_seconds;
         report.solve_seconds = info.solve_seconds;
+        report.history = info.history;
         report.seconds = start.elapsed().as_secs_f64();
         let mut inverted = vec![false; quality.len()];
         for inv in &inversions {
@@ -345,6 +351,7 @@ fn summarize(quality: &[f64], inversions: &[Inversion]) -> StepReport {
     }
     StepReport {
         min_quality: summary.min,
+        mean_quality: summary.mean,
         inverted: inversions.len(),
         bins,
         ..StepReport::default()

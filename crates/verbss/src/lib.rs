@@ -29,3 +29,4 @@ pub mod deform;
 pub mod motion;
 pub mod report;
 pub mod render;
+pub mod html_report;

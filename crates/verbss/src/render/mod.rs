@@ -53,7 +53,7 @@ use raster::Canvas;
 const FONT: &[u8] = include_bytes!("../../../../assets/fonts/DejaVuSans-subset.ttf");
 
 /// Registers the embedded font as plotters' `sans-serif` (once).
-fn register_font() {
+pub(crate) fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         // The font is a fixed, valid file: a failure would show as missing text.
