@@ -4,29 +4,74 @@
 //! (triangles, quads, tetrahedra, hexahedra, prisms, pyramids) so that no
 //! element inverts, by the VerBSS method of Lin, Guan, Chang & Lo
 //! ("Vertex-Ball Spring Smoothing: an efficient method for unstructured dynamic
-//! hybrid meshes").
+//! hybrid meshes"): edge springs plus ball-vertex springs, solved node by node
+//! with small LDLᵀ block solves and over-relaxation.
 //!
 //! The pipeline, one module per concept:
-//! [`io`] reads and writes files → [`mesh::Mesh`] → [`topology`] →
-//! [`springs`] assembles the node-block system → [`solve`] → [`quality`] checks.
+//!
+//! | module | what it holds |
+//! |---|---|
+//! | [`io`] | Gmsh MSH 2.2/4.1, SU2, VTU/PVD, positions files: file in, [`Mesh`] out |
+//! | [`mesh`] | the [`Mesh`] (flat coordinates, cells, named groups) and per-kind tables |
+//! | [`topology`] | node→cell, edges, boundary facets and nodes, colouring, BFS layers |
+//! | [`geometry`] | small fixed-size kernels: determinants, nearest points, LDLᵀ |
+//! | [`quality`] | ρ = C r/R, scaled Jacobians, inversion check, the paper's histogram |
+//! | [`springs`] | assembles the node-block system `K_ii u_i = Σ_j B_ij u_j` |
+//! | [`solve`] | the [`solve::Engine`]: VerBSS block SOR, scalar SOR, sparse LU, Laplacian |
+//! | [`motion`] | boundary motions: translation, rotation, pitch–plunge, undulation, bending, positions |
+//! | [`deform`] | the stepper: motion → system → solve → update → inversion check |
+//! | [`case`], [`report`] | the TOML case file and `report.json` |
+//! | [`generate`] | built-in meshes (the demo's NACA0012 O-grid) |
+//! | [`render`], [`html_report`] | pictures of meshes coloured by quality; the self-contained run report |
+//!
+//! The maths is stated in `docs/method.md`.
+//!
+//! # Once per time step, from a flow solver
+//!
+//! ```
+//! use verbss::deform::{Deformer, Settings};
+//! use verbss::generate::{naca0012, AirfoilGrid};
+//! use verbss::motion::{Attachment, Motion};
+//!
+//! let mesh = naca0012(&AirfoilGrid::default())?;
+//! let pitch = Attachment {
+//!     groups: vec!["airfoil".into()],
+//!     motion: Motion::Rotation {
+//!         center: [0.25, 0.0, 0.0],
+//!         axis: [0.0, 0.0, 1.0],
+//!         angle: 10f64.to_radians(),
+//!     },
+//! };
+//! let mut deformer = Deformer::new(&mesh, &[pitch], Settings::new(4))?;
+//! for n in 1..=4 {
+//!     let step = deformer.step(n)?; // an inverted element is an Err
+//!     assert_eq!(step.inverted, 0);
+//! }
+//! let moved = deformer.mesh(); // same numbering, new coordinates
+//! assert_eq!(moved.node_count(), mesh.node_count());
+//! # Ok::<(), verbss::Error>(())
+//! ```
+//!
+//! Lower down, [`solve::Engine`] solves one step for given prescribed
+//! displacements.
 
 #![warn(missing_docs)]
 
+pub mod case;
+pub mod deform;
 pub mod error;
+pub mod generate;
 pub mod geometry;
+pub mod html_report;
 pub mod io;
 pub mod mesh;
+pub mod motion;
 pub mod quality;
+pub mod render;
+pub mod report;
+pub mod solve;
 pub mod springs;
 pub mod topology;
 
 pub use error::{Error, Result};
 pub use mesh::{CellKind, Cells, Group, Mesh};
-pub mod solve;
-pub mod generate;
-pub mod case;
-pub mod deform;
-pub mod motion;
-pub mod report;
-pub mod render;
-pub mod html_report;
