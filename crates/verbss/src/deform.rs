@@ -27,7 +27,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::error::{Error, Result};
+use crate::error::{format_point, Error, Result};
 use crate::geometry::{cross, norm};
 use crate::mesh::{CellKind, Mesh};
 use crate::motion::{Attachment, Clock, Motion};
@@ -552,11 +552,6 @@ fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
     Ok(nrm)
 }
 
-/// `(x, y[, z])` with 6 significant digits, for messages.
-pub fn format_point(p: &[f64]) -> String {
-    let parts: Vec<String> = p.iter().map(|x| format!("{x:.6}")).collect();
-    format!("({})", parts.join(", "))
-}
 
 #[cfg(test)]
 mod tests {

@@ -62,7 +62,7 @@ pub enum Error {
     /// A step inverted elements (relative to the input mesh's orientation).
     #[error(
         "step {step}: element {element} inverted at {}, signed volume {volume:.3e} ({count} inverted element(s))",
-        crate::deform::format_point(.centroid)
+        format_point(.centroid)
     )]
     Inverted {
         /// The step.
@@ -77,6 +77,12 @@ pub enum Error {
         /// input orientation (≤ 0).
         volume: f64,
     },
+}
+
+/// A point as `(x, y[, z])` with six decimals, as messages print it.
+pub fn format_point(p: &[f64]) -> String {
+    let parts: Vec<String> = p.iter().map(|x| format!("{x:.6}")).collect();
+    format!("({})", parts.join(", "))
 }
 
 /// Result with the library's [`Error`].
