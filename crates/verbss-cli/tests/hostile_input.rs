@@ -249,7 +249,7 @@ fn a_full_disk_leaves_the_previous_output_and_no_partial_file() {
     // `ulimit -f 1` caps files at 512 bytes; with SIGXFSZ ignored (an
     // ignored signal stays ignored across exec) a longer write fails with
     // EFBIG as on a full disk, instead of the kernel killing the process.
-    let (dir, square) = folder();
+    let (dir, _) = folder();
     let out = dir.path().join("out.su2");
     std::fs::write(&out, SQUARE).unwrap();
     let naca =

@@ -15,7 +15,6 @@ use verbss::solve::{default_roles, Engine, Method, NodeRole, SolveParams, Solver
 use verbss::Mesh;
 
 #[path = "../../../fuzz/src/grid.rs"]
-#[allow(dead_code)]
 mod grid;
 
 /// A random valid mesh: dimension, kind, nodes a side and jitter.
