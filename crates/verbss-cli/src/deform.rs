@@ -16,6 +16,7 @@ use verbss::io::{self, Format};
 use verbss::motion::{Attachment, Motion, PositionSource};
 use verbss::solve::{Method, Solver};
 
+use crate::render::{PictureArgs, Recorder};
 use crate::run::{execute, Job};
 
 /// Arguments of `verbss deform`.
@@ -83,6 +84,8 @@ pub struct DeformArgs {
     /// No progress output.
     #[arg(long, short)]
     quiet: bool,
+    #[command(flatten)]
+    pictures: PictureArgs,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -192,7 +195,8 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
         extension: extension(format).into(),
         dir,
     };
-    let summary = execute(&job, args.quiet)?;
+    let mut recorder = Recorder::new(&args.pictures, &job.mesh, job.settings.steps, None);
+    let summary = execute(&job, args.quiet, &mut recorder)?;
     Ok(summary.print(&job))
 }
 

@@ -12,6 +12,7 @@ use verbss::deform::Settings;
 use verbss::generate::{naca0012, AirfoilGrid};
 use verbss::motion::{Attachment, Motion};
 
+use crate::render::{PictureArgs, Recorder};
 use crate::run::{execute, Job};
 
 /// Arguments of `verbss demo`.
@@ -23,7 +24,12 @@ pub struct DemoArgs {
     /// No progress output.
     #[arg(long, short)]
     quiet: bool,
+    #[command(flatten)]
+    pictures: PictureArgs,
 }
+
+/// The window of the demo's pictures: the airfoil and its sweep.
+const AIRFOIL_VIEW: [f64; 4] = [-0.6, 1.6, -1.0, 1.0];
 
 /// The demo's job: mesh, motion and the paper's solver settings.
 pub fn job(out: PathBuf) -> anyhow::Result<Job> {
@@ -70,6 +76,12 @@ pub fn run(args: DemoArgs) -> anyhow::Result<ExitCode> {
         job.mesh.node_count(),
         job.mesh.cell_count()
     );
-    let summary = execute(&job, args.quiet)?;
+    let mut recorder = Recorder::new(
+        &args.pictures,
+        &job.mesh,
+        job.settings.steps,
+        Some(AIRFOIL_VIEW),
+    );
+    let summary = execute(&job, args.quiet, &mut recorder)?;
     Ok(summary.print(&job))
 }

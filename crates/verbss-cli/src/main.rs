@@ -9,6 +9,7 @@ mod deform;
 mod demo;
 mod progress;
 mod quality;
+mod render;
 mod run;
 
 use std::process::ExitCode;
@@ -35,6 +36,8 @@ enum Command {
     Run(run::RunArgs),
     /// Run the paper's pitching–plunging NACA0012 case with no input files.
     Demo(demo::DemoArgs),
+    /// Draw a mesh coloured by element quality to a .png or .svg picture.
+    Render(render::RenderArgs),
 }
 
 fn main() -> ExitCode {
@@ -45,6 +48,7 @@ fn main() -> ExitCode {
         Command::Deform(args) => deform::run(args),
         Command::Run(args) => run::run(args),
         Command::Demo(args) => demo::run(args),
+        Command::Render(args) => render::run(args),
     };
     match result {
         Ok(code) => code,

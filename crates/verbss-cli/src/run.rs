@@ -22,6 +22,7 @@ use verbss::report::Report;
 use verbss::Error;
 
 use crate::progress::Progress;
+use crate::render::{PictureArgs, Recorder};
 
 /// Arguments of `verbss run`.
 #[derive(Args)]
@@ -34,6 +35,8 @@ pub struct RunArgs {
     /// No progress output.
     #[arg(long, short)]
     quiet: bool,
+    #[command(flatten)]
+    pictures: PictureArgs,
 }
 
 /// Runs `verbss run`.
@@ -64,7 +67,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         extension,
         dir,
     };
-    let summary = execute(&job, args.quiet)?;
+    let mut recorder = Recorder::new(&args.pictures, &job.mesh, job.settings.steps, None);
+    let summary = execute(&job, args.quiet, &mut recorder)?;
     Ok(summary.print(&job))
 }
 
@@ -146,16 +150,20 @@ impl Summary {
 }
 
 /// Runs a job: steps `1..=N`, writing the outputs as it goes (every file
-/// atomically), and stops at the first inverted element.
-pub fn execute(job: &Job, quiet: bool) -> anyhow::Result<Summary> {
+/// atomically), and stops at the first inverted element; `recorder` keeps
+/// the states for the `--html` report and the `--gif`.
+pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Result<Summary> {
     std::fs::create_dir_all(&job.dir)
         .with_context(|| format!("cannot create the output folder {}", job.dir.display()))?;
-    let mut deformer = Deformer::new(&job.mesh, &job.attachments, job.settings.clone())?;
+    let mut settings = job.settings.clone();
+    settings.solve.record_history |= recorder.wants_history();
+    let mut deformer = Deformer::new(&job.mesh, &job.attachments, settings)?;
     let steps = job.settings.steps;
     let mut report = Report::new(&job.source, &job.mesh, &job.settings);
     let mut series = Vec::new();
     let initial = deformer.current().clone();
     report.steps.push(initial.report.clone());
+    recorder.step(&initial)?;
     if job.series {
         write_step(job, &initial, &mut series)?;
     }
@@ -178,6 +186,7 @@ pub fn execute(job: &Job, quiet: bool) -> anyhow::Result<Summary> {
                     summary.min_quality = (r.min_quality, n);
                 }
                 report.steps.push(r);
+                recorder.step(deformer.current())?;
                 if job.series && (n % job.every == 0 || n == steps) {
                     write_step(job, deformer.current(), &mut series)?;
                 }
@@ -196,6 +205,7 @@ pub fn execute(job: &Job, quiet: bool) -> anyhow::Result<Summary> {
                 if let Some(path) = &job.report {
                     report.write(path)?;
                 }
+                recorder.finish(&report, deformer.current(), Some(failed))?;
                 summary.seconds = start.elapsed().as_secs_f64();
                 summary.failure = Some((e, last, failed_path));
                 return Ok(summary);
@@ -213,6 +223,7 @@ pub fn execute(job: &Job, quiet: bool) -> anyhow::Result<Summary> {
     if let Some(path) = &job.report {
         report.write(path)?;
     }
+    recorder.finish(&report, deformer.current(), None)?;
     Ok(summary)
 }
 

@@ -81,9 +81,9 @@ pub fn html(report: &Report, pictures: &[Picture]) -> Result<String> {
         page.push_str("<h2>The mesh</h2>\n<div class=\"pictures\">\n");
         for p in pictures {
             let png = base64::engine::general_purpose::STANDARD.encode(p.image.png_bytes()?);
-            let _ = write!(
+            let _ = writeln!(
                 page,
-                "<figure><img alt=\"{c}\" src=\"data:image/png;base64,{png}\"><figcaption>{c}</figcaption></figure>\n",
+                "<figure><img alt=\"{c}\" src=\"data:image/png;base64,{png}\"><figcaption>{c}</figcaption></figure>",
                 c = escape(&p.caption)
             );
         }
@@ -188,11 +188,15 @@ fn step_range(steps: &[StepReport]) -> Range<f64> {
     0.0..steps.last().map_or(1, |s| s.step.max(1)) as f64
 }
 
+/// A line's legend label, colour and value per step.
+type Series = (&'static str, RGBColor, fn(&StepReport) -> f64);
+
 fn quality_chart(steps: &[StepReport]) -> Result<String> {
     svg_chart(|root| {
         let mut chart = ChartBuilder::on(root)
             .caption("element quality", font(20.0))
             .margin(10)
+            .margin_right(30)
             .x_label_area_size(40)
             .y_label_area_size(56)
             .build_cartesian_2d(step_range(steps), 0.0..1.0)
@@ -200,10 +204,11 @@ fn quality_chart(steps: &[StepReport]) -> Result<String> {
         chart
             .configure_mesh()
             .x_desc("step")
+            .x_label_formatter(&|v| format!("{v:.0}"))
             .label_style(font(14.0))
             .draw()
             .map_err(|e| e.to_string())?;
-        let series: [(&str, RGBColor, fn(&StepReport) -> f64); 2] = [
+        let series: [Series; 2] = [
             ("mean", RGBColor(31, 119, 180), |s| s.mean_quality),
             ("min", RGBColor(214, 39, 40), |s| s.min_quality),
         ];
@@ -236,6 +241,7 @@ fn bins_chart(steps: &[StepReport]) -> Result<String> {
         let mut chart = ChartBuilder::on(root)
             .caption("elements per quality bin", font(20.0))
             .margin(10)
+            .margin_right(30)
             .x_label_area_size(40)
             .y_label_area_size(64)
             .build_cartesian_2d(step_range(steps), (0.8..2.0 * top).log_scale())
@@ -243,6 +249,8 @@ fn bins_chart(steps: &[StepReport]) -> Result<String> {
         chart
             .configure_mesh()
             .x_desc("step")
+            .x_label_formatter(&|v| format!("{v:.0}"))
+            .y_label_formatter(&|v| format!("{v:.0}"))
             .label_style(font(14.0))
             .draw()
             .map_err(|e| e.to_string())?;
@@ -303,6 +311,7 @@ fn per_step_chart(
         let mut chart = ChartBuilder::on(root)
             .caption(what, font(20.0))
             .margin(10)
+            .margin_right(30)
             .x_label_area_size(40)
             .y_label_area_size(64)
             .build_cartesian_2d(step_range(steps), 0.0..top)
@@ -310,6 +319,7 @@ fn per_step_chart(
         chart
             .configure_mesh()
             .x_desc("step")
+            .x_label_formatter(&|v| format!("{v:.0}"))
             .label_style(font(14.0))
             .draw()
             .map_err(|e| e.to_string())?;
@@ -358,6 +368,7 @@ fn convergence(steps: &[StepReport]) -> Result<String> {
                 font(20.0),
             )
             .margin(10)
+            .margin_right(30)
             .x_label_area_size(40)
             .y_label_area_size(72)
             .build_cartesian_2d(1.0..sweeps, (0.5 * lo..2.0 * hi).log_scale())
@@ -365,6 +376,7 @@ fn convergence(steps: &[StepReport]) -> Result<String> {
         chart
             .configure_mesh()
             .x_desc("sweep")
+            .x_label_formatter(&|v| format!("{v:.0}"))
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .label_style(font(14.0))
             .draw()
@@ -403,7 +415,7 @@ mod tests {
                     0,
                     0,
                     usize::from(q < 0.4),
-                    usize::from(q >= 0.4 && q < 0.7),
+                    usize::from((0.4..0.7).contains(&q)),
                     usize::from(q >= 0.7),
                 ],
                 history: (1..=10 * n).map(|k| 0.5f64.powi(k as i32)).collect(),

@@ -172,7 +172,7 @@ fn draw_inner<DB: DrawingBackend>(
             .axis_desc_style(l.font(24.0))
             .draw()?;
     }
-    let bx = i64::from(l.width) - l.legend + (40.0 * l.scale) as i64;
+    let bx = i64::from(l.width) - l.legend + (52.0 * l.scale) as i64;
     let (bw, by, bh) = (l.px(30.0), (l.top + l.px(44.0) as i64) as i32, l.bar as i32);
     let bx = bx as i32;
     root.draw(&Text::new("quality", (bx, by - l.px(36.0)), l.font(24.0)))?;

@@ -124,7 +124,7 @@ fn encode_png(image: &Image, w: &mut dyn Write) -> std::result::Result<(), png::
     let mut encoder = png::Encoder::new(w, image.width, image.height);
     encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
-    encoder.set_compression(png::Compression::Fast);
+    encoder.set_compression(png::Compression::Default);
     let mut writer = encoder.write_header()?;
     writer.write_image_data(&image.rgb)?;
     writer.finish()

@@ -102,13 +102,15 @@ fn inverted_cells_show_in_red_and_the_zoom_window_magnifies() {
         })
         .fold(0.0, f64::max);
     let c = quality::centroid(&mesh, &mesh.coords, near);
-    let mut options = Options::default();
-    options.view = Some([
-        c[0] - 5.0 * size,
-        c[0] + 5.0 * size,
-        c[1] - 2.5 * size,
-        c[1] + 2.5 * size,
-    ]);
+    let options = Options {
+        view: Some([
+            c[0] - 5.0 * size,
+            c[0] + 5.0 * size,
+            c[1] - 2.5 * size,
+            c[1] + 2.5 * size,
+        ]),
+        ..Options::default()
+    };
     let zoom = png(&scene, &options).unwrap();
     let red = |i: &Image| i.count(colour::INVERTED) - SWATCH;
     assert!(
@@ -180,8 +182,10 @@ fn bad_sections_and_options_are_errors_that_say_why() {
         "unknown group 'wing' (the mesh has: x_m, x_p, y_m, y_p, z_m, z_p)"
     );
     let s = scene(&naca, &[], &Section::All).unwrap();
-    let mut options = Options::default();
-    options.view = Some([1.0, 0.0, 0.0, 1.0]);
+    let options = Options {
+        view: Some([1.0, 0.0, 0.0, 1.0]),
+        ..Options::default()
+    };
     assert_eq!(
         png(&s, &options).err().unwrap().to_string(),
         "invalid setting: view window 1,0,0,1 (expected x0 < x1 and y0 < y1)"
@@ -203,8 +207,10 @@ fn bad_sections_and_options_are_errors_that_say_why() {
 fn png_and_gif_files_decode_to_the_pictures_written() {
     let mesh = read("mesh_NACA0012_inv.su2");
     let scene = scene(&mesh, &[], &Section::All).unwrap();
-    let mut options = Options::default();
-    options.width = 400;
+    let options = Options {
+        width: 400,
+        ..Options::default()
+    };
     let image = png(&scene, &options).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("naca.png");

@@ -1,0 +1,284 @@
+//! `verbss render MESH -o FILE.png|.svg`: a picture of a mesh coloured by
+//! element quality; and the pictures of runs (`--html`, `--gif` of `run`,
+//! `deform` and `demo`), recorded step by step by a [`Recorder`].
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::Args;
+use std::path::Path;
+use verbss::deform::Snapshot;
+use verbss::html_report::{self, Picture};
+use verbss::mesh::Mesh;
+use verbss::quality;
+use verbss::render::{self, Camera, Gif, Image, Options, Scene, Section, State};
+use verbss::report::Report;
+
+/// Arguments of `verbss render`.
+#[derive(Args)]
+pub struct RenderArgs {
+    /// The mesh (.msh, .su2, .vtu).
+    mesh: PathBuf,
+    /// The picture: .png or .svg.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Zoom window x0,x1,y0,y1 (mesh coordinates; for a 3D surface, screen coordinates).
+    #[arg(long, value_parser = parse_view, allow_hyphen_values = true)]
+    view: Option<[f64; 4]>,
+    /// Width in pixels.
+    #[arg(long, default_value_t = 1600)]
+    width: u32,
+    /// 3D: draw the facets of this boundary group (repeatable) instead of the whole boundary.
+    #[arg(long)]
+    group: Vec<String>,
+    /// 3D: draw the cut by a plane, e.g. `z=0.5`.
+    #[arg(long, value_parser = parse_cut, conflicts_with = "group")]
+    cut: Option<(usize, f64)>,
+    /// 3D: azimuth of the viewer about z, degrees from +x.
+    #[arg(long, default_value_t = -60.0, allow_hyphen_values = true)]
+    azimuth: f64,
+    /// 3D: elevation of the viewer above the x–y plane, degrees.
+    #[arg(long, default_value_t = 25.0, allow_hyphen_values = true)]
+    elevation: f64,
+    /// Do not draw the element edges.
+    #[arg(long)]
+    no_edges: bool,
+    /// Header text [default: the mesh file's name].
+    #[arg(long)]
+    title: Option<String>,
+}
+
+/// `x0,x1,y0,y1` → a window.
+fn parse_view(s: &str) -> Result<[f64; 4], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("'{s}' is not four numbers x0,x1,y0,y1"))?;
+    match v[..] {
+        [x0, x1, y0, y1] if x0 < x1 && y0 < y1 => Ok([x0, x1, y0, y1]),
+        [_, _, _, _] => Err(format!("'{s}': expected x0 < x1 and y0 < y1")),
+        _ => Err(format!("'{s}' is not four numbers x0,x1,y0,y1")),
+    }
+}
+
+/// `x=0.5`, `y=…`, `z=…` → (axis, value).
+fn parse_cut(s: &str) -> Result<(usize, f64), String> {
+    let err = || format!("'{s}' is not a plane like z=0.5");
+    let (axis, at) = s.split_once('=').ok_or_else(err)?;
+    let axis = match axis.trim() {
+        "x" => 0,
+        "y" => 1,
+        "z" => 2,
+        _ => return Err(err()),
+    };
+    let at: f64 = at.trim().parse().map_err(|_| err())?;
+    Ok((axis, at))
+}
+
+/// Runs `verbss render`.
+pub fn run(args: RenderArgs) -> anyhow::Result<ExitCode> {
+    let mesh = verbss::io::read(&args.mesh)?;
+    let orientation = quality::orientation(&mesh);
+    let q = quality::qualities(&mesh, &mesh.coords, &orientation);
+    let mut inverted = vec![false; mesh.cell_count()];
+    for c in quality::inverted_cells(&mesh, &mesh.coords, &orientation) {
+        inverted[c] = true;
+    }
+    let section = match (args.cut, args.group.is_empty()) {
+        (Some((axis, at)), _) => Section::Cut { axis, at },
+        (None, false) => Section::Groups(args.group.clone()),
+        (None, true) => Section::All,
+    };
+    let camera = Camera {
+        azimuth: args.azimuth,
+        elevation: args.elevation,
+    };
+    let state = State {
+        coords: &mesh.coords,
+        quality: &q,
+        inverted: &inverted,
+    };
+    let scene = Scene::new(&mesh, state, &section, camera)?;
+    let mut options = Options::default();
+    options.width = args.width;
+    options.view = args.view;
+    options.edges = !args.no_edges;
+    options.title = args.title.unwrap_or_else(|| {
+        args.mesh
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    });
+    render::write(&args.output, &scene, &options)?;
+    let layout = render::Layout::new(&scene, &options)?;
+    println!(
+        "{}: {} × {} px, {} polygons, min quality {:.4}, {} inverted",
+        args.output.display(),
+        layout.width,
+        layout.height,
+        scene.len(),
+        scene.min_quality,
+        scene.inverted
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The picture options of `run`, `deform` and `demo`.
+#[derive(Args, Clone, Default)]
+pub struct PictureArgs {
+    /// Write a self-contained HTML report (pictures, per-step charts, settings) to FILE.
+    #[arg(long, value_name = "FILE")]
+    pub html: Option<PathBuf>,
+    /// Write an animated GIF of the mesh, one frame per step (or per --gif-every steps), to FILE.
+    #[arg(long, value_name = "FILE")]
+    pub gif: Option<PathBuf>,
+    /// A GIF frame every K steps.
+    #[arg(long, value_name = "K", default_value_t = 1)]
+    pub gif_every: usize,
+    /// Window x0,x1,y0,y1 of the report's pictures and the GIF (2D; whole mesh by default).
+    #[arg(long, value_parser = parse_view, allow_hyphen_values = true)]
+    pub view: Option<[f64; 4]>,
+}
+
+/// Width of the report's pictures and of the GIF frames.
+const REPORT_WIDTH: u32 = 1000;
+const GIF_WIDTH: u32 = 640;
+
+/// Records a run's states for its `--html` report and `--gif` animation.
+pub struct Recorder {
+    args: PictureArgs,
+    mesh: Mesh,
+    steps: usize,
+    before: Option<Image>,
+    worst: Option<Snapshot>,
+    gif: Option<Gif>,
+}
+
+impl Recorder {
+    /// A recorder for `args` on `mesh` over `steps` steps; `view` is the
+    /// window when `args` gives none.
+    pub fn new(args: &PictureArgs, mesh: &Mesh, steps: usize, view: Option<[f64; 4]>) -> Recorder {
+        let mut args = args.clone();
+        args.view = args.view.or(view);
+        args.gif_every = args.gif_every.max(1);
+        Recorder {
+            args,
+            mesh: mesh.clone(),
+            steps,
+            before: None,
+            worst: None,
+            gif: None,
+        }
+    }
+
+    /// Whether the run must record the sweeps' eq.-8 values (for the report).
+    pub fn wants_history(&self) -> bool {
+        self.args.html.is_some()
+    }
+
+    fn picture(&self, s: &Snapshot, title: String, width: u32) -> anyhow::Result<Image> {
+        let state = State {
+            coords: &s.coords,
+            quality: &s.quality,
+            inverted: &s.inverted,
+        };
+        let scene = Scene::new(&self.mesh, state, &Section::All, Camera::default())?;
+        let mut options = Options::default();
+        options.width = width;
+        options.view = self.args.view;
+        options.title = title;
+        Ok(render::png(&scene, &options)?)
+    }
+
+    /// Records an accepted state (step 0 is the input mesh).
+    pub fn step(&mut self, s: &Snapshot) -> anyhow::Result<()> {
+        let n = s.report.step;
+        if self.args.html.is_some() {
+            if n == 0 {
+                self.before = Some(self.picture(s, "step 0 (input)".into(), REPORT_WIDTH)?);
+            } else if self
+                .worst
+                .as_ref()
+                .is_none_or(|w| s.report.min_quality < w.report.min_quality)
+            {
+                self.worst = Some(s.clone());
+            }
+        }
+        if let Some(path) = &self.args.gif {
+            if n.is_multiple_of(self.args.gif_every) || n == self.steps {
+                let frame = self.picture(s, format!("step {n} / {}", self.steps), GIF_WIDTH)?;
+                if self.gif.is_none() {
+                    create_parent(path)?;
+                    self.gif = Some(Gif::create(path, frame.width, frame.height, 6)?);
+                }
+                if let Some(gif) = &mut self.gif {
+                    gif.push(&frame)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes the report: pictures of the input, the worst accepted step,
+    /// the last accepted step and the failed one; the GIF ends with the
+    /// failed state when there is one.
+    pub fn finish(
+        &mut self,
+        report: &Report,
+        last: &Snapshot,
+        failed: Option<&Snapshot>,
+    ) -> anyhow::Result<()> {
+        if let (Some(f), Some(mut gif)) = (failed, self.gif.take()) {
+            let frame = self.picture(f, format!("step {} FAILED", f.report.step), GIF_WIDTH)?;
+            gif.push(&frame)?;
+        }
+        self.gif = None;
+        let Some(path) = &self.args.html else {
+            return Ok(());
+        };
+        let mut pictures = Vec::new();
+        if let Some(image) = self.before.take() {
+            pictures.push(Picture {
+                caption: "step 0 (input)".into(),
+                image,
+            });
+        }
+        let last_n = last.report.step;
+        if let Some(w) = self.worst.as_ref().filter(|w| w.report.step != last_n) {
+            let caption = format!("step {} (lowest minimum quality)", w.report.step);
+            pictures.push(Picture {
+                image: self.picture(w, caption.clone(), REPORT_WIDTH)?,
+                caption,
+            });
+        }
+        if last_n > 0 {
+            let caption = format!("step {last_n} (last accepted)");
+            pictures.push(Picture {
+                image: self.picture(last, caption.clone(), REPORT_WIDTH)?,
+                caption,
+            });
+        }
+        if let Some(f) = failed {
+            let caption = format!("step {} (failed: inverted elements in red)", f.report.step);
+            pictures.push(Picture {
+                image: self.picture(f, caption.clone(), REPORT_WIDTH)?,
+                caption,
+            });
+        }
+        create_parent(path)?;
+        html_report::write(path, report, &pictures)
+            .with_context(|| format!("cannot write the report {}", path.display()))?;
+        Ok(())
+    }
+}
+
+/// Creates the folder of `path` if missing.
+fn create_parent(path: &Path) -> anyhow::Result<()> {
+    match path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        Some(dir) => std::fs::create_dir_all(dir)
+            .with_context(|| format!("cannot create the folder {}", dir.display())),
+        None => Ok(()),
+    }
+}
