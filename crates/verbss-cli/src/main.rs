@@ -41,6 +41,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    quiet_caught_solver_panics();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Quality(args) => quality::run(args),
@@ -57,4 +58,17 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// The sparse LU the library uses panics on an exact zero pivot; the library
+/// catches that panic and reports a singular system as an error, so its
+/// message must not reach the user as if the program had crashed.
+fn quiet_caught_solver_panics() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        if info.location().is_some_and(|l| l.file().contains("/faer-")) {
+            return;
+        }
+        default(info);
+    }));
 }

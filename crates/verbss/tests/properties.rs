@@ -336,10 +336,9 @@ proptest! {
 /// Found by the `deform` fuzz target: one undistorted hexahedron, the four
 /// nodes of its `x = 1` face sliding in the plane `x = 1`, the others fixed,
 /// solved by the direct ball-vertex solver. The sparse LU meets an exact
-/// zero pivot and panics (faer's `factorize_simplicial_numeric_lu`); the
-/// solver must report a singular system as an error instead.
+/// zero pivot, where faer's `factorize_simplicial_numeric_lu` panics; the
+/// solver catches it and reports a singular system as an error.
 #[test]
-#[ignore = "open: solve/direct.rs passes a system with an exact zero pivot to faer's LU, which panics"]
 fn a_singular_direct_system_is_an_error_not_a_panic() {
     let mesh = grid::grid(3, 2, 0, || 0.0).expect("one hexahedron");
     let mut settings = Settings::new(3);
@@ -354,5 +353,9 @@ fn a_singular_direct_system_is_an_error_not_a_panic() {
     let result = std::panic::catch_unwind(|| {
         Deformer::new(&mesh, &[attachment], settings).and_then(|mut d| d.advance().map(|_| ()))
     });
-    assert!(result.is_ok(), "the direct solver panicked");
+    let outcome = result.expect("the direct solver panicked");
+    assert_eq!(
+        outcome.unwrap_err().to_string(),
+        "invalid mesh: the ball-vertex system is singular (an exact zero pivot in its LU factorisation)"
+    );
 }

@@ -15,6 +15,8 @@
 //! one-thread pool of their own so that the reference solution is the same
 //! bit for bit whatever `--threads` says.
 
+use std::panic::AssertUnwindSafe;
+
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers;
 use faer::sparse::{SparseColMat, Triplet};
@@ -93,8 +95,17 @@ impl Lu {
             .num_threads(1)
             .build()
             .map_err(|e| Error::InvalidSetting(format!("cannot start a thread: {e}")))?;
+        // faer returns an error for a structurally singular matrix but panics on
+        // an exact zero pivot; both mean a singular system (e.g. a sliding face
+        // that nothing holds in its plane), reported as an error.
         let lu = serial
-            .install(|| matrix.sp_lu())
+            .install(|| std::panic::catch_unwind(AssertUnwindSafe(|| matrix.sp_lu())))
+            .map_err(|_| {
+                Error::InvalidMesh(
+                    "the ball-vertex system is singular (an exact zero pivot in its LU factorisation)"
+                        .into(),
+                )
+            })?
             .map_err(|e| Error::InvalidMesh(format!("the ball-vertex system is singular ({e})")))?;
         Ok(Lu { lu, start, serial })
     }
