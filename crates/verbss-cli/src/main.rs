@@ -4,6 +4,8 @@
 //! Exit codes: 0 success, 2 bad input (file, argument, setting), 3 a step
 //! inverted an element.
 
+#![forbid(unsafe_code)]
+
 mod convert;
 mod deform;
 mod demo;

@@ -56,6 +56,7 @@
 //! displacements.
 
 #![warn(missing_docs)]
+#![forbid(unsafe_code)]
 
 pub mod case;
 pub mod deform;
