@@ -267,6 +267,6 @@ mod tests {
             }
         }
         assert!(n >= 3);
-        assert_eq!(bfs_layers(&g, &[3]), vec![1, 1, 1, 0, 2, 2]);
+        assert_eq!(bfs_layers(&g, &[3]), vec![1, 2, 1, 0, 2, 2]);
     }
 }
