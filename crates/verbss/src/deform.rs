@@ -552,7 +552,6 @@ fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
     Ok(nrm)
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
