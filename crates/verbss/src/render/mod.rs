@@ -272,7 +272,9 @@ impl Gif {
         })
     }
 
-    /// Appends a frame (quantised to 256 colours).
+    /// Appends a frame, quantised to 255 colours learnt from it (NeuQuant)
+    /// plus [`colour::INVERTED`] exactly, so that inverted cells stay the loud
+    /// red of the PNG and SVG pictures however few pixels they cover.
     pub fn push(&mut self, image: &Image) -> Result<()> {
         if (image.width, image.height) != self.size {
             return Err(Error::InvalidSetting(format!(
@@ -280,8 +282,32 @@ impl Gif {
                 image.width, image.height, self.size.0, self.size.1
             )));
         }
-        let mut frame =
-            gif::Frame::from_rgb_speed(self.size.0 as u16, self.size.1 as u16, &image.rgb, 10);
+        let rgba: Vec<u8> = image
+            .rgb
+            .chunks_exact(3)
+            .flat_map(|p| [p[0], p[1], p[2], 255])
+            .collect();
+        let learnt = color_quant::NeuQuant::new(10, 255, &rgba);
+        let mut palette = learnt.color_map_rgb();
+        let inverted = (palette.len() / 3) as u8;
+        palette.extend_from_slice(&colour::INVERTED);
+        let pixels: Vec<u8> = rgba
+            .chunks_exact(4)
+            .map(|p| {
+                if p[..3] == colour::INVERTED {
+                    inverted
+                } else {
+                    learnt.index_of(p) as u8
+                }
+            })
+            .collect();
+        let mut frame = gif::Frame::from_palette_pixels(
+            self.size.0 as u16,
+            self.size.1 as u16,
+            pixels,
+            palette,
+            None,
+        );
         frame.delay = self.delay;
         self.encoder
             .write_frame(&frame)

@@ -225,7 +225,11 @@ fn png_and_gif_files_decode_to_the_pictures_written() {
     let gif_path = dir.path().join("naca.gif");
     let mut gif = Gif::create(&gif_path, image.width, image.height, 5).unwrap();
     gif.push(&image).unwrap();
-    gif.push(&image).unwrap();
+    // The inverted swatch, and a few inverted pixels added to the second
+    // frame, keep their exact red.
+    let mut marked = image.clone();
+    marked.rgb[..30].copy_from_slice(&colour::INVERTED.repeat(10));
+    gif.push(&marked).unwrap();
     let small = Image {
         width: 10,
         height: 10,
@@ -248,6 +252,13 @@ fn png_and_gif_files_decode_to_the_pictures_written() {
             (u32::from(frame.width), u32::from(frame.height)),
             (400, image.height)
         );
+        let red = frame
+            .buffer
+            .chunks_exact(4)
+            .filter(|p| p[..3] == colour::INVERTED)
+            .count();
+        let expected = if frames == 0 { &image } else { &marked };
+        assert_eq!(red, expected.count(colour::INVERTED), "frame {frames}");
         frames += 1;
     }
     assert_eq!(frames, 2);
