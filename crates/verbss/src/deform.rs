@@ -361,10 +361,13 @@ fn summarize(quality: &[f64], inversions: &[Inversion]) -> StepReport {
 /// The first two nodes (in node order of the second) at exactly the same
 /// position, if any.
 fn duplicate_nodes(mesh: &Mesh) -> Option<(usize, usize)> {
-    let mut seen: HashMap<Vec<u64>, usize> = HashMap::with_capacity(mesh.node_count());
+    let mut seen: HashMap<[u64; 3], usize> = HashMap::with_capacity(mesh.node_count());
     (0..mesh.node_count()).find_map(|i| {
-        // `+ 0.0` makes −0 and +0 the same key.
-        let key = mesh.point(i).iter().map(|x| (x + 0.0).to_bits()).collect();
+        // `+ 0.0` makes −0 and +0 the same key; a 2D point leaves z at 0.
+        let mut key = [0u64; 3];
+        for (k, x) in key.iter_mut().zip(mesh.point(i)) {
+            *k = (x + 0.0).to_bits();
+        }
         seen.insert(key, i).map(|first| (first, i))
     })
 }
