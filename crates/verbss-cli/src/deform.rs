@@ -6,7 +6,7 @@
 //! the run with exit code 3, the last valid mesh in OUT and the failed state
 //! beside it (`OUT-STEM.failed.vtu`).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::bail;
@@ -17,7 +17,7 @@ use verbss::motion::{Attachment, Motion, PositionSource};
 use verbss::solve::{Method, Solver};
 
 use crate::render::{PictureArgs, Recorder};
-use crate::run::{execute, Job};
+use crate::run::{execute, file_stem, Job};
 
 /// Arguments of `verbss deform`.
 #[derive(Args)]
@@ -180,7 +180,7 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
         _ => PathBuf::from("."),
     };
     let job = Job {
-        name: stem(&args.output),
+        name: file_stem(&args.output),
         source: args.mesh.display().to_string(),
         mesh,
         attachments: vec![Attachment {
@@ -192,24 +192,10 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
         series: false,
         final_mesh: true,
         report: args.report.clone(),
-        extension: extension(format).into(),
+        extension: format.extension().into(),
         dir,
     };
     let mut recorder = Recorder::new(&args.pictures, &job.mesh, job.settings.steps, None);
     let summary = execute(&job, args.quiet, &mut recorder)?;
     Ok(summary.print(&job))
-}
-
-fn stem(path: &Path) -> String {
-    path.file_stem()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "mesh".into())
-}
-
-fn extension(format: Format) -> &'static str {
-    match format {
-        Format::Msh => "msh",
-        Format::Su2 => "su2",
-        Format::Vtu => "vtu",
-    }
 }

@@ -72,7 +72,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
     Ok(summary.print(&job))
 }
 
-fn file_stem(path: &Path) -> String {
+/// The file name without its extension (`mesh` when there is none).
+pub fn file_stem(path: &Path) -> String {
     path.file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "mesh".into())

@@ -56,21 +56,27 @@ pub enum Format {
 }
 
 impl Format {
+    /// The format's file extension, without the dot.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Format::Msh => "msh",
+            Format::Su2 => "su2",
+            Format::Vtu => "vtu",
+        }
+    }
+
     /// The format named by a path's extension.
     pub fn from_path(path: &Path) -> Result<Format> {
-        match path
+        let ext = path
             .extension()
             .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase)
-            .as_deref()
-        {
-            Some("msh") => Ok(Format::Msh),
-            Some("su2") => Ok(Format::Su2),
-            Some("vtu") => Ok(Format::Vtu),
-            _ => Err(Error::UnknownFormat {
+            .map(str::to_ascii_lowercase);
+        [Format::Msh, Format::Su2, Format::Vtu]
+            .into_iter()
+            .find(|f| ext.as_deref() == Some(f.extension()))
+            .ok_or_else(|| Error::UnknownFormat {
                 path: path.to_path_buf(),
-            }),
-        }
+            })
     }
 }
 
