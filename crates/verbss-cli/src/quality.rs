@@ -4,8 +4,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
-use serde_json::{json, Map, Value};
-use verbss::{io, quality, Mesh};
+use serde_json::Value;
+use verbss::{io, quality};
 
 /// Arguments of `verbss quality`.
 #[derive(Args)]
@@ -20,42 +20,13 @@ pub struct QualityArgs {
 /// Runs `verbss quality`.
 pub fn run(args: QualityArgs) -> anyhow::Result<ExitCode> {
     let mesh = io::read(&args.mesh)?;
-    let value = summary(&mesh);
+    let value = quality::summary_json(&mesh);
     if args.json {
         println!("{}", serde_json::to_string(&value)?);
     } else {
         print_table(&args.mesh, &value);
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// The JSON summary: dimension, counts per kind, distinct nodes per group,
-/// quality (min, mean, the paper's five bins) and the inverted count. The mesh
-/// is measured against its own orientation, so `inverted` counts tangled or
-/// degenerate elements.
-pub fn summary(mesh: &Mesh) -> Value {
-    let mut kinds = Map::new();
-    for kind in verbss::CellKind::ALL {
-        let count = mesh.cells.kinds.iter().filter(|&&k| k == kind).count();
-        if count > 0 {
-            kinds.insert(kind.name().to_string(), json!(count));
-        }
-    }
-    let mut groups = Map::new();
-    for g in &mesh.groups {
-        groups.insert(g.name.clone(), json!(g.nodes().len()));
-    }
-    let reference = quality::orientation(mesh);
-    let report = quality::report(mesh, &mesh.coords, &reference);
-    json!({
-        "dimension": mesh.dim,
-        "nodes": mesh.node_count(),
-        "elements": mesh.cell_count(),
-        "kinds": kinds,
-        "groups": groups,
-        "quality": report.quality,
-        "inverted": report.inverted,
-    })
 }
 
 fn print_table(path: &std::path::Path, v: &Value) {

@@ -323,6 +323,29 @@ impl Deformer {
         Ok(report)
     }
 
+    /// Replaces the motion of attachment `k` (in the order given to
+    /// [`Deformer::new`]) from the next step on: how a coupled solver feeds
+    /// each step's boundary positions
+    /// ([`crate::motion::PositionSource::Given`]). The node roles were fixed
+    /// by [`Deformer::new`], so only a moving motion can be replaced, and
+    /// only by a moving one.
+    pub fn set_motion(&mut self, k: usize, motion: Motion) -> Result<()> {
+        let count = self.motions.len();
+        let Some(old) = self.motions.get(k) else {
+            return Err(Error::InvalidSetting(format!(
+                "there is no attachment {k} (the deformer has {count})"
+            )));
+        };
+        if !(old.moves() && motion.moves()) {
+            return Err(Error::InvalidSetting(format!(
+                "attachment {k}: only a moving motion can replace a moving motion"
+            )));
+        }
+        motion.validate(self.mesh.dim)?;
+        self.motions[k] = motion;
+        Ok(())
+    }
+
     /// [`Deformer::step`] to the step after the current one.
     pub fn advance(&mut self) -> Result<StepReport> {
         self.step(self.current_step() + 1)
@@ -784,6 +807,61 @@ mod tests {
             e.to_string(),
             "step 2: element 1 inverted at (1.333333, 0.333333), signed volume -5.000e-1 (2 inverted element(s))"
         );
+    }
+
+    #[test]
+    fn given_positions_each_step_match_the_translation_they_trace() {
+        let mesh = square(4);
+        let d = [0.1, 0.05, 0.0];
+        let translation = Motion::Translation { displacement: d };
+        let given = Motion::Positions(PositionSource::Given(HashMap::new()));
+        let fixed = attach(&["bottom"], Motion::Fixed);
+        let mut by_motion = Deformer::new(
+            &mesh,
+            &[attach(&["left"], translation), fixed.clone()],
+            Settings::new(3),
+        )
+        .unwrap();
+        let mut by_data =
+            Deformer::new(&mesh, &[attach(&["left"], given), fixed], Settings::new(3)).unwrap();
+        assert_eq!(
+            by_data.step(1).unwrap_err().to_string(),
+            "invalid setting: the positions give no position for node index 0 of a moving group"
+        );
+        assert_eq!(
+            by_data
+                .set_motion(1, Motion::Fixed)
+                .unwrap_err()
+                .to_string(),
+            "invalid setting: attachment 1: only a moving motion can replace a moving motion"
+        );
+        assert_eq!(
+            by_data
+                .set_motion(2, Motion::Fixed)
+                .unwrap_err()
+                .to_string(),
+            "invalid setting: there is no attachment 2 (the deformer has 2)"
+        );
+        for n in 1..=3 {
+            let f = n as f64 / 3.0;
+            let left = mesh.group("left").unwrap().nodes();
+            let positions = left
+                .iter()
+                .map(|&i| {
+                    (
+                        i,
+                        vec![mesh.point(i)[0] + f * d[0], mesh.point(i)[1] + f * d[1]],
+                    )
+                })
+                .collect();
+            by_data
+                .set_motion(0, Motion::Positions(PositionSource::Given(positions)))
+                .unwrap();
+            let a = by_motion.advance().unwrap();
+            let b = by_data.advance().unwrap();
+            assert_eq!((a.step, a.iterations), (b.step, b.iterations));
+            assert_eq!(by_motion.current().coords, by_data.current().coords);
+        }
     }
 
     #[test]

@@ -52,6 +52,10 @@ pub enum PositionSource {
     /// zero-padded to W digits) replaced by the step number; the file of step
     /// `n` holds the positions at step `n`.
     PerStep(PathBuf),
+    /// Positions for the step about to be taken, whatever its number:
+    /// `x(n) = P` (node index → point). A coupled solver sets them before
+    /// each step with [`crate::deform::Deformer::set_motion`].
+    Given(HashMap<usize, Vec<f64>>),
 }
 
 /// A boundary motion. Points are `D` numbers (2 or 3); 3-vectors given for a
@@ -350,6 +354,10 @@ impl Motion {
                 for d in 0..dim {
                     p[d] = (1.0 - f) * p[d] + f * target[d];
                 }
+            }
+            Motion::Positions(PositionSource::Given(table)) => {
+                let target = table.get(&node).ok_or_else(|| missing(node))?;
+                p.copy_from_slice(&target[..dim]);
             }
             Motion::Positions(PositionSource::PerStep(_)) => {
                 if clock.step > 0 {

@@ -371,5 +371,36 @@ pub fn report(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Report {
     }
 }
 
+/// The mesh summary that `verbss quality --json` prints, as JSON: dimension,
+/// node and element counts, element counts per kind (meshio names), distinct
+/// nodes per group, quality (min, mean, the paper's five bins) and the
+/// inverted count. The mesh is measured against its own orientation
+/// ([`orientation`]), so `inverted` counts tangled or degenerate elements.
+pub fn summary_json(mesh: &Mesh) -> serde_json::Value {
+    use serde_json::{json, Map};
+    let mut kinds = Map::new();
+    for kind in CellKind::ALL {
+        let count = mesh.cells.kinds.iter().filter(|&&k| k == kind).count();
+        if count > 0 {
+            kinds.insert(kind.name().to_string(), json!(count));
+        }
+    }
+    let mut groups = Map::new();
+    for g in &mesh.groups {
+        groups.insert(g.name.clone(), json!(g.nodes().len()));
+    }
+    let reference = orientation(mesh);
+    let report = report(mesh, &mesh.coords, &reference);
+    json!({
+        "dimension": mesh.dim,
+        "nodes": mesh.node_count(),
+        "elements": mesh.cell_count(),
+        "kinds": kinds,
+        "groups": groups,
+        "quality": report.quality,
+        "inverted": report.inverted,
+    })
+}
+
 #[cfg(test)]
 mod tests;
