@@ -150,6 +150,27 @@ pub fn ldlt_solve<const D: usize>(f: &[f64], b: &[f64; D]) -> [f64; D] {
     x
 }
 
+/// `A x` from the packed LDLᵀ factor of [`ldlt_factor`]: `y = Lᵀ x`,
+/// `z = D y`, `A x = L z`.
+#[inline]
+pub fn ldlt_mul<const D: usize>(f: &[f64], x: &[f64; D]) -> [f64; D] {
+    let f = &f[..packed_len(D)];
+    let mut y = *x;
+    for i in 0..D {
+        for k in i + 1..D {
+            y[i] += f[packed_index(k, i)] * x[k];
+        }
+        y[i] /= f[packed_index(i, i)];
+    }
+    let mut z = y;
+    for i in (0..D).rev() {
+        for k in 0..i {
+            z[i] += f[packed_index(i, k)] * y[k];
+        }
+    }
+    z
+}
+
 /// The point of segment `[a, b]` nearest to `x` and its weights `(w_a, w_b)`:
 /// `t = (x−a)·(b−a)/|b−a|²` clamped to `[0, 1]`, `p = a + t (b−a)`, `w = (1−t, t)`.
 pub fn nearest_on_segment<const D: usize>(
@@ -331,6 +352,23 @@ mod tests {
             -1.0
         );
         assert_eq!(cross(&[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0]), [0.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn ldlt_mul_multiplies_by_the_factored_matrix() {
+        let a = [4.0, 1.0, 3.0, -0.5, 0.25, 2.0];
+        let mut f = [0.0; 6];
+        assert!(ldlt_factor::<3>(&a, &mut f));
+        let x = [0.3, -1.2, 2.5];
+        let want = packed_mul::<3>(&a, &x);
+        let got = ldlt_mul::<3>(&f, &x);
+        for k in 0..3 {
+            assert!((got[k] - want[k]).abs() < 1e-14, "{got:?} vs {want:?}");
+        }
+        let back = ldlt_solve::<3>(&f, &got);
+        for k in 0..3 {
+            assert!((back[k] - x[k]).abs() < 1e-14);
+        }
     }
 
     #[test]

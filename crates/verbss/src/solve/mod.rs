@@ -65,7 +65,11 @@
 //! last sweep's change, not the error: with ω close to 2 or a slowly
 //! converging mesh the error can be many times larger.
 
+mod accel;
+mod amg;
+mod bsr;
 mod direct;
+mod gmres;
 mod laplacian;
 mod sor;
 mod verbss;
@@ -118,6 +122,25 @@ pub enum Solver {
     Direct,
 }
 
+/// How the block systems of [`Method::Verbss`] and [`Method::Spring`] are solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Accel {
+    /// Plain VerBSS sweeps (block SOR) until the eq.-8 test: the paper's method.
+    #[default]
+    None,
+    /// GMRES preconditioned by a smoothed-aggregation multigrid V-cycle with
+    /// the VerBSS sweep as its finest smoother; stops when the estimated
+    /// root-mean-square error of the unknowns is below the threshold
+    /// (`docs/acceleration.md`).
+    Amg,
+    /// [`Accel::Amg`] for systems of at least [`AUTO_AMG_NODES`] unknown nodes,
+    /// [`Accel::None`] below.
+    Auto,
+}
+
+/// The size from which [`Accel::Auto`] uses the multigrid.
+pub const AUTO_AMG_NODES: usize = 20_000;
+
 /// Settings of one solve (one time step).
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
@@ -141,6 +164,8 @@ pub struct SolveParams {
     pub threads: usize,
     /// Record the eq.-8 value of every sweep in [`SolveInfo::history`].
     pub record_history: bool,
+    /// Plain sweeps or the multigrid-accelerated solve.
+    pub accel: Accel,
 }
 
 impl Default for SolveParams {
@@ -154,6 +179,7 @@ impl Default for SolveParams {
             max_iterations: 2000,
             threads: 1,
             record_history: false,
+            accel: Accel::None,
         }
     }
 }
@@ -178,6 +204,10 @@ pub struct SolveInfo {
     pub history: Vec<f64>,
     /// Whether this call (re)built the springs and factors.
     pub rebuilt: bool,
+    /// Levels of the multigrid of an accelerated solve (0: plain sweeps or direct).
+    pub levels: usize,
+    /// Whether this call (re)built the multigrid hierarchy.
+    pub hierarchy_built: bool,
 }
 
 /// The default roles of a mesh: [`NodeRole::Fixed`] on every boundary node
@@ -203,6 +233,7 @@ pub struct Engine {
     normals: Vec<[f64; 3]>,
     built: Option<Built>,
     pool: Option<(usize, rayon::ThreadPool)>,
+    accelerator: Option<accel::Accelerator>,
 }
 
 /// What one reference configuration and method need: the system and scratch.
@@ -369,6 +400,7 @@ impl Engine {
             normals: unit,
             built: None,
             pool: None,
+            accelerator: None,
         })
     }
 
@@ -414,6 +446,7 @@ impl Engine {
             normals,
             built,
             pool,
+            accelerator,
         } = self;
         let built = built.as_mut().expect("built above");
         let pool = &pool.as_ref().expect("started above").1;
@@ -428,6 +461,28 @@ impl Engine {
                 _ => direct::Lu::new::<3>(&built.layout, blocks)?,
             });
         }
+        let amg = built.layout.len() > 0
+            && matches!(params.method, Method::Verbss | Method::Spring)
+            && match params.accel {
+                Accel::None => false,
+                Accel::Amg => true,
+                Accel::Auto => built.layout.len() >= AUTO_AMG_NODES,
+            };
+        let mut hierarchy_built = false;
+        if amg
+            && !accelerator
+                .as_ref()
+                .is_some_and(|a| a.fits(params.method, &built.layout))
+        {
+            *accelerator = None;
+            let method = params.method;
+            *accelerator = Some(pool.install(|| match conn.dim {
+                2 => accel::Accelerator::new::<2>(built, method),
+                _ => accel::Accelerator::new::<3>(built, method),
+            })?);
+            hierarchy_built = true;
+        }
+        let accelerator = if amg { accelerator.as_mut() } else { None };
         let form_seconds = start.elapsed().as_secs_f64();
         let solving = Instant::now();
         let scale = prescribed_scale(conn.dim, roles, normals, displacement);
@@ -437,13 +492,14 @@ impl Engine {
             params.tolerance * scale
         };
         let mut info = match conn.dim {
-            2 => run::<2>(built, pool, displacement, params, threshold)?,
-            _ => run::<3>(built, pool, displacement, params, threshold)?,
+            2 => run::<2>(built, pool, accelerator, displacement, params, threshold)?,
+            _ => run::<3>(built, pool, accelerator, displacement, params, threshold)?,
         };
         info.form_seconds = form_seconds;
         info.solve_seconds = solving.elapsed().as_secs_f64();
         info.seconds = start.elapsed().as_secs_f64();
         info.rebuilt = !reuse;
+        info.hierarchy_built = hierarchy_built;
         Ok(info)
     }
 
@@ -500,6 +556,15 @@ impl Engine {
                 "tolerance {} is not a finite number ≥ 0",
                 params.tolerance
             )));
+        }
+        if params.accel == Accel::Amg
+            && !matches!(params.method, Method::Verbss | Method::Spring)
+        {
+            return Err(Error::InvalidSetting(
+                "--accel amg solves the block systems of --method verbss and spring \
+                 (not ball-vertex or laplacian)"
+                    .into(),
+            ));
         }
         if params.max_iterations == 0 {
             return Err(Error::InvalidSetting(
@@ -688,6 +753,7 @@ fn prescribed_scale(dim: usize, roles: &[NodeRole], normals: &[[f64; 3]], u: &[f
 fn run<const D: usize>(
     built: &mut Built,
     pool: &rayon::ThreadPool,
+    accelerator: Option<&mut accel::Accelerator>,
     displacement: &mut [f64],
     params: &SolveParams,
     threshold: f64,
@@ -740,7 +806,21 @@ fn run<const D: usize>(
                 _,
             ) => {
                 let blocks: &NodeBlocks = blocks;
-                if *factored {
+                if let Some(accelerator) = accelerator {
+                    pool.install(|| {
+                        accelerator.solve::<D>(
+                            blocks,
+                            layout,
+                            constant,
+                            work,
+                            next,
+                            partials,
+                            params.max_iterations,
+                            threshold,
+                            params.record_history,
+                        )
+                    })
+                } else if *factored {
                     iterate::<D, _>(
                         pool,
                         layout,
@@ -849,7 +929,8 @@ where
     let mut first = None;
     pool.install(|| {
         while info.iterations < params.max_iterations {
-            let value = sweep::<D, F>(layout, work, next, partials, &update) / layout.dofs as f64;
+            let value =
+                sweep::<D, F>(layout, work, next, partials, &update, false) / layout.dofs as f64;
             info.iterations += 1;
             info.residual = value;
             if params.record_history {
@@ -873,19 +954,23 @@ where
     Ok(info)
 }
 
-/// One sweep, colour by colour, each colour's nodes in parallel chunks.
-/// Returns the sum of absolute changes, added chunk by chunk in order.
+/// One sweep, colour by colour (last colour first when `reverse`), each
+/// colour's nodes in parallel chunks. Returns the sum of absolute changes,
+/// added chunk by chunk in order.
 fn sweep<const D: usize, F>(
     layout: &Layout,
     work: &mut [f64],
     next: &mut [f64],
     partials: &mut [f64],
     update: &F,
+    reverse: bool,
 ) -> f64
 where
     F: Fn(usize, &[f64]) -> ([f64; D], f64) + Sync,
 {
-    for c in 0..layout.colour_starts.len() - 1 {
+    let colours = layout.colour_starts.len() - 1;
+    for k in 0..colours {
+        let c = if reverse { colours - 1 - k } else { k };
         let (start, end) = (layout.colour_starts[c], layout.colour_starts[c + 1]);
         let sums = &mut partials[layout.chunk_starts[c]..layout.chunk_starts[c + 1]];
         let current: &[f64] = work;
@@ -905,4 +990,24 @@ where
         work[D * start..D * end].copy_from_slice(&next[D * start..D * end]);
     }
     partials.iter().sum()
+}
+
+/// `Σ f(x_i)`, summed in fixed chunks and then chunk by chunk in order, so
+/// that the result is the same for every number of threads.
+pub(crate) fn chunked_sum(x: &[f64], f: impl Fn(f64) -> f64 + Sync) -> f64 {
+    x.par_chunks(4 * CHUNK)
+        .map(|c| c.iter().map(|&v| f(v)).sum::<f64>())
+        .collect::<Vec<_>>()
+        .iter()
+        .sum()
+}
+
+/// `Σ a_i b_i`, summed like [`chunked_sum`].
+pub(crate) fn chunked_dot(a: &[f64], b: &[f64]) -> f64 {
+    a.par_chunks(4 * CHUNK)
+        .zip(b.par_chunks(4 * CHUNK))
+        .map(|(x, y)| x.iter().zip(y).map(|(u, v)| u * v).sum::<f64>())
+        .collect::<Vec<_>>()
+        .iter()
+        .sum()
 }

@@ -1,0 +1,183 @@
+//! The accelerated solve ([`super::Accel::Amg`]): GMRES on the node-block
+//! system, preconditioned by one multigrid V-cycle whose finest-level
+//! smoother is the VerBSS sweep (docs/acceleration.md).
+//!
+//! The unknowns are the `D` components of each unknown node in mesh axes; a
+//! sliding node's normal component never changes (its residual and every
+//! correction are projected on its plane), so the prescribed normal
+//! displacement stays exact. The residual of node `p` is
+//! `ρ_p = c_p + Σ_j B_pj u_j − K_pp u_p`, projected for a sliding node.
+//!
+//! The multigrid hierarchy is the expensive part of the setup. It is kept
+//! while the unknowns keep their order and the method its springs, and
+//! reused for the next steps even when the springs are rebuilt on moved
+//! coordinates (updated reference): the fine level always uses the current
+//! springs, so the answer is unchanged and only the preconditioner ages. It
+//! is rebuilt when a solve needs more than 1.5 times (plus 2) the iterations
+//! of the first solve after the last build.
+
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use super::amg::Hierarchy;
+use super::gmres::{self, Workspace};
+use super::{coupled, rotate, sweep, unrotate, verbss, Built, Layout, Method, SolveInfo, CHUNK};
+use crate::error::Result;
+use crate::geometry::{ldlt_mul, packed_len, point};
+use crate::springs::NodeBlocks;
+
+/// Krylov iterations between GMRES restarts.
+const RESTART: usize = 20;
+/// Relaxation factor of the finest level's VerBSS smoothing sweeps.
+const SMOOTHING_OMEGA: f64 = 1.0;
+
+/// The hierarchy and the vectors the accelerated solve keeps between steps.
+pub(crate) struct Accelerator {
+    hierarchy: Hierarchy,
+    method: Method,
+    /// Iterations of the first solve after the hierarchy was built.
+    baseline: Option<usize>,
+    /// Rebuild before the next solve.
+    stale: bool,
+    workspace: Workspace,
+    /// Residual, correction and zero vectors of the fine level.
+    vectors: [Vec<f64>; 3],
+}
+
+impl Accelerator {
+    /// Whether this accelerator can serve a solve of `method` on `layout`.
+    pub(crate) fn fits(&self, method: Method, layout: &Layout) -> bool {
+        !self.stale && self.method == method && self.hierarchy.order == layout.order
+    }
+
+    /// Builds the hierarchy for the system of `built` (on its pool).
+    pub(crate) fn new<const D: usize>(built: &Built, method: Method) -> Result<Accelerator> {
+        let super::System::Blocks { blocks, .. } = &built.system else {
+            unreachable!("the accelerated solve works on spring blocks")
+        };
+        let hierarchy = Hierarchy::new::<D>(blocks, &built.layout, &built.coords)?;
+        let n = D * built.layout.order.len();
+        Ok(Accelerator {
+            hierarchy,
+            method,
+            baseline: None,
+            stale: false,
+            workspace: Workspace::new(n, RESTART),
+            vectors: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+        })
+    }
+
+    /// Solves the system of `built` for `work` (the initial guess on entry)
+    /// with right-hand side `constant`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn solve<const D: usize>(
+        &mut self,
+        blocks: &NodeBlocks,
+        layout: &Layout,
+        constant: &[f64],
+        work: &mut [f64],
+        next: &mut [f64],
+        partials: &mut [f64],
+        max_iterations: usize,
+        threshold: f64,
+        record_history: bool,
+    ) -> Result<SolveInfo> {
+        let started = Instant::now();
+        let mut history = Vec::new();
+        let Accelerator {
+            hierarchy,
+            workspace,
+            vectors: [r, e, zeros],
+            ..
+        } = self;
+        let zeros: &[f64] = zeros;
+        let outcome = gmres::solve(
+            workspace,
+            work,
+            layout.dofs,
+            threshold,
+            max_iterations,
+            |x, out| residual::<D>(blocks, layout, constant, x, out),
+            |v, out| {
+                residual::<D>(blocks, layout, zeros, v, out);
+                out.par_iter_mut().for_each(|x| *x = -*x);
+            },
+            |rhs, out| {
+                r.copy_from_slice(rhs);
+                let r: &[f64] = r;
+                hierarchy.vcycle(
+                    r,
+                    e,
+                    |e: &mut [f64], r: &[f64], reverse: bool| {
+                        sweep::<D, _>(
+                            layout,
+                            e,
+                            next,
+                            partials,
+                            &|p, w| verbss::update::<D>(blocks, layout, r, SMOOTHING_OMEGA, p, w),
+                            reverse,
+                        );
+                    },
+                    |r: &[f64], e: &[f64], out: &mut [f64]| {
+                        residual::<D>(blocks, layout, r, e, out);
+                    },
+                );
+                out.copy_from_slice(e);
+            },
+            record_history.then_some(&mut history),
+        )?;
+        match self.baseline {
+            None => self.baseline = Some(outcome.iterations),
+            Some(b) => self.stale = outcome.iterations > b + b / 2 + 2,
+        }
+        Ok(SolveInfo {
+            iterations: outcome.iterations,
+            residual: outcome.estimate,
+            converged: outcome.converged,
+            solve_seconds: started.elapsed().as_secs_f64(),
+            history,
+            levels: self.hierarchy.levels(),
+            ..SolveInfo::default()
+        })
+    }
+}
+
+/// `out_p = ρ_p(x)` for every position: `c_p + Σ_j B_pj x_j − K_pp x_p`,
+/// projected on the plane of a sliding node (see the module documentation).
+/// With `x` a correction and `constant = r`, this is `r − A x`.
+fn residual<const D: usize>(
+    blocks: &NodeBlocks,
+    layout: &Layout,
+    constant: &[f64],
+    x: &[f64],
+    out: &mut [f64],
+) {
+    let s = packed_len(D);
+    out.par_chunks_mut(D * CHUNK)
+        .enumerate()
+        .for_each(|(t, chunk)| {
+            for (k, o) in chunk.chunks_exact_mut(D).enumerate() {
+                let p = t * CHUNK + k;
+                let b = coupled::<D>(blocks, constant, p, x);
+                let factor = &blocks.diag[s * p..s * (p + 1)];
+                let xp = point::<D>(x, p);
+                let value = match layout.frame::<D>(p) {
+                    None => {
+                        let kx = ldlt_mul::<D>(factor, &xp);
+                        std::array::from_fn(|k| b[k] - kx[k])
+                    }
+                    Some(frame) => {
+                        let mut rb = rotate(&frame, &b);
+                        let ka = ldlt_mul::<D>(factor, &rotate(&frame, &xp));
+                        for k in 0..D - 1 {
+                            rb[k] -= ka[k];
+                        }
+                        rb[D - 1] = 0.0;
+                        unrotate(&frame, &rb)
+                    }
+                };
+                o.copy_from_slice(&value);
+            }
+        });
+}

@@ -1,0 +1,336 @@
+//! Block sparse rows: the matrices of the multigrid hierarchy (`solve/amg.rs`).
+//!
+//! A [`Bsr`] holds `rows × cols` blocks of `r × c` dense numbers, row-major;
+//! block row `i` is entries `offsets[i]..offsets[i + 1]`, entry `e` has block
+//! column `columns[e]` and values `values[r·c·e..r·c·(e + 1)]`. Every
+//! operation works block row by block row, so its result does not depend on
+//! how the rows are spread over threads.
+
+use rayon::prelude::*;
+
+/// Block rows handled by one parallel task.
+const ROWS_PER_TASK: usize = 256;
+
+/// A block sparse matrix (see the module documentation).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Bsr {
+    /// Block rows.
+    pub(crate) rows: usize,
+    /// Block columns.
+    pub(crate) cols: usize,
+    /// Rows of one block.
+    pub(crate) r: usize,
+    /// Columns of one block.
+    pub(crate) c: usize,
+    /// Start of each block row, plus the end.
+    pub(crate) offsets: Vec<usize>,
+    /// Block column of each entry.
+    pub(crate) columns: Vec<u32>,
+    /// The blocks, `r·c` numbers each.
+    pub(crate) values: Vec<f64>,
+}
+
+impl Bsr {
+    /// The block of entry `e`.
+    #[inline]
+    pub(crate) fn block(&self, e: usize) -> &[f64] {
+        let s = self.r * self.c;
+        &self.values[s * e..s * (e + 1)]
+    }
+
+    /// Builds the matrix block row by block row in parallel: `row(i, columns,
+    /// values)` appends row `i`'s entries, reusing per-task scratch `S`.
+    pub(crate) fn from_rows<S, I, F>(
+        rows: usize,
+        cols: usize,
+        (r, c): (usize, usize),
+        init: I,
+        row: F,
+    ) -> Bsr
+    where
+        I: Fn() -> S + Sync + Send,
+        F: Fn(&mut S, usize, &mut Vec<u32>, &mut Vec<f64>) + Sync,
+    {
+        let parts: Vec<(Vec<usize>, Vec<u32>, Vec<f64>)> = (0..rows.div_ceil(ROWS_PER_TASK))
+            .into_par_iter()
+            .map_init(init, |scratch, t| {
+                let (mut lens, mut columns, mut values) = (Vec::new(), Vec::new(), Vec::new());
+                for i in t * ROWS_PER_TASK..((t + 1) * ROWS_PER_TASK).min(rows) {
+                    let before = columns.len();
+                    row(scratch, i, &mut columns, &mut values);
+                    lens.push(columns.len() - before);
+                }
+                (lens, columns, values)
+            })
+            .collect();
+        let total: usize = parts.iter().map(|p| p.1.len()).sum();
+        let mut m = Bsr {
+            rows,
+            cols,
+            r,
+            c,
+            offsets: Vec::with_capacity(rows + 1),
+            columns: Vec::with_capacity(total),
+            values: Vec::with_capacity(total * r * c),
+        };
+        m.offsets.push(0);
+        for (lens, columns, values) in parts {
+            for len in lens {
+                m.offsets.push(m.offsets.last().copied().unwrap_or(0) + len);
+            }
+            m.columns.extend(columns);
+            m.values.extend(values);
+        }
+        m
+    }
+
+    /// `y = A x`.
+    pub(crate) fn mul(&self, x: &[f64], y: &mut [f64]) {
+        let r = self.r;
+        y.par_chunks_mut(r * ROWS_PER_TASK)
+            .enumerate()
+            .for_each(|(t, out)| {
+                for (k, yi) in out.chunks_exact_mut(r).enumerate() {
+                    self.row_mul(t * ROWS_PER_TASK + k, x, yi);
+                }
+            });
+    }
+
+    /// `y_i = Σ_j A_ij x_j` of block row `i`.
+    #[inline]
+    pub(crate) fn row_mul(&self, i: usize, x: &[f64], yi: &mut [f64]) {
+        let (r, c) = (self.r, self.c);
+        yi.fill(0.0);
+        for e in self.offsets[i]..self.offsets[i + 1] {
+            let b = self.block(e);
+            let j = self.columns[e] as usize;
+            let xj = &x[c * j..c * (j + 1)];
+            for a in 0..r {
+                yi[a] += (0..c).map(|k| b[a * c + k] * xj[k]).sum::<f64>();
+            }
+        }
+    }
+
+    /// `Aᵀ`, with transposed blocks; rows keep their entries in increasing
+    /// column order.
+    pub(crate) fn transpose(&self) -> Bsr {
+        let (r, c) = (self.r, self.c);
+        let mut count = vec![0usize; self.cols + 1];
+        for &j in &self.columns {
+            count[j as usize + 1] += 1;
+        }
+        for j in 0..self.cols {
+            count[j + 1] += count[j];
+        }
+        let nnz = self.columns.len();
+        let mut columns = vec![0u32; nnz];
+        let mut values = vec![0.0; nnz * r * c];
+        let mut fill = count.clone();
+        for i in 0..self.rows {
+            for e in self.offsets[i]..self.offsets[i + 1] {
+                let j = self.columns[e] as usize;
+                let slot = fill[j];
+                fill[j] += 1;
+                columns[slot] = i as u32;
+                let b = self.block(e);
+                let t = &mut values[r * c * slot..r * c * (slot + 1)];
+                for a in 0..r {
+                    for k in 0..c {
+                        t[k * r + a] = b[a * c + k];
+                    }
+                }
+            }
+        }
+        Bsr {
+            rows: self.cols,
+            cols: self.rows,
+            r: c,
+            c: r,
+            offsets: count,
+            columns,
+            values,
+        }
+    }
+
+    /// `A B` (row by row, Gustavson): blocks `r × c` times `c × c'`.
+    pub(crate) fn product(&self, other: &Bsr) -> Bsr {
+        assert_eq!(self.c, other.r, "block sizes of a product");
+        let (r, c, c2) = (self.r, self.c, other.c);
+        let s2 = r * c2;
+        Bsr::from_rows(
+            self.rows,
+            other.cols,
+            (r, c2),
+            || (vec![u32::MAX; other.cols], Vec::<u32>::new(), Vec::<f64>::new()),
+            |(slot, cols, acc), i, columns, values| {
+                cols.clear();
+                acc.clear();
+                for e in self.offsets[i]..self.offsets[i + 1] {
+                    let a = self.block(e);
+                    let k = self.columns[e] as usize;
+                    for f in other.offsets[k]..other.offsets[k + 1] {
+                        let j = other.columns[f] as usize;
+                        if slot[j] == u32::MAX {
+                            slot[j] = cols.len() as u32;
+                            cols.push(j as u32);
+                            acc.extend(std::iter::repeat_n(0.0, s2));
+                        }
+                        let out = &mut acc[s2 * slot[j] as usize..s2 * (slot[j] as usize + 1)];
+                        let b = other.block(f);
+                        for x in 0..r {
+                            for y in 0..c2 {
+                                out[x * c2 + y] += (0..c).map(|z| a[x * c + z] * b[z * c2 + y]).sum::<f64>();
+                            }
+                        }
+                    }
+                }
+                for &j in cols.iter() {
+                    slot[j as usize] = u32::MAX;
+                }
+                columns.extend_from_slice(cols);
+                values.extend_from_slice(acc);
+            },
+        )
+    }
+
+    /// The entry of block `(i, j)`, if stored.
+    pub(crate) fn find(&self, i: usize, j: usize) -> Option<usize> {
+        (self.offsets[i]..self.offsets[i + 1]).find(|&e| self.columns[e] as usize == j)
+    }
+}
+
+/// The inverse of the dense `n × n` row-major matrix `a` by Gauss–Jordan
+/// elimination with partial pivoting; `None` when a pivot is zero or not
+/// finite.
+pub(crate) fn invert(a: &[f64], n: usize) -> Option<Vec<f64>> {
+    let mut m = a.to_vec();
+    let mut inv: Vec<f64> = (0..n * n)
+        .map(|k| f64::from(u8::from(k / n == k % n)))
+        .collect();
+    for col in 0..n {
+        let pivot = (col..n).max_by(|&x, &y| m[x * n + col].abs().total_cmp(&m[y * n + col].abs()))?;
+        let p = m[pivot * n + col];
+        if !(p.is_finite() && p != 0.0) {
+            return None;
+        }
+        if pivot != col {
+            for k in 0..n {
+                m.swap(pivot * n + k, col * n + k);
+                inv.swap(pivot * n + k, col * n + k);
+            }
+        }
+        for k in 0..n {
+            m[col * n + k] /= p;
+            inv[col * n + k] /= p;
+        }
+        for row in 0..n {
+            let f = m[row * n + col];
+            if row != col && f != 0.0 {
+                for k in 0..n {
+                    m[row * n + k] -= f * m[col * n + k];
+                    inv[row * n + k] -= f * inv[col * n + k];
+                }
+            }
+        }
+    }
+    inv.iter().all(|v| v.is_finite()).then_some(inv)
+}
+
+/// `y = A x` for a dense row-major `r × c` block.
+#[inline]
+pub(crate) fn block_mul(a: &[f64], x: &[f64], y: &mut [f64]) {
+    let c = x.len();
+    for (k, yk) in y.iter_mut().enumerate() {
+        *yk = (0..c).map(|l| a[k * c + l] * x[l]).sum();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 3×2 block matrix of 2×1 blocks from dense rows.
+    fn dense_to_bsr(d: &[Vec<f64>], (r, c): (usize, usize)) -> Bsr {
+        let rows = d.len() / r;
+        let cols = d[0].len() / c;
+        Bsr::from_rows(
+            rows,
+            cols,
+            (r, c),
+            || (),
+            |_, i, columns, values| {
+                for j in 0..cols {
+                    let block: Vec<f64> = (0..r * c).map(|k| d[i * r + k / c][j * c + k % c]).collect();
+                    if block.iter().any(|&v| v != 0.0) {
+                        columns.push(j as u32);
+                        values.extend(block);
+                    }
+                }
+            },
+        )
+    }
+
+    fn to_dense(m: &Bsr) -> Vec<Vec<f64>> {
+        let mut d = vec![vec![0.0; m.cols * m.c]; m.rows * m.r];
+        for i in 0..m.rows {
+            for e in m.offsets[i]..m.offsets[i + 1] {
+                let j = m.columns[e] as usize;
+                for k in 0..m.r * m.c {
+                    d[i * m.r + k / m.c][j * m.c + k % m.c] += m.block(e)[k];
+                }
+            }
+        }
+        d
+    }
+
+    #[test]
+    fn product_transpose_and_mul_agree_with_dense_algebra() {
+        let a = vec![
+            vec![2.0, -1.0, 0.0, 0.0],
+            vec![0.5, 3.0, 0.0, 1.0],
+            vec![0.0, 0.0, 4.0, 0.0],
+            vec![1.0, 0.0, -2.0, 5.0],
+        ];
+        let p = vec![
+            vec![1.0, 0.0, 0.0],
+            vec![2.0, 0.0, 0.0],
+            vec![0.0, 1.0, -1.0],
+            vec![0.0, 3.0, 0.5],
+        ];
+        let am = dense_to_bsr(&a, (2, 2));
+        let pm = dense_to_bsr(&p, (2, 3));
+        let ap = to_dense(&am.product(&pm));
+        for i in 0..4 {
+            for j in 0..3 {
+                let want: f64 = (0..4).map(|k| a[i][k] * p[k][j]).sum();
+                assert_eq!(ap[i][j], want);
+            }
+        }
+        let pt = to_dense(&pm.transpose());
+        for i in 0..4 {
+            for j in 0..3 {
+                assert_eq!(pt[j][i], p[i][j]);
+            }
+        }
+        let x = [1.0, -2.0, 0.5, 3.0];
+        let mut y = [0.0; 4];
+        am.mul(&x, &mut y);
+        for i in 0..4 {
+            assert_eq!(y[i], (0..4).map(|k| a[i][k] * x[k]).sum::<f64>());
+        }
+        assert_eq!(am.find(1, 0), Some(am.offsets[1]));
+    }
+
+    #[test]
+    fn inverse_with_pivoting() {
+        let a = [0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
+        let inv = invert(&a, 3).expect("regular");
+        for i in 0..3 {
+            for j in 0..3 {
+                let v: f64 = (0..3).map(|k| a[i * 3 + k] * inv[k * 3 + j]).sum();
+                assert!((v - f64::from(u8::from(i == j))).abs() < 1e-14);
+            }
+        }
+        assert!(invert(&[1.0, 2.0, 2.0, 4.0], 2).is_none());
+    }
+}
