@@ -5,9 +5,9 @@ The paper gives neither the sections nor the slot geometry. We take:
 - main element (group `main`): NACA 2412, chord 1, leading edge at the origin;
 - slat (group `slat`): NACA 4412, chord 0.153, leading edge at
   (-0.11, -0.02), trailing edge up by 31.6 degrees, so that it sits above
-  the main element's nose with a slot of about 0.03;
+  the main element's nose with a slot of 0.028 (narrowest gap);
 - flap (group `flap`): NACA 4412, chord 0.3, leading edge at (0.96, -0.05),
-  deflected 30 degrees (trailing edge down), a slot of about 0.027 under the
+  deflected 30 degrees (trailing edge down), a slot of 0.043 (narrowest) under the
   main element's trailing edge;
 - far field (group `farfield`).
 Triangles are graded from size h at the elements (h/4 within 0.01 of each

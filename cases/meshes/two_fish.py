@@ -3,9 +3,11 @@
 The paper shows the fish but gives neither their shape nor the domain. We
 take two identical bodies of length 1 along +x, heads at x = 0, their axes
 0.5 apart (y = +0.25: group `fish1`, y = -0.25: group `fish2`), z = 0. Each
-body is lofted through elliptic sections: half-width the NACA 0012
-thickness (at most 0.06), half-height twice that (a laterally flattened
-body), from x = 0.005 to x = 0.97, the two ends closed by small flat caps.
+body is a smooth, laterally flattened ellipsoid: semi-axes 0.5 along the
+body, 0.06 across (y) and 0.12 up (z). (A first version lofted NACA 0012
+sections closed by small flat end caps; the eq. 11 shear of its thin tail
+inverted a tetrahedron whose four nodes all lie on the body, at the same
+step for every method: a boundary that inverts by itself.)
 The box (group `box`, fixed) spans [-1, 3] x [-1.5, 1.5] x [-1, 1].
 Tetrahedra of size h on the bodies grow to 12h at distance 1.2; h is chosen
 for a node count close to the paper's 20,840 nodes (108,322 tetrahedra).
@@ -13,31 +15,19 @@ for a node count close to the paper's 20,840 nodes (108,322 tetrahedra).
 Usage: python3 two_fish.py OUT.msh | --size H OUT.msh
 """
 
-import math
 import sys
 
 import gmsh
 
-SIZE = 0.01727
-
-
-def half_width(x):
-    """NACA 0012 half-thickness at x (chord 1, closed trailing edge)."""
-    return 0.6 * (0.2969 * math.sqrt(x) - 0.1260 * x - 0.3516 * x**2
-                  + 0.2843 * x**3 - 0.1036 * x**4)
+SIZE = 0.0176
 
 
 def fish(occ, y0):
-    """A lofted body with its axis along x at (y0, 0); returns its volume tag."""
-    wires = []
-    stations = [0.005] + [0.5 * (1 - math.cos(math.pi * k / 24)) for k in range(1, 24)] + [0.97]
-    stations = sorted(s for s in set(stations) if 0.005 <= s <= 0.97)
-    for x in stations:
-        w = half_width(x)
-        e = occ.addEllipse(x, y0, 0, 2 * w, w, zAxis=[1, 0, 0], xAxis=[0, 0, 1])
-        wires.append(occ.addCurveLoop([e]))
-    out = occ.addThruSections(wires, makeSolid=True, makeRuled=False)
-    return [t for d, t in out if d == 3][0]
+    """An ellipsoid of semi-axes 0.5 (along x), 0.06 (y) and 0.12 (z) from
+    x = 0 to x = 1, its axis at (y0, 0); returns its volume tag."""
+    body = occ.addSphere(0.5, y0, 0, 1)
+    occ.dilate([(3, body)], 0.5, y0, 0, 0.5, 0.06, 0.12)
+    return body
 
 
 def build(h, out):
@@ -73,6 +63,7 @@ def build(h, out):
     f.setAsBackgroundMesh(thr)
     for key in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
         gmsh.option.setNumber("Mesh." + key, 0)
+    gmsh.option.setNumber("Mesh.Algorithm", 1)  # MeshAdapt: the scaled spheres defeat the default
     gmsh.option.setNumber("Mesh.OptimizeNetgen", 1)
     gmsh.model.mesh.generate(3)
     gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)

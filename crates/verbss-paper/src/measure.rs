@@ -25,6 +25,8 @@ pub struct Run {
     pub steps: Vec<StepReport>,
     /// The step that inverted an element, if one did.
     pub first_inverted: Option<usize>,
+    /// The centroid of that step's worst inverted element.
+    pub inverted_at: Option<Vec<f64>>,
     /// The states kept (the requested steps that were reached).
     pub kept: Vec<Snapshot>,
     /// The state of the step that inverted, if one did.
@@ -52,6 +54,7 @@ pub fn run(
     let mut out = Run {
         steps: Vec::new(),
         first_inverted: None,
+        inverted_at: None,
         kept: Vec::new(),
         failed: None,
         last: deformer.current().clone(),
@@ -69,8 +72,9 @@ pub fn run(
                     out.kept.push(deformer.current().clone());
                 }
             }
-            Err(Error::Inverted { .. }) => {
+            Err(Error::Inverted { centroid, .. }) => {
                 out.first_inverted = Some(n);
+                out.inverted_at = Some(centroid);
                 out.failed = deformer.failed().cloned();
                 break;
             }

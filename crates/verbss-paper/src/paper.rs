@@ -232,3 +232,36 @@ pub fn numbers(name: &str) -> Numbers {
         _ => NONE,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_quality_column_adds_up_to_the_papers_element_count() {
+        for name in ["rectangle-298", "naca0012"] {
+            let n = numbers(name);
+            for b in n.bins {
+                assert_eq!(b.counts.iter().sum::<usize>(), n.cells.unwrap(), "{b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_speed_ups_are_the_papers_time_ratios() {
+        for name in ["two-fish", "bending-wing"] {
+            let rows = numbers(name).threads;
+            for &(_, s, up) in rows {
+                assert!((rows[0].1 / s - up).abs() < 0.01, "{name}: {s} {up}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_split_adds_up_to_the_total() {
+        for name in ["naca0012", "three-element"] {
+            let [a, b, c, total] = numbers(name).split.unwrap();
+            assert!((a + b + c - total).abs() < 1e-9, "{name}");
+        }
+    }
+}

@@ -38,6 +38,8 @@ pub struct MethodResult {
     pub limit_capped: bool,
     /// The limit search's step that inverted an element.
     pub limit_first_inverted_step: Option<usize>,
+    /// Where: the centroid of that step's worst inverted element.
+    pub limit_inverted_at: Option<Vec<f64>>,
     /// Whether all `N` steps of the case file's motion were valid.
     pub completed: bool,
     /// The case file's run's step that inverted an element (within its `N` steps).
@@ -175,24 +177,28 @@ pub fn run_case(case: &PaperCase, root: &Path, out: &Path) -> anyhow::Result<Cas
             } else {
                 "sweeps"
             },
-            limit: search.steps.len() as f64 * case.per_step,
+            limit: amplitude(search.steps.len(), case.per_step),
             limit_capped: search.first_inverted.is_none(),
             limit_first_inverted_step: search.first_inverted,
+            limit_inverted_at: search.inverted_at.clone(),
             completed: run.steps.len() >= n,
             first_inverted_step: run.first_inverted.filter(|&k| k <= n),
             means: Means::of(&run.steps[..valid]),
             speedup_over_ball_vertex_sor: 0.0,
             bins,
         });
-        if name == "spring" {
+        if name == "spring" || name == "verbss" {
             if let Some(failed) = &search.failed {
                 pictures.push(pictures::write(
                     case,
                     &mesh,
                     failed,
                     out,
-                    "spring-inverted",
-                    &format!("{}: spring, first inverted step", case.name),
+                    &format!("{name}-inverted"),
+                    &format!(
+                        "{}: {name}, step {} (first inverted)",
+                        case.name, failed.report.step
+                    ),
                 )?);
             }
         }
@@ -207,7 +213,7 @@ pub fn run_case(case: &PaperCase, root: &Path, out: &Path) -> anyhow::Result<Cas
                     &format!(
                         "{}: verbss at {}{}",
                         case.name,
-                        limit.steps.len() as f64 * case.per_step,
+                        amplitude(limit.steps.len(), case.per_step),
                         case.unit
                     ),
                 )?);
@@ -262,7 +268,7 @@ pub fn run_case(case: &PaperCase, root: &Path, out: &Path) -> anyhow::Result<Cas
         steps: n,
         unit: case.unit,
         limit_increment: case.per_step,
-        limit_cap: limit_cap as f64 * case.per_step,
+        limit_cap: amplitude(limit_cap, case.per_step),
         settings: verbss::report::Header::new(&header_settings),
         methods,
         threads,
@@ -270,6 +276,11 @@ pub fn run_case(case: &PaperCase, root: &Path, out: &Path) -> anyhow::Result<Cas
         paper: paper::numbers(case.name),
         seconds: start.elapsed().as_secs_f64(),
     })
+}
+
+/// The amplitude of step `n`, `n × per_step`, rounded to 9 decimals (0.825, not 0.8250000000000001).
+fn amplitude(n: usize, per_step: f64) -> f64 {
+    (n as f64 * per_step * 1e9).round() / 1e9
 }
 
 /// The kept state of step `step`, if the run reached it.
