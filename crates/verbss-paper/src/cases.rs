@@ -67,8 +67,11 @@ pub struct PaperCase {
     pub bins: &'static [BinsAt],
     /// Whether the case measures 1 against 2 threads (Tables 8, 9).
     pub threads: bool,
-    /// The picture's window (2D and cuts; `None`: all) and, for 3D, what it shows.
+    /// What the pictures show.
     pub view: View,
+    /// Whether to draw the pictures (not for the finer rectangles: the
+    /// 298-node one shows the case).
+    pub pictures: bool,
 }
 
 /// What the before/after pictures show.
@@ -94,7 +97,11 @@ pub enum View {
     },
 }
 
-const fn rectangle(name: &'static str, nodes: &'static [&'static str]) -> PaperCase {
+const fn rectangle(
+    name: &'static str,
+    nodes: &'static [&'static str],
+    pictures: bool,
+) -> PaperCase {
     PaperCase {
         name,
         section: "4.1",
@@ -110,16 +117,17 @@ const fn rectangle(name: &'static str, nodes: &'static [&'static str]) -> PaperC
         }],
         threads: false,
         view: View::Plane(None),
+        pictures,
     }
 }
 
 /// All cases, in the paper's order.
 pub const CASES: &[PaperCase] = &[
-    rectangle("rectangle-298", &["298"]),
-    rectangle("rectangle-1035", &["1035"]),
-    rectangle("rectangle-3055", &["3055"]),
-    rectangle("rectangle-8081", &["8081"]),
-    rectangle("rectangle-21376", &["21376"]),
+    rectangle("rectangle-298", &["298"], true),
+    rectangle("rectangle-1035", &["1035"], false),
+    rectangle("rectangle-3055", &["3055"], false),
+    rectangle("rectangle-8081", &["8081"], false),
+    rectangle("rectangle-21376", &["21376"], false),
     PaperCase {
         name: "naca0012",
         section: "4.2",
@@ -147,6 +155,7 @@ pub const CASES: &[PaperCase] = &[
         ],
         threads: false,
         view: View::Plane(Some([-0.6, 1.6, -0.7, 0.7])),
+        pictures: true,
     },
     PaperCase {
         name: "three-element",
@@ -163,6 +172,7 @@ pub const CASES: &[PaperCase] = &[
         }],
         threads: false,
         view: View::Plane(Some([-0.25, 1.35, -0.4, 0.2])),
+        pictures: true,
     },
     PaperCase {
         name: "sphere-cube",
@@ -183,6 +193,7 @@ pub const CASES: &[PaperCase] = &[
             at: 0.0,
             window: None,
         },
+        pictures: true,
     },
     PaperCase {
         name: "two-fish",
@@ -204,6 +215,7 @@ pub const CASES: &[PaperCase] = &[
             at: 0.0,
             window: Some([-0.3, 1.4, -0.7, 0.7]),
         },
+        pictures: true,
     },
     PaperCase {
         name: "bending-wing",
@@ -223,6 +235,7 @@ pub const CASES: &[PaperCase] = &[
             groups: &["wing", "body"],
             camera: (-150.0, 20.0),
         },
+        pictures: true,
     },
 ];
 

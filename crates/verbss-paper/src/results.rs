@@ -187,7 +187,7 @@ pub fn run_case(case: &PaperCase, root: &Path, out: &Path) -> anyhow::Result<Cas
             speedup_over_ball_vertex_sor: 0.0,
             bins,
         });
-        if name == "spring" || name == "verbss" {
+        if case.pictures && (name == "spring" || name == "verbss") {
             if let Some(failed) = &search.failed {
                 pictures.push(pictures::write(
                     case,
@@ -203,7 +203,7 @@ pub fn run_case(case: &PaperCase, root: &Path, out: &Path) -> anyhow::Result<Cas
             }
         }
         if name == "verbss" {
-            if let Some(limit) = &limit_run {
+            if let Some(limit) = limit_run.as_ref().filter(|_| case.pictures) {
                 pictures.push(pictures::write(
                     case,
                     &mesh,
@@ -226,7 +226,7 @@ pub fn run_case(case: &PaperCase, root: &Path, out: &Path) -> anyhow::Result<Cas
         m.speedup_over_ball_vertex_sor = bv / m.means.seconds_per_step;
     }
     let verbss_run = verbss_run.expect("verbss is one of the methods");
-    if let Some(before) = kept(&verbss_run, 0) {
+    if let Some(before) = kept(&verbss_run, 0).filter(|_| case.pictures) {
         pictures.insert(
             0,
             pictures::write(
@@ -239,18 +239,20 @@ pub fn run_case(case: &PaperCase, root: &Path, out: &Path) -> anyhow::Result<Cas
             )?,
         );
     }
-    let after = kept(&verbss_run, n).unwrap_or(&verbss_run.last);
-    pictures.insert(
-        1,
-        pictures::write(
-            case,
-            &mesh,
-            after,
-            out,
-            "after",
-            &format!("{}: verbss, step {}", case.name, after.report.step),
-        )?,
-    );
+    if case.pictures {
+        let after = kept(&verbss_run, n).unwrap_or(&verbss_run.last);
+        pictures.insert(
+            1,
+            pictures::write(
+                case,
+                &mesh,
+                after,
+                out,
+                "after",
+                &format!("{}: verbss, step {}", case.name, after.report.step),
+            )?,
+        );
+    }
     let threads = if case.threads {
         threads_rows(case, &mesh, &attachments, &file.settings, &verbss_run)?
     } else {
