@@ -14,7 +14,7 @@ use clap::{ArgGroup, Args, ValueEnum};
 use verbss::deform::{Reference, Settings};
 use verbss::io::{self, Format};
 use verbss::motion::{Attachment, Motion, PositionSource};
-use verbss::solve::{Method, Solver};
+use verbss::solve::{Accel, Method, Solver};
 
 use crate::render::{PictureArgs, Recorder};
 use crate::run::{execute, file_stem, Job};
@@ -57,6 +57,10 @@ pub struct DeformArgs {
     /// The global solver of `--method ball-vertex`.
     #[arg(long, value_enum, default_value = "sor")]
     solver: SolverArg,
+    /// Plain VerBSS sweeps (none), the multigrid-accelerated solve (amg), or
+    /// amg on large meshes of mostly triangles/tetrahedra (auto).
+    #[arg(long, value_enum, default_value = "none")]
+    accel: AccelArg,
     /// Number of equal increments.
     #[arg(long, default_value_t = 1)]
     steps: usize,
@@ -94,6 +98,13 @@ enum MethodArg {
     BallVertex,
     Spring,
     Laplacian,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum AccelArg {
+    None,
+    Amg,
+    Auto,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -169,6 +180,11 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
     s.solver = match args.solver {
         SolverArg::Sor => Solver::Sor,
         SolverArg::Direct => Solver::Direct,
+    };
+    s.accel = match args.accel {
+        AccelArg::None => Accel::None,
+        AccelArg::Amg => Accel::Amg,
+        AccelArg::Auto => Accel::Auto,
     };
     s.tolerance = args.tolerance;
     s.absolute_tolerance = args.absolute_tolerance;

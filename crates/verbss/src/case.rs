@@ -13,7 +13,7 @@ use crate::deform::{Reference, Settings};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Motion, PositionSource};
-use crate::solve::{Method, SolveParams, Solver};
+use crate::solve::{Accel, Method, SolveParams, Solver};
 
 /// A parsed case file.
 #[derive(Debug, Clone, PartialEq)]
@@ -93,6 +93,15 @@ enum MethodName {
 
 #[derive(Deserialize, Default, Clone, Copy)]
 #[serde(rename_all = "kebab-case")]
+enum AccelName {
+    #[default]
+    None,
+    Amg,
+    Auto,
+}
+
+#[derive(Deserialize, Default, Clone, Copy)]
+#[serde(rename_all = "kebab-case")]
 enum SolverName {
     #[default]
     Sor,
@@ -106,6 +115,8 @@ struct SolverTable {
     method: MethodName,
     #[serde(default)]
     solver: SolverName,
+    #[serde(default)]
+    accel: AccelName,
     omega: Option<f64>,
     tolerance: Option<f64>,
     absolute_tolerance: Option<bool>,
@@ -266,6 +277,11 @@ impl Case {
             solver: match s.solver {
                 SolverName::Sor => Solver::Sor,
                 SolverName::Direct => Solver::Direct,
+            },
+            accel: match s.accel {
+                AccelName::None => Accel::None,
+                AccelName::Amg => Accel::Amg,
+                AccelName::Auto => Accel::Auto,
             },
             ..SolveParams::default()
         };
@@ -493,6 +509,7 @@ reference = "fixed"
 [solver]
 method = "ball-vertex"
 solver = "direct"
+accel = "auto"
 omega = 1.5
 tolerance = 1e-5
 absolute_tolerance = true
@@ -521,13 +538,14 @@ final = false
         let s = &c.settings.solve;
         assert_eq!(s.method, Method::BallVertex);
         assert_eq!(s.solver, Solver::Direct);
+        assert_eq!(s.accel, Accel::Auto);
         assert_eq!(
             (s.omega, s.tolerance, s.max_iterations, s.threads),
             (1.5, 1e-5, 300, 2)
         );
         assert!(s.absolute_tolerance);
         assert_eq!(c.motions.len(), 2);
-        assert_eq!(c.motions[0].0, 13);
+        assert_eq!(c.motions[0].0, 14);
         assert_eq!(c.output.dir, Some(PathBuf::from("cases/out/naca")));
         assert_eq!(c.output.every, 4);
         assert!(!c.output.final_mesh && c.output.series && c.output.report);

@@ -4,7 +4,9 @@
 
 use std::path::Path;
 
-use verbss::solve::{default_roles, Engine, Method, NodeRole, SolveInfo, SolveParams, Solver};
+use verbss::solve::{
+    default_roles, Accel, Engine, Method, NodeRole, SolveInfo, SolveParams, Solver,
+};
 use verbss::springs::{assemble, Connectivity, Springs};
 use verbss::topology::boundary_nodes;
 use verbss::{CellKind, Cells, Mesh};
@@ -360,6 +362,35 @@ fn verbss_converges_to_the_direct_ball_vertex_solution() {
             let rel = rel_diff(&u, &exact);
             assert!(rel < 1e-8, "{layout:?} {method:?}: {rel}");
         }
+    }
+}
+
+#[test]
+fn the_multigrid_accelerated_solve_converges_to_the_direct_solution() {
+    for layout in LAYOUTS {
+        let n = match layout {
+            Layout::Tri | Layout::Quad | Layout::MixedTriQuad => 40,
+            _ => 10,
+        };
+        let mesh = grid(layout, n);
+        let roles = default_roles(&mesh);
+        let mut exact = wavy_boundary(&mesh);
+        solve(
+            &mesh,
+            &roles,
+            &[],
+            &mut exact,
+            &params(Method::BallVertex, Solver::Direct, 0.0),
+        );
+        let mut u = wavy_boundary(&mesh);
+        let mut p = params(Method::Verbss, Solver::Sor, 1e-13);
+        p.accel = Accel::Amg;
+        p.max_iterations = 500;
+        let info = solve(&mesh, &roles, &[], &mut u, &p);
+        eprintln!("{layout:?}: {} iterations, {} levels", info.iterations, info.levels);
+        assert!(info.converged && info.levels >= 2, "{layout:?}: {info:?}");
+        let rel = rel_diff(&u, &exact);
+        assert!(rel < 1e-8, "{layout:?}: {rel}");
     }
 }
 

@@ -32,13 +32,15 @@
 
 use rayon::prelude::*;
 
-use super::bsr::{block_mul, invert, Bsr};
+use super::bsr::{invert, madd_kernel, mul_kernel, Bsr};
 use super::{chunked_sum, rotate, unrotate, Layout};
 use crate::error::{Error, Result};
 use crate::geometry::{ldlt_mul, packed_len, packed_mul};
 use crate::springs::NodeBlocks;
 use crate::topology::{self, Csr};
 
+/// The largest block: 6 rigid-body modes in 3D.
+const MAX_BLOCK: usize = 6;
 /// Levels with at most this many unknowns are solved exactly.
 pub(crate) const COARSEST_UNKNOWNS: usize = 600;
 /// At most this many levels.
@@ -46,7 +48,7 @@ const MAX_LEVELS: usize = 12;
 /// Strength threshold θ of the finest level.
 const THETA: f64 = 0.08;
 /// Power iterations estimating ρ(D⁻¹A).
-const POWER_STEPS: usize = 15;
+const POWER_STEPS: usize = 40;
 /// A Gram–Schmidt column shorter than this fraction of its original length is dropped.
 const DROP: f64 = 1e-10;
 
@@ -281,6 +283,7 @@ impl Coarse {
     fn gauss_seidel(&self, r: &[f64], e: &mut [f64], next: &mut [f64], reverse: bool) {
         let a = &self.a;
         let b = a.r;
+        let kernel = mul_kernel(b, b);
         for k in 0..self.colours.len() {
             let nodes = &self.colours[if reverse { self.colours.len() - 1 - k } else { k }];
             let current: &[f64] = e;
@@ -289,19 +292,14 @@ impl Coarse {
                 .zip(nodes.par_iter())
                 .for_each(|(out, &i)| {
                     let i = i as usize;
-                    let mut s = r[b * i..b * (i + 1)].to_vec();
-                    for en in a.offsets[i]..a.offsets[i + 1] {
-                        let j = a.columns[en] as usize;
-                        if j != i {
-                            let blk = a.block(en);
-                            for (x, sx) in s.iter_mut().enumerate() {
-                                *sx -= (0..b)
-                                    .map(|y| blk[x * b + y] * current[b * j + y])
-                                    .sum::<f64>();
-                            }
-                        }
+                    let mut s = [0.0; MAX_BLOCK];
+                    let s = &mut s[..b];
+                    a.row_mul_add(i, current, s, &kernel, Some(i));
+                    for (x, v) in s.iter_mut().enumerate() {
+                        *v = r[b * i + x] - *v;
                     }
-                    block_mul(&self.inverse[b * b * i..b * b * (i + 1)], &s, out);
+                    out.fill(0.0);
+                    kernel(&self.inverse[b * b * i..b * b * (i + 1)], s, out);
                 });
             for (k, &i) in nodes.iter().enumerate() {
                 let i = i as usize;
@@ -645,6 +643,7 @@ fn smooth_prolongator(a: &Bsr, t: &Bsr) -> Result<Bsr> {
     let inverse = diagonal_inverses(a)?;
     let weight = 4.0 / 3.0 / spectral_radius(a, &inverse);
     let at = a.product(t);
+    let kernel = madd_kernel(b, b, m);
     Ok(Bsr::from_rows(
         at.rows,
         at.cols,
@@ -653,13 +652,10 @@ fn smooth_prolongator(a: &Bsr, t: &Bsr) -> Result<Bsr> {
         |_, i, columns, values| {
             let inv = &inverse[b * b * i..b * b * (i + 1)];
             for e in at.offsets[i]..at.offsets[i + 1] {
-                let blk = at.block(e);
                 let start = values.len();
-                for x in 0..b {
-                    for y in 0..m {
-                        values.push(-weight * (0..b).map(|z| inv[x * b + z] * blk[z * m + y]).sum::<f64>());
-                    }
-                }
+                values.extend(std::iter::repeat_n(0.0, b * m));
+                kernel(inv, at.block(e), &mut values[start..]);
+                values[start..].iter_mut().for_each(|v| *v *= -weight);
                 if at.columns[e] == t.columns[i] {
                     for (v, tv) in values[start..].iter_mut().zip(t.block(i)) {
                         *v += tv;
@@ -683,9 +679,12 @@ fn spectral_radius(a: &Bsr, inverse: &[f64]) -> f64 {
         let len = chunked_sum(&x, |v| v * v).sqrt();
         x.iter_mut().for_each(|v| *v /= len);
         a.mul(&x, &mut y);
+        let kernel = mul_kernel(b, b);
         y.par_chunks_mut(b).enumerate().for_each(|(i, yi)| {
-            let v = yi.to_vec();
-            block_mul(&inverse[b * b * i..b * b * (i + 1)], &v, yi);
+            let mut v = [0.0; MAX_BLOCK];
+            v[..b].copy_from_slice(yi);
+            yi.fill(0.0);
+            kernel(&inverse[b * b * i..b * b * (i + 1)], &v[..b], yi);
         });
         rho = chunked_sum(&y, |v| v * v).sqrt();
         std::mem::swap(&mut x, &mut y);

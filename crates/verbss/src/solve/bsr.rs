@@ -87,26 +87,32 @@ impl Bsr {
     /// `y = A x`.
     pub(crate) fn mul(&self, x: &[f64], y: &mut [f64]) {
         let r = self.r;
+        let kernel = mul_kernel(self.r, self.c);
         y.par_chunks_mut(r * ROWS_PER_TASK)
             .enumerate()
             .for_each(|(t, out)| {
                 for (k, yi) in out.chunks_exact_mut(r).enumerate() {
-                    self.row_mul(t * ROWS_PER_TASK + k, x, yi);
+                    yi.fill(0.0);
+                    self.row_mul_add(t * ROWS_PER_TASK + k, x, yi, &kernel, None);
                 }
             });
     }
 
-    /// `y_i = Σ_j A_ij x_j` of block row `i`.
+    /// `y_i += Σ_j A_ij x_j` over block row `i`, skipping block column `skip`.
     #[inline]
-    pub(crate) fn row_mul(&self, i: usize, x: &[f64], yi: &mut [f64]) {
-        let (r, c) = (self.r, self.c);
-        yi.fill(0.0);
+    pub(crate) fn row_mul_add(
+        &self,
+        i: usize,
+        x: &[f64],
+        yi: &mut [f64],
+        kernel: &MulKernel,
+        skip: Option<usize>,
+    ) {
+        let c = self.c;
         for e in self.offsets[i]..self.offsets[i + 1] {
-            let b = self.block(e);
             let j = self.columns[e] as usize;
-            let xj = &x[c * j..c * (j + 1)];
-            for a in 0..r {
-                yi[a] += (0..c).map(|k| b[a * c + k] * xj[k]).sum::<f64>();
+            if Some(j) != skip {
+                kernel(self.block(e), &x[c * j..c * (j + 1)], yi);
             }
         }
     }
@@ -155,8 +161,9 @@ impl Bsr {
     /// `A B` (row by row, Gustavson): blocks `r × c` times `c × c'`.
     pub(crate) fn product(&self, other: &Bsr) -> Bsr {
         assert_eq!(self.c, other.r, "block sizes of a product");
-        let (r, c, c2) = (self.r, self.c, other.c);
+        let (r, c2) = (self.r, other.c);
         let s2 = r * c2;
+        let kernel = madd_kernel(self.r, self.c, other.c);
         Bsr::from_rows(
             self.rows,
             other.cols,
@@ -176,12 +183,7 @@ impl Bsr {
                             acc.extend(std::iter::repeat_n(0.0, s2));
                         }
                         let out = &mut acc[s2 * slot[j] as usize..s2 * (slot[j] as usize + 1)];
-                        let b = other.block(f);
-                        for x in 0..r {
-                            for y in 0..c2 {
-                                out[x * c2 + y] += (0..c).map(|z| a[x * c + z] * b[z * c2 + y]).sum::<f64>();
-                            }
-                        }
+                        kernel(a, other.block(f), out);
                     }
                 }
                 for &j in cols.iter() {
@@ -196,6 +198,78 @@ impl Bsr {
     /// The entry of block `(i, j)`, if stored.
     pub(crate) fn find(&self, i: usize, j: usize) -> Option<usize> {
         (self.offsets[i]..self.offsets[i + 1]).find(|&e| self.columns[e] as usize == j)
+    }
+}
+
+/// `y += A x` for one block.
+pub(crate) type MulKernel = Box<dyn Fn(&[f64], &[f64], &mut [f64]) + Sync + Send>;
+
+/// `y += A x` for an `R × C` row-major block.
+#[inline(always)]
+fn mul_add<const R: usize, const C: usize>(a: &[f64], x: &[f64], y: &mut [f64]) {
+    let (a, x, y) = (&a[..R * C], &x[..C], &mut y[..R]);
+    for (k, yk) in y.iter_mut().enumerate() {
+        let mut s = 0.0;
+        for l in 0..C {
+            s += a[k * C + l] * x[l];
+        }
+        *yk += s;
+    }
+}
+
+/// The [`mul_add`] of an `r × c` block: compiled for the block shapes of
+/// the hierarchy (node blocks 2, 3; near-null space sizes 3, 6), a generic
+/// loop otherwise.
+pub(crate) fn mul_kernel(r: usize, c: usize) -> MulKernel {
+    match (r, c) {
+        (2, 2) => Box::new(mul_add::<2, 2>),
+        (3, 3) => Box::new(mul_add::<3, 3>),
+        (6, 6) => Box::new(mul_add::<6, 6>),
+        (2, 3) => Box::new(mul_add::<2, 3>),
+        (3, 2) => Box::new(mul_add::<3, 2>),
+        (3, 6) => Box::new(mul_add::<3, 6>),
+        (6, 3) => Box::new(mul_add::<6, 3>),
+        _ => Box::new(move |a: &[f64], x: &[f64], y: &mut [f64]| {
+            for (k, yk) in y.iter_mut().enumerate().take(r) {
+                *yk += (0..c).map(|l| a[k * c + l] * x[l]).sum::<f64>();
+            }
+        }),
+    }
+}
+
+/// `out += A B` for blocks `A` (`R × C`) and `B` (`C × K`), row-major.
+#[inline(always)]
+fn madd<const R: usize, const C: usize, const K: usize>(a: &[f64], b: &[f64], out: &mut [f64]) {
+    let (a, b, out) = (&a[..R * C], &b[..C * K], &mut out[..R * K]);
+    for x in 0..R {
+        for z in 0..C {
+            let v = a[x * C + z];
+            for y in 0..K {
+                out[x * K + y] += v * b[z * K + y];
+            }
+        }
+    }
+}
+
+/// The [`madd`] of blocks `r × c` and `c × k`, compiled for the products of
+/// the hierarchy, a generic loop otherwise.
+pub(crate) fn madd_kernel(r: usize, c: usize, k: usize) -> MulKernel {
+    match (r, c, k) {
+        (2, 2, 3) => Box::new(madd::<2, 2, 3>),
+        (3, 2, 3) => Box::new(madd::<3, 2, 3>),
+        (3, 3, 3) => Box::new(madd::<3, 3, 3>),
+        (3, 3, 6) => Box::new(madd::<3, 3, 6>),
+        (6, 3, 6) => Box::new(madd::<6, 3, 6>),
+        (6, 6, 6) => Box::new(madd::<6, 6, 6>),
+        _ => Box::new(move |a: &[f64], b: &[f64], out: &mut [f64]| {
+            for x in 0..r {
+                for z in 0..c {
+                    for y in 0..k {
+                        out[x * k + y] += a[x * c + z] * b[z * k + y];
+                    }
+                }
+            }
+        }),
     }
 }
 
@@ -234,15 +308,6 @@ pub(crate) fn invert(a: &[f64], n: usize) -> Option<Vec<f64>> {
         }
     }
     inv.iter().all(|v| v.is_finite()).then_some(inv)
-}
-
-/// `y = A x` for a dense row-major `r × c` block.
-#[inline]
-pub(crate) fn block_mul(a: &[f64], x: &[f64], y: &mut [f64]) {
-    let c = x.len();
-    for (k, yk) in y.iter_mut().enumerate() {
-        *yk = (0..c).map(|l| a[k * c + l] * x[l]).sum();
-    }
 }
 
 #[cfg(test)]

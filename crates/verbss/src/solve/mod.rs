@@ -82,7 +82,7 @@ use crate::error::{Error, Result};
 use crate::geometry::{
     ldlt_factor, norm, normal_frame, packed_index, packed_len, packed_mul, point,
 };
-use crate::mesh::Mesh;
+use crate::mesh::{CellKind, Mesh};
 use crate::springs::{self, Connectivity, NodeBlocks, Springs};
 use crate::topology;
 
@@ -133,8 +133,10 @@ pub enum Accel {
     /// root-mean-square error of the unknowns is below the threshold
     /// (`docs/acceleration.md`).
     Amg,
-    /// [`Accel::Amg`] for systems of at least [`AUTO_AMG_NODES`] unknown nodes,
-    /// [`Accel::None`] below.
+    /// [`Accel::Amg`] for meshes of mostly triangles or tetrahedra with at
+    /// least [`AUTO_AMG_NODES`] unknown nodes, [`Accel::None`] otherwise; a
+    /// multigrid that cannot be built or a solve it cannot finish falls back
+    /// to plain sweeps.
     Auto,
 }
 
@@ -234,6 +236,10 @@ pub struct Engine {
     built: Option<Built>,
     pool: Option<(usize, rayon::ThreadPool)>,
     accelerator: Option<accel::Accelerator>,
+    /// At least half the cells are triangles or tetrahedra ([`Accel::Auto`]).
+    simplicial: bool,
+    /// [`Accel::Auto`] could not build a multigrid for this mesh.
+    auto_declined: bool,
 }
 
 /// What one reference configuration and method need: the system and scratch.
@@ -385,6 +391,13 @@ impl Engine {
             }
         }
         let conn = Connectivity::new(mesh);
+        let simplices = conn
+            .cells
+            .kinds
+            .iter()
+            .filter(|k| matches!(k, CellKind::Triangle | CellKind::Tetra))
+            .count();
+        let simplicial = 2 * simplices >= conn.cells.len();
         let fixed: Vec<usize> = (0..n).filter(|&i| roles[i] == NodeRole::Fixed).collect();
         let reach = topology::bfs_layers(&conn.graph, &fixed);
         if let Some(i) = (0..n).find(|&i| reach[i] == u32::MAX && roles[i] != NodeRole::Fixed) {
@@ -401,6 +414,8 @@ impl Engine {
             built: None,
             pool: None,
             accelerator: None,
+            simplicial,
+            auto_declined: false,
         })
     }
 
@@ -447,6 +462,8 @@ impl Engine {
             built,
             pool,
             accelerator,
+            simplicial,
+            auto_declined,
         } = self;
         let built = built.as_mut().expect("built above");
         let pool = &pool.as_ref().expect("started above").1;
@@ -461,12 +478,14 @@ impl Engine {
                 _ => direct::Lu::new::<3>(&built.layout, blocks)?,
             });
         }
-        let amg = built.layout.len() > 0
+        let mut amg = built.layout.len() > 0
             && matches!(params.method, Method::Verbss | Method::Spring)
             && match params.accel {
                 Accel::None => false,
                 Accel::Amg => true,
-                Accel::Auto => built.layout.len() >= AUTO_AMG_NODES,
+                Accel::Auto => {
+                    !*auto_declined && *simplicial && built.layout.len() >= AUTO_AMG_NODES
+                }
             };
         let mut hierarchy_built = false;
         if amg
@@ -476,11 +495,21 @@ impl Engine {
         {
             *accelerator = None;
             let method = params.method;
-            *accelerator = Some(pool.install(|| match conn.dim {
+            match pool.install(|| match conn.dim {
                 2 => accel::Accelerator::new::<2>(built, method),
                 _ => accel::Accelerator::new::<3>(built, method),
-            })?);
-            hierarchy_built = true;
+            }) {
+                Ok(a) => {
+                    *accelerator = Some(a);
+                    hierarchy_built = true;
+                }
+                // `auto` falls back to plain sweeps for the rest of the run.
+                Err(_) if params.accel == Accel::Auto => {
+                    *auto_declined = true;
+                    amg = false;
+                }
+                Err(e) => return Err(e),
+            }
         }
         let accelerator = if amg { accelerator.as_mut() } else { None };
         let form_seconds = start.elapsed().as_secs_f64();
@@ -806,8 +835,8 @@ fn run<const D: usize>(
                 _,
             ) => {
                 let blocks: &NodeBlocks = blocks;
-                if let Some(accelerator) = accelerator {
-                    pool.install(|| {
+                let accelerated = accelerator.and_then(|accelerator| {
+                    let result = pool.install(|| {
                         accelerator.solve::<D>(
                             blocks,
                             layout,
@@ -819,7 +848,21 @@ fn run<const D: usize>(
                             threshold,
                             params.record_history,
                         )
-                    })
+                    });
+                    // Under `auto`, a solve the multigrid could not finish is
+                    // redone by plain sweeps from the same initial guess.
+                    let keep = params.accel != Accel::Auto
+                        || result.as_ref().is_ok_and(|info| info.converged);
+                    if !keep {
+                        for (p, &i) in layout.order.iter().enumerate() {
+                            work[D * p..D * (p + 1)]
+                                .copy_from_slice(&displacement[D * i..D * (i + 1)]);
+                        }
+                    }
+                    keep.then_some(result)
+                });
+                if let Some(result) = accelerated {
+                    result
                 } else if *factored {
                     iterate::<D, _>(
                         pool,
