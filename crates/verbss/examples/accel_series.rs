@@ -83,7 +83,12 @@ fn rel_error(u: &[f64], reference: &[f64]) -> f64 {
     (diff / size).sqrt()
 }
 
-fn run(engine: &mut Engine, mesh: &Mesh, u0: &[f64], p: &SolveParams) -> (Vec<f64>, SolveInfo, f64) {
+fn run(
+    engine: &mut Engine,
+    mesh: &Mesh,
+    u0: &[f64],
+    p: &SolveParams,
+) -> (Vec<f64>, SolveInfo, f64) {
     let mut u = u0.to_vec();
     let t = Instant::now();
     let info = engine.solve(&mesh.coords, &mut u, p).expect("solve");
@@ -112,13 +117,30 @@ fn main() {
             let mut p = params(Accel::None, 0.0, 1);
             p.method = Method::BallVertex;
             p.solver = Solver::Direct;
-            run(&mut Engine::new(&mesh, &roles, &[]).unwrap(), &mesh, &u0, &p).0
+            run(
+                &mut Engine::new(&mesh, &roles, &[]).unwrap(),
+                &mesh,
+                &u0,
+                &p,
+            )
+            .0
         } else {
             let p = params(Accel::Amg, 1e-13, o.threads);
-            run(&mut Engine::new(&mesh, &roles, &[]).unwrap(), &mesh, &u0, &p).0
+            run(
+                &mut Engine::new(&mesh, &roles, &[]).unwrap(),
+                &mesh,
+                &u0,
+                &p,
+            )
+            .0
         };
         let mut plain_engine = Engine::new(&mesh, &roles, &[]).unwrap();
-        let (u, plain, plain_s) = run(&mut plain_engine, &mesh, &u0, &params(Accel::None, o.tolerance, o.threads));
+        let (u, plain, plain_s) = run(
+            &mut plain_engine,
+            &mesh,
+            &u0,
+            &params(Accel::None, o.tolerance, o.threads),
+        );
         let plain_error = rel_error(&u, &reference);
         let per_sweep = plain.solve_seconds / plain.iterations as f64;
         let mut factor = 10.0;
@@ -129,9 +151,18 @@ fn main() {
             if rel_error(&u, &reference) <= plain_error || factor < 1e-6 {
                 break (info, s, tol, engine);
             }
-            factor /= if (factor.log10().fract()).abs() < 1e-9 { 10.0 / 3.0 } else { 3.0 };
+            factor /= if (factor.log10().fract()).abs() < 1e-9 {
+                10.0 / 3.0
+            } else {
+                3.0
+            };
         };
-        let (_, reused, reused_s) = run(&mut engine, &mesh, &u0, &params(Accel::Amg, amg_tol, o.threads));
+        let (_, reused, reused_s) = run(
+            &mut engine,
+            &mesh,
+            &u0,
+            &params(Accel::Amg, amg_tol, o.threads),
+        );
         assert!(!reused.hierarchy_built);
         let setup = amg.form_seconds - plain.form_seconds;
         println!(

@@ -387,11 +387,90 @@ fn the_multigrid_accelerated_solve_converges_to_the_direct_solution() {
         p.accel = Accel::Amg;
         p.max_iterations = 500;
         let info = solve(&mesh, &roles, &[], &mut u, &p);
-        eprintln!("{layout:?}: {} iterations, {} levels", info.iterations, info.levels);
         assert!(info.converged && info.levels >= 2, "{layout:?}: {info:?}");
         let rel = rel_diff(&u, &exact);
         assert!(rel < 1e-8, "{layout:?}: {rel}");
     }
+}
+
+fn amg(tolerance: f64) -> SolveParams {
+    let mut p = params(Method::Verbss, Solver::Sor, tolerance);
+    p.accel = Accel::Amg;
+    p.max_iterations = 500;
+    p
+}
+
+#[test]
+fn accelerated_results_do_not_depend_on_the_thread_count() {
+    for mesh in [grid(Layout::MixedTriQuad, 64), grid(Layout::Tet, 12)] {
+        let roles = default_roles(&mesh);
+        let u0 = wavy_boundary(&mesh);
+        let mut p = amg(1e-9);
+        p.record_history = true;
+        let runs: Vec<(Vec<f64>, SolveInfo)> = [1, 2, 3]
+            .into_iter()
+            .map(|threads| {
+                p.threads = threads;
+                let mut u = u0.clone();
+                let info = solve(&mesh, &roles, &[], &mut u, &p);
+                (u, info)
+            })
+            .collect();
+        assert!(runs[0].1.converged && runs[0].1.levels >= 2 && runs[0].1.iterations >= 3);
+        for (u, info) in &runs[1..] {
+            assert!(u == &runs[0].0);
+            assert_eq!(info.history, runs[0].1.history);
+        }
+    }
+}
+
+#[test]
+fn the_hierarchy_is_kept_while_the_mesh_moves_and_the_answer_stays_exact() {
+    let mesh = grid(Layout::Tet, 10);
+    let roles = default_roles(&mesh);
+    let mut engine = Engine::new(&mesh, &roles, &[]).unwrap();
+    let mut direct = Engine::new(&mesh, &roles, &[]).unwrap();
+    let exact_params = params(Method::BallVertex, Solver::Direct, 0.0);
+    let mut coords = mesh.coords.clone();
+    let mut total = vec![0.0; coords.len()];
+    for step in 1..=4 {
+        let increment: Vec<f64> = wavy_boundary(&mesh).iter().map(|v| v / 4.0).collect();
+        let mut u = increment.clone();
+        let info = engine.solve(&coords, &mut u, &amg(1e-12)).unwrap();
+        assert_eq!(info.hierarchy_built, step == 1, "step {step}");
+        assert!(info.rebuilt && info.converged);
+        let mut exact = increment;
+        direct.solve(&coords, &mut exact, &exact_params).unwrap();
+        let rel = rel_diff(&u, &exact);
+        assert!(rel < 1e-8, "step {step}: {rel}");
+        for k in 0..coords.len() {
+            coords[k] += u[k];
+            total[k] += u[k];
+        }
+    }
+    assert!(total.iter().any(|&v| v != 0.0));
+}
+
+#[test]
+fn auto_accelerates_large_simplex_meshes_only() {
+    for (layout, accelerated) in [(Layout::Tet, true), (Layout::Hex, false)] {
+        let mesh = grid(layout, 29);
+        let roles = default_roles(&mesh);
+        let mut u = wavy_boundary(&mesh);
+        let mut p = params(Method::Verbss, Solver::Sor, 1e-3);
+        p.accel = Accel::Auto;
+        let info = solve(&mesh, &roles, &[], &mut u, &p);
+        assert!(info.converged);
+        assert_eq!(info.levels >= 2, accelerated, "{layout:?}: {info:?}");
+    }
+    let small = grid(Layout::Tet, 6);
+    let mut u = wavy_boundary(&small);
+    let mut p = params(Method::Verbss, Solver::Sor, 1e-6);
+    p.accel = Accel::Auto;
+    assert_eq!(
+        solve(&small, &default_roles(&small), &[], &mut u, &p).levels,
+        0
+    );
 }
 
 /// Roles with the interior of the `x = 0` side sliding in its plane (normal
@@ -444,6 +523,23 @@ fn sliding_nodes_keep_their_normal_component() {
             assert!(info.converged);
             let rel = rel_diff(&v, &exact);
             assert!(rel < 1e-8, "{layout:?} {method:?}: {rel}");
+        }
+        let mut v = u.clone();
+        let big = grid(layout, if d == 2 { 24 } else { 8 });
+        let info = solve(&mesh, &roles, &normals, &mut v, &amg(1e-13));
+        assert!(info.converged, "{layout:?} amg: {info:?}");
+        let rel = rel_diff(&v, &exact);
+        assert!(rel < 1e-8, "{layout:?} amg: {rel}");
+        // The same on a mesh large enough for several levels.
+        let mut w = wavy_boundary(&big);
+        let (big_roles, big_sliding) = sliding_side(&big, &mut w);
+        let mut big_exact = w.clone();
+        solve(&big, &big_roles, &normals, &mut big_exact, &direct);
+        let info = solve(&big, &big_roles, &normals, &mut w, &amg(1e-13));
+        assert!(info.converged && info.levels >= 2, "{layout:?}: {info:?}");
+        assert!(rel_diff(&w, &big_exact) < 1e-8);
+        for &i in &big_sliding {
+            assert_eq!(w[d * i], 0.01, "{layout:?} node {i}");
         }
         // A translation along the sliding plane moves every node by it.
         let shift = [0.0, 0.2, -0.1];
@@ -538,6 +634,14 @@ fn bad_input_is_reported() {
     let e = engine.solve(&mesh.coords, &mut u, &p).unwrap_err();
     assert_eq!(e.to_string(), "invalid setting: omega 2 is outside (0, 2)");
     p.omega = 1.5;
+    let mut laplace = params(Method::Laplacian, Solver::Sor, 1e-6);
+    laplace.accel = Accel::Amg;
+    let e = engine.solve(&mesh.coords, &mut u, &laplace).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "invalid setting: --accel amg solves the block systems of --method verbss and spring \
+         (not ball-vertex or laplacian)"
+    );
     let mut flat = mesh.coords.clone();
     flat[8] = flat[2];
     flat[9] = flat[3];
@@ -579,6 +683,7 @@ fn check_against_direct(mesh: &Mesh, motions: &[Vec<f64>]) {
     let roles = default_roles(mesh);
     let mut direct = Engine::new(mesh, &roles, &[]).unwrap();
     let mut verbss = Engine::new(mesh, &roles, &[]).unwrap();
+    let mut accelerated = Engine::new(mesh, &roles, &[]).unwrap();
     for u0 in motions {
         let mut exact = u0.clone();
         direct
@@ -603,6 +708,13 @@ fn check_against_direct(mesh: &Mesh, motions: &[Vec<f64>]) {
             "relative difference {rel} after {} sweeps",
             info.iterations
         );
+        let mut v = u0.clone();
+        let info = accelerated
+            .solve(&mesh.coords, &mut v, &amg(1e-13))
+            .unwrap();
+        assert!(info.converged && info.levels >= 2, "{info:?}");
+        let rel = rel_diff(&v, &exact);
+        assert!(rel < 1e-8, "accelerated: relative difference {rel}");
     }
 }
 

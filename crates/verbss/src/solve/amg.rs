@@ -193,7 +193,13 @@ impl Hierarchy {
         let [res, correction] = &mut self.fine;
         residual(r, e, res);
         self.transfers[0].r.mul(res, &mut self.scratch[0][0]);
-        cycle(&self.transfers, &self.coarse, &self.coarsest, &mut self.scratch, 1);
+        cycle(
+            &self.transfers,
+            &self.coarse,
+            &self.coarsest,
+            &mut self.scratch,
+            1,
+        );
         self.transfers[0].p.mul(&self.scratch[0][1], correction);
         add(e, correction);
         smooth(e, r, true);
@@ -202,7 +208,9 @@ impl Hierarchy {
 
 /// `x += y`.
 fn add(x: &mut [f64], y: &[f64]) {
-    x.par_iter_mut().zip(y.par_iter()).for_each(|(a, b)| *a += b);
+    x.par_iter_mut()
+        .zip(y.par_iter())
+        .for_each(|(a, b)| *a += b);
 }
 
 /// The V-cycle on coarse level `level` (≥ 1): `scratch[0]` is this level's
@@ -226,7 +234,9 @@ fn cycle(
     e.fill(0.0);
     c.gauss_seidel(r, e, next, false);
     c.a.mul(e, res);
-    res.par_iter_mut().zip(r.par_iter()).for_each(|(x, b)| *x = b - *x);
+    res.par_iter_mut()
+        .zip(r.par_iter())
+        .for_each(|(x, b)| *x = b - *x);
     let t = &transfers[level];
     t.r.mul(res, &mut rest[0][0]);
     cycle(transfers, coarse, coarsest, rest, level + 1);
@@ -285,7 +295,11 @@ impl Coarse {
         let b = a.r;
         let kernel = mul_kernel(b, b);
         for k in 0..self.colours.len() {
-            let nodes = &self.colours[if reverse { self.colours.len() - 1 - k } else { k }];
+            let nodes = &self.colours[if reverse {
+                self.colours.len() - 1 - k
+            } else {
+                k
+            }];
             let current: &[f64] = e;
             next[..b * nodes.len()]
                 .par_chunks_mut(b)
@@ -461,7 +475,11 @@ fn rigid_modes<const D: usize>(layout: &Layout, coords: &[f64]) -> Vec<f64> {
     let radius = layout
         .order
         .iter()
-        .map(|&i| (0..D).map(|k| (coords[D * i + k] - centre[k]).powi(2)).sum::<f64>())
+        .map(|&i| {
+            (0..D)
+                .map(|k| (coords[D * i + k] - centre[k]).powi(2))
+                .sum::<f64>()
+        })
         .fold(0.0, f64::max)
         .sqrt()
         .max(f64::MIN_POSITIVE);
@@ -512,7 +530,13 @@ fn rigid_modes<const D: usize>(layout: &Layout, coords: &[f64]) -> Vec<f64> {
 /// The symmetric strong-coupling graph (see the module documentation).
 fn strength(a: &Bsr, theta: f64) -> Csr {
     let s = a.r * a.c;
-    let norm = |e: usize| a.values[s * e..s * (e + 1)].iter().map(|v| v * v).sum::<f64>().sqrt();
+    let norm = |e: usize| {
+        a.values[s * e..s * (e + 1)]
+            .iter()
+            .map(|v| v * v)
+            .sum::<f64>()
+            .sqrt()
+    };
     let diag: Vec<f64> = (0..a.rows)
         .map(|i| a.find(i, i).map_or(0.0, norm))
         .collect();
@@ -526,10 +550,7 @@ fn strength(a: &Bsr, theta: f64) -> Csr {
             })
         })
         .collect();
-    Csr::from_pairs(
-        a.rows,
-        pairs.iter().flat_map(|&(i, j)| [(i, j), (j, i)]),
-    )
+    Csr::from_pairs(a.rows, pairs.iter().flat_map(|&(i, j)| [(i, j), (j, i)]))
 }
 
 /// Standard aggregation of the strong graph: the aggregate of each node and
@@ -672,7 +693,9 @@ fn smooth_prolongator(a: &Bsr, t: &Bsr) -> Result<Bsr> {
 fn spectral_radius(a: &Bsr, inverse: &[f64]) -> f64 {
     let b = a.r;
     let n = a.rows * b;
-    let mut x: Vec<f64> = (0..n).map(|k| 1.0 + ((k * 7919) % 13) as f64 / 13.0).collect();
+    let mut x: Vec<f64> = (0..n)
+        .map(|k| 1.0 + ((k * 7919) % 13) as f64 / 13.0)
+        .collect();
     let mut y = vec![0.0; n];
     let mut rho = 1.0;
     for _ in 0..POWER_STEPS {

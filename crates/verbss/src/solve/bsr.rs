@@ -168,7 +168,13 @@ impl Bsr {
             self.rows,
             other.cols,
             (r, c2),
-            || (vec![u32::MAX; other.cols], Vec::<u32>::new(), Vec::<f64>::new()),
+            || {
+                (
+                    vec![u32::MAX; other.cols],
+                    Vec::<u32>::new(),
+                    Vec::<f64>::new(),
+                )
+            },
             |(slot, cols, acc), i, columns, values| {
                 cols.clear();
                 acc.clear();
@@ -282,7 +288,8 @@ pub(crate) fn invert(a: &[f64], n: usize) -> Option<Vec<f64>> {
         .map(|k| f64::from(u8::from(k / n == k % n)))
         .collect();
     for col in 0..n {
-        let pivot = (col..n).max_by(|&x, &y| m[x * n + col].abs().total_cmp(&m[y * n + col].abs()))?;
+        let pivot =
+            (col..n).max_by(|&x, &y| m[x * n + col].abs().total_cmp(&m[y * n + col].abs()))?;
         let p = m[pivot * n + col];
         if !(p.is_finite() && p != 0.0) {
             return None;
@@ -325,7 +332,9 @@ mod tests {
             || (),
             |_, i, columns, values| {
                 for j in 0..cols {
-                    let block: Vec<f64> = (0..r * c).map(|k| d[i * r + k / c][j * c + k % c]).collect();
+                    let block: Vec<f64> = (0..r * c)
+                        .map(|k| d[i * r + k / c][j * c + k % c])
+                        .collect();
                     if block.iter().any(|&v| v != 0.0) {
                         columns.push(j as u32);
                         values.extend(block);

@@ -101,7 +101,9 @@ where
             for (i, v) in done.iter().enumerate() {
                 let d = chunked_dot(w, v);
                 h[i][k] = d;
-                w.par_iter_mut().zip(v.par_iter()).for_each(|(a, b)| *a -= d * b);
+                w.par_iter_mut()
+                    .zip(v.par_iter())
+                    .for_each(|(a, b)| *a -= d * b);
             }
             let len = chunked_dot(w, w).sqrt();
             h[k + 1][k] = len;
@@ -140,7 +142,9 @@ where
             y[i] = (g[i] - s) / h[i][i];
         }
         for (v, yi) in basis.iter().zip(&y) {
-            x.par_iter_mut().zip(v.par_iter()).for_each(|(a, b)| *a += yi * b);
+            x.par_iter_mut()
+                .zip(v.par_iter())
+                .for_each(|(a, b)| *a += yi * b);
         }
         if outcome.estimate < threshold {
             outcome.converged = true;

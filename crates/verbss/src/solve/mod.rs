@@ -586,9 +586,7 @@ impl Engine {
                 params.tolerance
             )));
         }
-        if params.accel == Accel::Amg
-            && !matches!(params.method, Method::Verbss | Method::Spring)
-        {
+        if params.accel == Accel::Amg && !matches!(params.method, Method::Verbss | Method::Spring) {
             return Err(Error::InvalidSetting(
                 "--accel amg solves the block systems of --method verbss and spring \
                  (not ball-vertex or laplacian)"
