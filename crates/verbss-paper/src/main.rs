@@ -51,6 +51,10 @@ pub struct Machine {
     pub cpu: String,
     /// `lscpu`, whole.
     pub lscpu: String,
+    /// The load average (1, 5, 15 minutes, `/proc/loadavg`) when the run started.
+    pub load_at_start: String,
+    /// The load average when it ended.
+    pub load_at_end: String,
 }
 
 /// Everything a run found (`results.json`).
@@ -97,7 +101,16 @@ fn machine() -> Machine {
             field("Thread(s) per core")
         ),
         lscpu,
+        load_at_start: load_average(),
+        load_at_end: String::new(),
     }
+}
+
+/// The first three fields of `/proc/loadavg`, or `unknown`.
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|_| "unknown".into())
 }
 
 fn main() -> anyhow::Result<()> {
@@ -141,6 +154,7 @@ fn main() -> anyhow::Result<()> {
             .cases
             .push(results::run_case(case, &args.cases_dir, &args.out)?);
         results.seconds = start.elapsed().as_secs_f64();
+        results.machine.load_at_end = load_average();
         write(&args.out, &results)?;
     }
     eprintln!(

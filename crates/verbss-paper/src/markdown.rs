@@ -164,6 +164,11 @@ paper's numbers beside ours. Written by `verbss-paper` (numbers in \
     let _ = writeln!(w, "- date: {}", r.date);
     let _ = writeln!(w, "- machine: `{}`", r.machine.uname);
     let _ = writeln!(w, "- processor: {}", r.machine.cpu);
+    let _ = writeln!(
+        w,
+        "- load average (1, 5, 15 min) at the start: {}; at the end: {}",
+        r.machine.load_at_start, r.machine.load_at_end
+    );
     let _ = writeln!(w, "- whole run: {:.0} s\n", r.seconds);
     let _ = writeln!(
         w,
@@ -171,7 +176,10 @@ paper's numbers beside ours. Written by `verbss-paper` (numbers in \
 ran at the same time. Absolute seconds are noisy and not comparable with the \
 paper's (a 2.66 GHz dual core in §4, a four-core machine in §5, CPU time where we \
 measure wall time); what we compare are ratios measured in the same run, above \
-all each method's seconds against `ball-vertex` with the scalar SOR solver.\n"
+all each method's seconds against `ball-vertex` with the scalar SOR solver. Even those \
+move by tens of per cent between runs (methods run one after the other while the load \
+changes); a load above 2 means the two cores were already busy, so a second thread \
+cannot help.\n"
     );
     settings(w, r);
     meshes(w, r);
