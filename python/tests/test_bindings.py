@@ -1,0 +1,300 @@
+"""The Python bindings give what the ``verbss`` command gives: the same
+coordinates after ``verbss deform`` on the repository's meshes, the same
+``verbss quality --json`` and the same error messages.
+
+The command is ``$VERBSS_CLI`` (set by crates/verbss-cli/tests/python_bindings.rs,
+which runs these tests under ``cargo test``), else ``target/release/verbss`` or
+``target/debug/verbss``; tests that need it are skipped without it.
+"""
+
+import json
+import os
+import subprocess
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import verbss
+
+ROOT = Path(__file__).resolve().parents[2]
+MESHES = ROOT / "assets" / "meshes" / "su2"
+NACA = MESHES / "mesh_NACA0012_inv.su2"
+
+# (mesh, moving group, total translation): the four shared meshes.
+CASES = [
+    ("mesh_NACA0012_inv.su2", "airfoil", [0.05, 0.1]),
+    ("mesh_RAE2822_turb_ffd.su2", "AIRFOIL", [0.02, -0.03]),
+    ("mesh_brick_tets_ffd.su2", "x_p", [0.2, 0.0, 0.05]),
+    ("mesh_brick_hex_ffd.su2", "x_p", [0.2, 0.0, 0.05]),
+]
+STEPS = 2
+SETTINGS = dict(omega=1.6, tolerance=1e-5, max_iterations=1000)
+
+
+@pytest.fixture(scope="session")
+def cli():
+    """The path of the ``verbss`` command."""
+    candidates = [os.environ.get("VERBSS_CLI")] + [
+        str(ROOT / "target" / profile / "verbss") for profile in ("release", "debug")
+    ]
+    for path in candidates:
+        if path and Path(path).is_file():
+            return path
+    pytest.skip("no verbss command: set VERBSS_CLI or build it with cargo build")
+
+
+def run_cli(cli, *args):
+    return subprocess.run([cli, *map(str, args)], capture_output=True, text=True)
+
+
+def cli_deform(cli, tmp_path, mesh, group, shift, steps=STEPS, extra=()):
+    """The coordinates ``verbss deform --translate`` writes."""
+    out = tmp_path / "cli.su2"
+    done = run_cli(
+        cli, "deform", MESHES / mesh, "-o", out, "--moving", group,
+        "--translate", ",".join(map(repr, shift)), "--steps", steps,
+        "--omega", SETTINGS["omega"], "--tolerance", SETTINGS["tolerance"],
+        "--max-iterations", SETTINGS["max_iterations"], "--quiet", *extra,
+    )
+    assert done.returncode == 0, done.stderr
+    return verbss.read(out).points
+
+
+@pytest.mark.parametrize("mesh,group,shift", CASES)
+def test_deform_matches_the_command_bit_for_bit(cli, tmp_path, mesh, group, shift):
+    expected = cli_deform(cli, tmp_path, mesh, group, shift)
+    d = verbss.Deformer(verbss.read(MESHES / mesh), threads=0, **SETTINGS)
+    total = np.array(shift)
+    for n in range(1, STEPS + 1):
+        points = d.step({group: n / STEPS * total})
+        assert d.info["step"] == n and d.info["inverted"] == 0
+    assert points.shape == expected.shape
+    assert not np.array_equal(points, verbss.read(MESHES / mesh).points)
+    assert np.array_equal(points, expected)
+    assert np.array_equal(d.points, expected)
+
+
+def test_callable_and_per_node_arrays_give_the_same_steps(cli, tmp_path):
+    mesh, group, shift = CASES[0]
+    expected = cli_deform(cli, tmp_path, mesh, group, shift)
+    seen = []
+
+    def translation(x0, step):
+        seen.append((x0.shape, step))
+        return np.tile(step / STEPS * np.array(shift), (len(x0), 1))
+
+    d = verbss.Deformer(verbss.read(MESHES / mesh), **SETTINGS)
+    for _ in range(STEPS):
+        d.step({group: translation})
+    assert seen == [((200, 2), 1), ((200, 2), 2)]
+    assert np.array_equal(d.points, expected)
+
+
+def test_arrays_built_mesh_matches_the_read_mesh():
+    read = verbss.read(NACA)
+    built = verbss.Mesh(read.points, read.cells, read.groups)
+    assert built.dim == 2
+    assert {k: v.shape for k, v in built.cells.items()} == {"triangle": (10216, 3)}
+    assert {k: len(v) for k, v in built.groups.items()} == {"airfoil": 200, "farfield": 50}
+    assert list(built.group_facets("airfoil")) == ["vertex"]
+    assert list(read.group_facets("airfoil")) == ["line"]
+    results = []
+    for mesh in (read, built):
+        d = verbss.Deformer(mesh, **SETTINGS)
+        for n in (1, 2):
+            d.step({"airfoil": [0.0, 0.02 * n]})
+        results.append(d.points)
+    assert np.array_equal(results[0], results[1])
+
+
+def test_rotation_matches_the_command_to_rounding(cli, tmp_path):
+    # The command rotates X itself; the binding receives u = R(X) - X and puts
+    # the node at X + u, which can differ from R(X) in the last bit.
+    out = tmp_path / "rotated.su2"
+    done = run_cli(
+        cli, "deform", NACA, "-o", out, "--moving", "airfoil", "--rotate", 6,
+        "--center", "0.25,0", "--steps", STEPS, "--omega", SETTINGS["omega"],
+        "--tolerance", SETTINGS["tolerance"], "--max-iterations",
+        SETTINGS["max_iterations"], "--quiet",
+    )
+    assert done.returncode == 0, done.stderr
+    expected = verbss.read(out).points
+
+    def pitch(x0, step):
+        a = np.radians(6.0) * step / STEPS
+        c, s = np.cos(a), np.sin(a)
+        x, y = x0[:, 0] - 0.25, x0[:, 1]
+        return np.column_stack([0.25 + c * x - s * y, s * x + c * y]) - x0
+
+    d = verbss.Deformer(verbss.read(NACA), **SETTINGS)
+    for _ in range(STEPS):
+        d.step({"airfoil": pitch})
+    assert np.abs(d.points - expected).max() < 1e-12
+
+
+def test_quality_is_the_command_json(cli):
+    for mesh in ("mesh_RAE2822_turb_ffd.su2", "mesh_brick_hex_ffd.su2"):
+        done = run_cli(cli, "quality", MESHES / mesh, "--json")
+        assert done.returncode == 0, done.stderr
+        assert verbss.quality(verbss.read(MESHES / mesh)) == json.loads(done.stdout)
+
+
+def test_errors_carry_the_command_message(cli, tmp_path):
+    missing = tmp_path / "missing.su2"
+    done = run_cli(cli, "quality", missing)
+    with pytest.raises(verbss.VerbssError) as e:
+        verbss.read(missing)
+    assert done.stderr == "error: %s\n" % e.value
+    assert str(e.value) == "%s: No such file or directory (os error 2)" % missing
+
+    done = run_cli(
+        cli, "deform", NACA, "-o", tmp_path / "o.su2", "--moving", "wing", "--translate", "0,1"
+    )
+    with pytest.raises(verbss.VerbssError) as e:
+        verbss.Deformer(verbss.read(NACA)).step({"wing": [0.0, 1.0]})
+    assert done.stderr == "error: %s\n" % e.value
+    assert str(e.value) == "unknown group 'wing' (the mesh has: airfoil, farfield)"
+
+    # Pushing the airfoil through the farfield inverts elements: exit code 3.
+    done = run_cli(
+        cli, "deform", NACA, "-o", tmp_path / "o.su2", "--moving", "airfoil",
+        "--translate", "30,0", "--tolerance", SETTINGS["tolerance"], "--max-iterations",
+        SETTINGS["max_iterations"], "--quiet",
+    )
+    assert done.returncode == 3
+    with pytest.raises(verbss.VerbssError) as e:
+        verbss.Deformer(verbss.read(NACA), **SETTINGS).step({"airfoil": [30.0, 0.0]})
+    assert done.stderr.splitlines()[0] == "error: %s" % e.value
+    assert str(e.value).startswith("step 1: element ")
+    assert issubclass(verbss.VerbssError, ValueError)
+
+
+def test_rejected_step_keeps_the_last_one_and_can_be_retried():
+    mesh = verbss.read(NACA)
+    d = verbss.Deformer(mesh, **SETTINGS)
+    assert d.info is None
+    first = d.step({"airfoil": [0.0, 0.01]}).copy()
+    with pytest.raises(verbss.VerbssError, match=r"^step 2: element \d+ inverted at "):
+        d.step({"airfoil": [30.0, 0.0]})
+    assert d.info["step"] == 1
+    assert np.array_equal(d.points, first)
+    d.step({"airfoil": [0.0, 0.02]})
+    assert d.info["step"] == 2 and d.info["inverted"] == 0
+
+
+def test_bad_displacements_are_named():
+    d = verbss.Deformer(verbss.read(NACA))
+    cases = [
+        ({"airfoil": np.zeros((3, 2))},
+         "invalid setting: the displacement of group 'airfoil' has shape (3, 2), "
+         "expected (200, 2) or (2,)"),
+        ({"airfoil": [0.0, np.nan]},
+         "invalid setting: the displacement of group 'airfoil' is not finite at row 0"),
+        ({}, "invalid setting: the first step names no group to move"),
+    ]
+    for given, message in cases:
+        with pytest.raises(verbss.VerbssError) as e:
+            d.step(given)
+        assert str(e.value) == message
+    d.step({"airfoil": [0.0, 0.01]})
+    with pytest.raises(verbss.VerbssError) as e:
+        d.step({"airfoil": [0.0, 0.01], "farfield": [0.0, 0.0]})
+    assert str(e.value) == (
+        "invalid setting: the step moves airfoil, farfield but the deformer moves "
+        "airfoil (the groups of its first step)"
+    )
+
+
+def test_bad_settings_and_arrays_are_named():
+    mesh = verbss.read(NACA)
+    cases = [
+        (lambda: verbss.Deformer(mesh, method="fast"),
+         "invalid setting: unknown method 'fast' (expected verbss, ball-vertex, spring or laplacian)"),
+        (lambda: verbss.Deformer(mesh, reference="fixed"),
+         "invalid setting: unknown reference 'fixed' (expected updated or initial)"),
+        (lambda: verbss.Mesh([[0, 0], [1, 0], [0, 1]], {"tri": [[0, 1, 2]]}),
+         "invalid mesh: unknown cell kind 'tri' (expected triangle, quad, tetra, hexahedron, wedge or pyramid)"),
+        (lambda: verbss.Mesh([[0, 0], [1, 0], [0, 1]], {"triangle": [[0, 1, 3]]}),
+         "invalid mesh: cells 'triangle' uses node 3, not a node id of the mesh (0 to 2)"),
+        (lambda: verbss.Mesh([[0, 0], [1, 0], [0, 1]], {"triangle": [[0, 1]]}),
+         "invalid mesh: cells 'triangle' must be an (M, 3) array"),
+        (lambda: verbss.Mesh([[0, 0], [1, 0], [0, np.inf]], {"triangle": [[0, 1, 2]]}),
+         "invalid mesh: node 2 has a non-finite coordinate"),
+        (lambda: verbss.Mesh([0.0, 1.0], {}),
+         "invalid mesh: points is a 1-dimensional array (expected an (N, D) array)"),
+    ]
+    for make, message in cases:
+        with pytest.raises(verbss.VerbssError) as e:
+            make()
+        assert str(e.value) == message
+
+
+def test_write_and_read_back(tmp_path):
+    mesh = verbss.read(MESHES / "mesh_RAE2822_turb_ffd.su2")
+    d = verbss.Deformer(mesh, **SETTINGS)
+    d.step({"AIRFOIL": [0.0, 0.005]})
+    for name in ("moved.su2", "moved.vtu", "moved.msh"):
+        d.mesh.write(tmp_path / name)
+        back = verbss.read(tmp_path / name)
+        assert np.array_equal(back.points, d.points)
+        assert back.cells.keys() == mesh.cells.keys()
+        assert all(np.array_equal(back.groups[g], mesh.groups[g]) for g in mesh.groups)
+
+
+def test_meshio_round_trip(tmp_path):
+    meshio = pytest.importorskip("meshio")
+    mesh = verbss.read(MESHES / "mesh_RAE2822_turb_ffd.su2")
+    m = verbss.to_meshio(mesh)
+    assert isinstance(m, meshio.Mesh)
+    back = verbss.from_meshio(m)
+    assert np.array_equal(back.points, mesh.points)
+    assert all(np.array_equal(back.cells[k], mesh.cells[k]) for k in mesh.cells)
+    assert all(np.array_equal(back.groups[g], mesh.groups[g]) for g in mesh.groups)
+    assert back.group_facets("AIRFOIL")["line"].shape == (192, 2)
+    # A file meshio read: SU2 markers come back by their tag numbers.
+    m = meshio.read(NACA)
+    back = verbss.from_meshio(m)
+    assert {k: len(v) for k, v in back.groups.items()} == {"1": 200, "2": 50}
+    assert np.array_equal(back.points, verbss.read(NACA).points)
+
+
+def count_until(stop):
+    """Counts loop turns of this thread until `stop()` is true."""
+    counted = 0
+    while not stop():
+        counted += 1
+    return counted
+
+
+def test_solve_releases_the_gil():
+    # This thread's loop rate alone, then while another thread solves.
+    calibration = time.perf_counter() + 0.2
+    rate = count_until(lambda: time.perf_counter() > calibration) / 0.2
+    d = verbss.Deformer(
+        verbss.read(MESHES / "mesh_RAE2822_turb_ffd.su2"), tolerance=1e-7, threads=1
+    )
+    done = threading.Event()
+    worker = threading.Thread(target=lambda: (d.step({"AIRFOIL": [0.0, 0.01]}), done.set()))
+    worker.start()
+    counted = count_until(done.is_set)
+    worker.join()
+    solve = d.info["solve_seconds"]
+    assert solve > 0.2, d.info
+    # Holding the GIL, the solve would stop this thread for `solve` seconds.
+    assert counted > 0.2 * rate * solve, (counted, rate, solve)
+
+
+def test_example_plots_the_histogram(tmp_path):
+    pytest.importorskip("matplotlib")
+    script = ROOT / "examples" / "python" / "pitching_airfoil.py"
+    done = subprocess.run(
+        ["python3", str(script), "--steps", "4", "--out", str(tmp_path)],
+        capture_output=True, text=True,
+    )
+    assert done.returncode == 0, done.stderr
+    png = tmp_path / "quality_histogram.png"
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert "step 4" in done.stdout

@@ -1,0 +1,139 @@
+"""Type stubs of the native part of verbss (``verbss._verbss``)."""
+
+import os
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, TypedDict, Union
+
+import numpy as np
+import numpy.typing as npt
+
+_Ids = npt.ArrayLike
+_Displacement = Union[npt.ArrayLike, Callable[[np.ndarray, int], npt.ArrayLike]]
+
+class VerbssError(ValueError):
+    """A verbss error: a file that cannot be read, an invalid mesh or
+    setting, an unknown group, or a step that inverted an element. The
+    message is the one the ``verbss`` command prints after ``error: ``."""
+
+class StepInfo(TypedDict):
+    """What one step did (``Deformer.info``)."""
+
+    step: int
+    iterations: int
+    residual: float
+    converged: bool
+    seconds: float
+    form_seconds: float
+    solve_seconds: float
+    min_quality: float
+    mean_quality: float
+    inverted: int
+    bins: List[int]
+
+class Mesh:
+    """An unstructured 2D or 3D hybrid mesh: node coordinates, volume cells
+    and named boundary groups.
+
+    - ``points``: (N, D) floats, D = 2 or 3.
+    - ``cells``: a mapping from a meshio cell kind name (``"triangle"``,
+      ``"quad"``, ``"tetra"``, ``"hexahedron"``, ``"wedge"``, ``"pyramid"``)
+      to an (M, k) array of 0-based node ids, or a sequence of (kind, array)
+      pairs; nodes in Gmsh's order (VTK's, except for the wedge).
+    - ``groups``: a mapping from a group name to its node ids (1-D), or to its
+      boundary facets (an (M, k) array: k = 2 lines, 3 triangles, 4 quads; or
+      a mapping kind → array for mixed facets).
+
+    Raises VerbssError when the arrays do not make a valid mesh.
+    """
+
+    def __init__(
+        self,
+        points: npt.ArrayLike,
+        cells: Union[Mapping[str, _Ids], Sequence[Tuple[str, _Ids]]],
+        groups: Optional[Mapping[str, Union[_Ids, Mapping[str, _Ids]]]] = None,
+    ) -> None: ...
+    @property
+    def points(self) -> np.ndarray:
+        """The node coordinates, an (N, D) float64 array (a copy)."""
+    @property
+    def cells(self) -> Dict[str, np.ndarray]:
+        """The volume cells: {kind name: (M, k) int64 array of node ids},
+        kinds in order of first appearance (copies)."""
+    @property
+    def groups(self) -> Dict[str, np.ndarray]:
+        """The groups: {name: sorted int64 array of its distinct node ids}."""
+    @property
+    def dim(self) -> int:
+        """The spatial dimension, 2 or 3."""
+    def group_facets(self, name: str) -> Dict[str, np.ndarray]:
+        """The boundary facets of group ``name``: {kind name: (M, k) int64
+        array} (``"vertex"`` for groups given as node ids)."""
+    def write(self, path: Union[str, os.PathLike]) -> None:
+        """Writes the mesh to ``path`` in the format of its extension (.msh
+        Gmsh 4.1, .su2, .vtu), with the mesh's numbering."""
+
+class Deformer:
+    """A mesh in motion, stepped by a flow solver (see :meth:`step`).
+
+    - ``method``: ``"verbss"`` (edge + ball-vertex springs, node by node),
+      ``"ball-vertex"`` (the same system solved globally by ``solver``,
+      ``"sor"`` or ``"direct"``), ``"spring"`` (edge springs only) or
+      ``"laplacian"``.
+    - ``omega``: the over-relaxation factor of the sweeps.
+    - ``tolerance``: the sweeps stop when the mean absolute change of one
+      sweep is below tolerance × the step's largest prescribed displacement.
+    - ``max_iterations``: the most sweeps per step.
+    - ``threads``: worker threads, 0 for one per core; results do not depend
+      on it.
+    - ``reference``: ``"updated"`` (springs on the current mesh each step) or
+      ``"initial"`` (springs on the input mesh, solving for the total
+      displacement).
+    """
+
+    def __init__(
+        self,
+        mesh: Mesh,
+        method: str = "verbss",
+        omega: float = 1.6,
+        tolerance: float = 1e-5,
+        max_iterations: int = 1000,
+        threads: int = 0,
+        reference: str = "updated",
+        solver: str = "sor",
+    ) -> None: ...
+    def step(self, displacements: Mapping[str, _Displacement]) -> np.ndarray:
+        """Takes the next time step and returns the new node coordinates, an
+        (N, D) float64 array.
+
+        ``displacements`` maps each moving group's name to its displacement
+        from the input mesh at this step: an (n, D) array (rows in the order
+        of ``mesh.groups[name]``), a (D,) array (the same for every node), or
+        a callable ``f(points, step)`` given the group's input coordinates (an
+        (n, D) array, same order) and the step number (1 for the first step),
+        returning either. Each node of a group goes exactly to its input
+        position plus its displacement; a node in several moving groups
+        follows the first one named. Every other boundary node stays where it
+        is, the interior nodes follow by the springs. The first step fixes
+        which groups move: every later step names the same groups.
+
+        The solve runs with the GIL released. Raises VerbssError when a group
+        is unknown, a displacement has the wrong shape or is not finite, or
+        the step inverted an element: the step is then rejected and the
+        deformer keeps the last accepted step (so the same step can be
+        retried)."""
+    @property
+    def points(self) -> np.ndarray:
+        """The current node coordinates, an (N, D) float64 array (a copy)."""
+    @property
+    def mesh(self) -> Mesh:
+        """The input mesh with the current coordinates."""
+    @property
+    def info(self) -> Optional[StepInfo]:
+        """What the last accepted step did, or None before the first step."""
+
+def read(path: Union[str, os.PathLike]) -> Mesh:
+    """Reads a mesh file (.msh Gmsh 2.2/4.1, .su2, .vtu), chosen by
+    extension. Raises VerbssError naming the file, the line and what was
+    expected."""
+
+def quality_json(mesh: Mesh) -> str:
+    """The ``verbss quality --json`` summary of a mesh, as JSON text."""
