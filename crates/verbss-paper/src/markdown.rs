@@ -187,6 +187,9 @@ cannot help.\n"
     table1(w, r);
     table2(w, r);
     naca(w, r);
+    if case(r, "three-element").is_some() {
+        let _ = writeln!(w, "## §4.3, three-element airfoil\n");
+    }
     split(w, r, "three-element", 6, "§4.3, three-element airfoil");
     sphere(w, r);
     threads(w, r, "two-fish", 8, "§5.2, two fish");
