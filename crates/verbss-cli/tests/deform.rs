@@ -124,6 +124,68 @@ fn a_rotation_with_every_method_keeps_the_mesh_valid() {
 }
 
 #[test]
+fn the_accelerated_solve_gives_the_direct_solution() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = naca();
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let mut args = vec![
+            "deform",
+            mesh.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--moving",
+            "airfoil",
+            "--rotate",
+            "8",
+            "--center",
+            "0.25,0",
+            "--steps",
+            "2",
+            "--quiet",
+        ];
+        args.extend_from_slice(extra);
+        let o = verbss(&args);
+        assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
+        verbss::io::read(&out).unwrap()
+    };
+    let exact = run(
+        "direct.su2",
+        &["--method", "ball-vertex", "--solver", "direct"],
+    );
+    let fast = run("amg.su2", &["--accel", "amg", "--tolerance", "1e-11"]);
+    let diff = exact
+        .coords
+        .iter()
+        .zip(&fast.coords)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(diff < 1e-8, "largest difference {diff}");
+    let o = verbss(&[
+        "deform",
+        naca().to_str().unwrap(),
+        "-o",
+        dir.path().join("x.su2").to_str().unwrap(),
+        "--moving",
+        "airfoil",
+        "--rotate",
+        "8",
+        "--center",
+        "0.25,0",
+        "--method",
+        "laplacian",
+        "--accel",
+        "amg",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--accel amg solves the block systems of --method verbss and spring"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
 fn unknown_group_lists_the_groups_and_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("x.su2");
