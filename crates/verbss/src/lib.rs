@@ -17,7 +17,7 @@
 //! | [`geometry`] | small fixed-size kernels: determinants, nearest points, LDLᵀ |
 //! | [`quality`] | ρ = C r/R, scaled Jacobians, inversion check, the paper's histogram |
 //! | [`springs`] | assembles the node-block system `K_ii u_i = Σ_j B_ij u_j` |
-//! | [`solve`] | the [`solve::Engine`]: VerBSS block SOR, scalar SOR, sparse LU, Laplacian |
+//! | [`solve`] | the [`solve::Engine`]: VerBSS block SOR, scalar SOR, sparse LU, Laplacian; the multigrid-accelerated solve |
 //! | [`motion`] | boundary motions: translation, rotation, pitch–plunge, undulation, bending, positions |
 //! | [`deform`] | the stepper: motion → system → solve → update → inversion check |
 //! | [`case`], [`report`] | the TOML case file and `report.json` |
