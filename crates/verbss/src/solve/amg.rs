@@ -427,33 +427,29 @@ fn fine_matrix<const D: usize>(blocks: &NodeBlocks, layout: &Layout) -> Bsr {
         |_, p, columns, values| {
             let factor = &blocks.diag[s * p..s * (p + 1)];
             let frame = layout.frame::<D>(p);
-            let mut diag = [[0.0; D]; D];
-            for c in 0..D {
-                // column c of R_pᵀ K̃ R_p: the unit vector e_c through the frame.
+            // Column c of R_pᵀ K̃ R_p: the unit vector e_c through the frame.
+            let cols: [[f64; D]; D] = std::array::from_fn(|c| {
                 let unit: [f64; D] = std::array::from_fn(|k| f64::from(u8::from(k == c)));
-                let col = match frame {
+                match frame {
                     None => ldlt_mul::<D>(factor, &unit),
                     Some(f) => unrotate(&f, &ldlt_mul::<D>(factor, &rotate(&f, &unit))),
-                };
-                for r in 0..D {
-                    diag[r][c] = col[r];
                 }
-            }
+            });
             columns.push(p as u32);
-            values.extend(diag.iter().flatten());
+            values.extend((0..D * D).map(|k| cols[k % D][k / D]));
             let pp = projector(p);
             for e in blocks.offsets[p]..blocks.offsets[p + 1] {
                 let q = blocks.neighbours[e] as usize;
                 let pq = projector(q);
                 let b = &blocks.blocks[s * e..s * (e + 1)];
                 columns.push(q as u32);
-                for r in 0..D {
-                    for c in 0..D {
-                        // −(P_p B P_q)_rc
-                        let bq = packed_mul::<D>(b, &std::array::from_fn(|k| pq[k][c]));
-                        values.push(-(0..D).map(|k| pp[r][k] * bq[k]).sum::<f64>());
-                    }
-                }
+                // Column c of B P_q, then row r of −P_p (B P_q).
+                let bq: [[f64; D]; D] =
+                    std::array::from_fn(|c| packed_mul::<D>(b, &std::array::from_fn(|k| pq[k][c])));
+                values.extend((0..D * D).map(|k| {
+                    let (r, c) = (k / D, k % D);
+                    -(0..D).map(|l| pp[r][l] * bq[c][l]).sum::<f64>()
+                }));
             }
         },
     )
@@ -570,10 +566,10 @@ fn aggregate(strong: &Csr) -> (Vec<u32>, usize) {
         }
     }
     let first = agg.clone();
-    for i in 0..n {
-        if agg[i] == u32::MAX {
+    for (i, a) in agg.iter_mut().enumerate() {
+        if *a == u32::MAX {
             if let Some(&j) = strong.row(i).iter().find(|&&j| first[j] != u32::MAX) {
-                agg[i] = first[j];
+                *a = first[j];
             }
         }
     }
