@@ -10,6 +10,7 @@ which runs these tests under ``cargo test``), else ``target/release/verbss`` or
 import json
 import os
 import subprocess
+import sys
 import threading
 import time
 from pathlib import Path
@@ -291,7 +292,7 @@ def test_example_plots_the_histogram(tmp_path):
     pytest.importorskip("matplotlib")
     script = ROOT / "examples" / "python" / "pitching_airfoil.py"
     done = subprocess.run(
-        ["python3", str(script), "--steps", "4", "--out", str(tmp_path)],
+        [sys.executable, str(script), "--steps", "4", "--out", str(tmp_path)],
         capture_output=True, text=True,
     )
     assert done.returncode == 0, done.stderr
