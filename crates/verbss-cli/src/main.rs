@@ -43,7 +43,7 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    quiet_caught_solver_panics();
+    quiet_caught_solver_panics_and_closed_pipes();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Quality(args) => quality::run(args),
@@ -64,12 +64,24 @@ fn main() -> ExitCode {
 
 /// The sparse LU the library uses panics on an exact zero pivot; the library
 /// catches that panic and reports a singular system as an error, so its
-/// message must not reach the user as if the program had crashed.
-fn quiet_caught_solver_panics() {
+/// message must not reach the user as if the program had crashed. And when
+/// the reader of standard output goes away (`verbss quality m.su2 | head`),
+/// printing fails: the program stops quietly with the shell's code for a
+/// closed pipe (128 + SIGPIPE = 141), as other command-line tools do.
+fn quiet_caught_solver_panics_and_closed_pipes() {
     let default = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
         if info.location().is_some_and(|l| l.file().contains("/faer-")) {
             return;
+        }
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(141);
         }
         default(info);
     }));

@@ -72,6 +72,24 @@ fn quality_json_has_the_documented_shape() {
 }
 
 #[test]
+fn a_reader_that_stops_early_ends_the_program_quietly() {
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_verbss"))
+        .args([
+            "quality",
+            asset("su2/mesh_RAE2822_turb_ffd.su2").to_str().unwrap(),
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run verbss");
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(141));
+    assert_eq!(stderr(&o), "");
+}
+
+#[test]
 fn quality_table_for_a_hybrid_mesh() {
     let o = verbss(&[
         "quality",

@@ -143,6 +143,7 @@ fn main() {
         );
         let plain_error = rel_error(&u, &reference);
         let per_sweep = plain.solve_seconds / plain.iterations as f64;
+        drop(plain_engine);
         let mut factor = 10.0;
         let (amg, amg_s, amg_tol, mut engine) = loop {
             let tol = o.tolerance * factor;
