@@ -211,7 +211,7 @@ impl Mesh {
                 })?;
             let what = format!("cells '{name}'");
             let (ids, columns) = node_ids(&array, n, &what)?;
-            if columns != kind.node_count() || ids.len() % columns != 0 {
+            if columns != kind.node_count() {
                 return Err(invalid_mesh(format!(
                     "{what} must be an (M, {}) array",
                     kind.node_count()

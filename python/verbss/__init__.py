@@ -118,7 +118,7 @@ def to_meshio(mesh: Mesh) -> Any:
     facets as blocks of their own named in ``cell_sets`` (so that
     :func:`from_meshio` gives the groups back), groups of single nodes as
     ``point_sets``."""
-    import meshio
+    import meshio  # type: ignore[import-untyped]
 
     blocks: List[Tuple[str, np.ndarray]] = list(mesh.cells.items())
     members: Dict[str, List[int]] = {}

@@ -1,10 +1,24 @@
 """Type stubs of the native part of verbss (``verbss._verbss``)."""
 
 import os
-from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple, TypedDict, Union
+from typing import (
+    Callable,
+    Dict,
+    List,
+    Mapping,
+    Optional,
+    Sequence,
+    Tuple,
+    TypedDict,
+    Union,
+    final,
+    type_check_only,
+)
 
 import numpy as np
 import numpy.typing as npt
+
+__all__ = ["Deformer", "Mesh", "VerbssError", "quality_json", "read"]
 
 _Ids = npt.ArrayLike
 _Displacement = Union[npt.ArrayLike, Callable[[np.ndarray, int], npt.ArrayLike]]
@@ -14,6 +28,7 @@ class VerbssError(ValueError):
     setting, an unknown group, or a step that inverted an element. The
     message is the one the ``verbss`` command prints after ``error: ``."""
 
+@type_check_only
 class StepInfo(TypedDict):
     """What one step did (``Deformer.info``)."""
 
@@ -29,6 +44,7 @@ class StepInfo(TypedDict):
     inverted: int
     bins: List[int]
 
+@final
 class Mesh:
     """An unstructured 2D or 3D hybrid mesh: node coordinates, volume cells
     and named boundary groups.
@@ -45,12 +61,12 @@ class Mesh:
     Raises VerbssError when the arrays do not make a valid mesh.
     """
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         points: npt.ArrayLike,
         cells: Union[Mapping[str, _Ids], Sequence[Tuple[str, _Ids]]],
         groups: Optional[Mapping[str, Union[_Ids, Mapping[str, _Ids]]]] = None,
-    ) -> None: ...
+    ) -> "Mesh": ...
     @property
     def points(self) -> np.ndarray:
         """The node coordinates, an (N, D) float64 array (a copy)."""
@@ -71,6 +87,7 @@ class Mesh:
         """Writes the mesh to ``path`` in the format of its extension (.msh
         Gmsh 4.1, .su2, .vtu), with the mesh's numbering."""
 
+@final
 class Deformer:
     """A mesh in motion, stepped by a flow solver (see :meth:`step`).
 
@@ -89,8 +106,8 @@ class Deformer:
       displacement).
     """
 
-    def __init__(
-        self,
+    def __new__(
+        cls,
         mesh: Mesh,
         method: str = "verbss",
         omega: float = 1.6,
@@ -99,7 +116,7 @@ class Deformer:
         threads: int = 0,
         reference: str = "updated",
         solver: str = "sor",
-    ) -> None: ...
+    ) -> "Deformer": ...
     def step(self, displacements: Mapping[str, _Displacement]) -> np.ndarray:
         """Takes the next time step and returns the new node coordinates, an
         (N, D) float64 array.
