@@ -273,7 +273,11 @@ edge moves 0.013 past elements of ≈ 0.0015, the refinement at the edges in \
 `cases/meshes/naca0012.py`; the tip of the bending wing moves 0.02 a step past elements \
 of ≈ 0.016 and smaller at its trailing-edge corner), so a \
 limit measured on one mesh does not carry over to another. The comparisons between \
-methods on the same mesh do.\n\
+methods on the same mesh do. One geometry was changed after a first run: the fish \
+were first lofted NACA 0012 sections with small flat end caps, and the eq.-11 shear of \
+the thin tail inverted a tetrahedron whose four nodes all lie on the body, at the same \
+step for every method (the boundary motion inverted it by itself, before any mesh \
+motion); they are now smooth flattened ellipsoids (`cases/meshes/two_fish.py`).\n\
 {}{}- **Laplacian against translation and rotation.** The component-wise Laplacian moves \
 every component independently; it follows rigid translations well and rotations \
 poorly, so it compares differently on the translating rectangle and sphere than on the \
