@@ -42,7 +42,7 @@ use crate::topology::{self, Csr};
 /// The largest block: 6 rigid-body modes in 3D.
 const MAX_BLOCK: usize = 6;
 /// Levels with at most this many unknowns are solved exactly.
-pub(crate) const COARSEST_UNKNOWNS: usize = 600;
+pub(crate) const COARSEST_UNKNOWNS: usize = 300;
 /// At most this many levels.
 const MAX_LEVELS: usize = 12;
 /// Strength threshold θ of the finest level.
@@ -100,7 +100,7 @@ struct DenseLu {
 }
 
 /// The largest coarsest level factored densely.
-const DENSE_LIMIT: usize = 3000;
+const DENSE_LIMIT: usize = 1000;
 /// Gauss–Seidel sweeps (each way) of a coarsest level too large to factor.
 const COARSEST_SWEEPS: usize = 10;
 
