@@ -141,7 +141,7 @@ pub enum Accel {
 }
 
 /// The size from which [`Accel::Auto`] uses the multigrid.
-pub const AUTO_AMG_NODES: usize = 20_000;
+pub const AUTO_AMG_NODES: usize = 100_000;
 
 /// Settings of one solve (one time step).
 #[derive(Debug, Clone, PartialEq)]
@@ -210,6 +210,8 @@ pub struct SolveInfo {
     pub levels: usize,
     /// Whether this call (re)built the multigrid hierarchy.
     pub hierarchy_built: bool,
+    /// Seconds building the multigrid hierarchy (part of `form_seconds`).
+    pub hierarchy_seconds: f64,
 }
 
 /// The default roles of a mesh: [`NodeRole::Fixed`] on every boundary node
@@ -488,6 +490,7 @@ impl Engine {
                 }
             };
         let mut hierarchy_built = false;
+        let hierarchy_start = Instant::now();
         if amg
             && !accelerator
                 .as_ref()
@@ -511,6 +514,11 @@ impl Engine {
                 Err(e) => return Err(e),
             }
         }
+        let hierarchy_seconds = if hierarchy_built {
+            hierarchy_start.elapsed().as_secs_f64()
+        } else {
+            0.0
+        };
         let accelerator = if amg { accelerator.as_mut() } else { None };
         let form_seconds = start.elapsed().as_secs_f64();
         let solving = Instant::now();
@@ -529,6 +537,7 @@ impl Engine {
         info.seconds = start.elapsed().as_secs_f64();
         info.rebuilt = !reuse;
         info.hierarchy_built = hierarchy_built;
+        info.hierarchy_seconds = hierarchy_seconds;
         Ok(info)
     }
 
