@@ -17,9 +17,9 @@ tetrahedra). Gmsh's parallel HXT algorithm meshes the volume.
 Usage: python3 bending_wing.py OUT.msh | --size H OUT.msh
 """
 
-import sys
-
 import gmsh
+
+import meshing
 
 import naca
 
@@ -62,35 +62,11 @@ def build(h, out):
         gmsh.model.addPhysicalGroup(2, tags, name=name)
     fluid = gmsh.model.addPhysicalGroup(3, [volume[0][1]], name="fluid")
     f = gmsh.model.mesh.field
-    dist = f.add("Distance")
-    f.setNumbers(dist, "SurfacesList", groups["wing"] + groups["body"])
-    thr = f.add("Threshold")
-    f.setNumber(thr, "InField", dist)
-    f.setNumber(thr, "SizeMin", h)
-    f.setNumber(thr, "SizeMax", 20 * h)
-    f.setNumber(thr, "DistMin", 0)
-    f.setNumber(thr, "DistMax", 3)
+    thr = meshing.graded("SurfacesList", groups["wing"] + groups["body"], h, 20 * h, 0, 3)
     f.setAsBackgroundMesh(thr)
-    for key in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber("Mesh." + key, 0)
     gmsh.option.setNumber("Mesh.Algorithm3D", 10)
-    gmsh.model.mesh.generate(3)
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    gmsh.option.setNumber("Mesh.Binary", 1)
-    nodes = len(gmsh.model.mesh.getNodesForPhysicalGroup(3, fluid)[0])
-    gmsh.write(out)
-    gmsh.finalize()
-    print(f"{out}: {nodes} nodes (h = {h})")
-
-
-def main():
-    if len(sys.argv) == 4 and sys.argv[1] == "--size":
-        build(float(sys.argv[2]), sys.argv[3])
-    elif len(sys.argv) == 2:
-        build(SIZE, sys.argv[1])
-    else:
-        sys.exit("usage: bending_wing.py OUT.msh | --size H OUT.msh")
+    meshing.finish(out, 3, fluid, h)
 
 
 if __name__ == "__main__":
-    main()
+    meshing.command_line(build, "bending_wing.py", SIZE)

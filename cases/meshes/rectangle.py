@@ -15,6 +15,8 @@ import sys
 
 import gmsh
 
+import meshing
+
 # Target node count (paper, Table 2) -> size h at the body.
 SIZES = {298: 0.44388, 1035: 0.22298, 3055: 0.12621, 8081: 0.07601, 21376: 0.04625}
 
@@ -38,26 +40,10 @@ def build(h, out):
     gmsh.model.addPhysicalGroup(1, outer_curves, name="outer")
     fluid = gmsh.model.addPhysicalGroup(2, [domain[0][1]], name="fluid")
     f = gmsh.model.mesh.field
-    dist = f.add("Distance")
-    f.setNumbers(dist, "CurvesList", body_curves)
-    f.setNumber(dist, "Sampling", 200)
-    thr = f.add("Threshold")
-    f.setNumber(thr, "InField", dist)
-    f.setNumber(thr, "SizeMin", h)
-    f.setNumber(thr, "SizeMax", 4 * h)
-    f.setNumber(thr, "DistMin", 0)
-    f.setNumber(thr, "DistMax", 6)
+    thr = meshing.graded("CurvesList", body_curves, h, 4 * h, 0, 6, sampling=200)
     f.setAsBackgroundMesh(thr)
-    for key in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber("Mesh." + key, 0)
     gmsh.option.setNumber("Mesh.Algorithm", 6)
-    gmsh.model.mesh.generate(2)
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    gmsh.option.setNumber("Mesh.Binary", 1)
-    nodes = len(gmsh.model.mesh.getNodesForPhysicalGroup(2, fluid)[0])
-    gmsh.write(out)
-    gmsh.finalize()
-    print(f"{out}: {nodes} nodes (h = {h})")
+    meshing.finish(out, 2, fluid, h)
 
 
 def main():

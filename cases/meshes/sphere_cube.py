@@ -8,9 +8,9 @@ paper's 2,058 nodes (9,496 elements).
 Usage: python3 sphere_cube.py OUT.msh | --size H OUT.msh
 """
 
-import sys
-
 import gmsh
+
+import meshing
 
 SIZE = 1.16717
 
@@ -30,35 +30,11 @@ def build(h, out):
     gmsh.model.addPhysicalGroup(2, [s for s in surfaces if s not in on_sphere], name="cube")
     fluid = gmsh.model.addPhysicalGroup(3, [volume[0][1]], name="fluid")
     f = gmsh.model.mesh.field
-    dist = f.add("Distance")
-    f.setNumbers(dist, "SurfacesList", on_sphere)
-    thr = f.add("Threshold")
-    f.setNumber(thr, "InField", dist)
-    f.setNumber(thr, "SizeMin", h)
-    f.setNumber(thr, "SizeMax", 5 * h)
-    f.setNumber(thr, "DistMin", 0)
-    f.setNumber(thr, "DistMax", 20)
+    thr = meshing.graded("SurfacesList", on_sphere, h, 5 * h, 0, 20)
     f.setAsBackgroundMesh(thr)
-    for key in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber("Mesh." + key, 0)
     gmsh.option.setNumber("Mesh.OptimizeNetgen", 1)
-    gmsh.model.mesh.generate(3)
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    gmsh.option.setNumber("Mesh.Binary", 1)
-    nodes = len(gmsh.model.mesh.getNodesForPhysicalGroup(3, fluid)[0])
-    gmsh.write(out)
-    gmsh.finalize()
-    print(f"{out}: {nodes} nodes (h = {h})")
-
-
-def main():
-    if len(sys.argv) == 4 and sys.argv[1] == "--size":
-        build(float(sys.argv[2]), sys.argv[3])
-    elif len(sys.argv) == 2:
-        build(SIZE, sys.argv[1])
-    else:
-        sys.exit("usage: sphere_cube.py OUT.msh | --size H OUT.msh")
+    meshing.finish(out, 3, fluid, h)
 
 
 if __name__ == "__main__":
-    main()
+    meshing.command_line(build, "sphere_cube.py", SIZE)

@@ -17,9 +17,9 @@ count close to the paper's 11,372.
 Usage: python3 three_element.py OUT.msh | --size H OUT.msh
 """
 
-import sys
-
 import gmsh
+
+import meshing
 
 import naca
 
@@ -54,46 +54,14 @@ def build(h, out):
     gmsh.model.addPhysicalGroup(1, [far], name="farfield")
     fluid = gmsh.model.addPhysicalGroup(2, [surface], name="fluid")
     f = gmsh.model.mesh.field
-    dist = f.add("Distance")
-    f.setNumbers(dist, "CurvesList", [c for cs in curves.values() for c in cs])
-    f.setNumber(dist, "Sampling", 400)
-    thr = f.add("Threshold")
-    f.setNumber(thr, "InField", dist)
-    f.setNumber(thr, "SizeMin", h)
-    f.setNumber(thr, "SizeMax", 1.5)
-    f.setNumber(thr, "DistMin", 0)
-    f.setNumber(thr, "DistMax", 8)
-    edges = f.add("Distance")
-    f.setNumbers(edges, "PointsList", edge_points)
-    ethr = f.add("Threshold")
-    f.setNumber(ethr, "InField", edges)
-    f.setNumber(ethr, "SizeMin", h / 4)
-    f.setNumber(ethr, "SizeMax", 1.5)
-    f.setNumber(ethr, "DistMin", 0.01)
-    f.setNumber(ethr, "DistMax", 0.3)
+    thr = meshing.graded("CurvesList", [c for cs in curves.values() for c in cs], h, 1.5, 0, 8, sampling=400)
+    ethr = meshing.graded("PointsList", edge_points, h / 4, 1.5, 0.01, 0.3)
     both = f.add("Min")
     f.setNumbers(both, "FieldsList", [thr, ethr])
     f.setAsBackgroundMesh(both)
-    for key in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber("Mesh." + key, 0)
     gmsh.option.setNumber("Mesh.Algorithm", 6)
-    gmsh.model.mesh.generate(2)
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    gmsh.option.setNumber("Mesh.Binary", 1)
-    nodes = len(gmsh.model.mesh.getNodesForPhysicalGroup(2, fluid)[0])
-    gmsh.write(out)
-    gmsh.finalize()
-    print(f"{out}: {nodes} nodes (h = {h})")
-
-
-def main():
-    if len(sys.argv) == 4 and sys.argv[1] == "--size":
-        build(float(sys.argv[2]), sys.argv[3])
-    elif len(sys.argv) == 2:
-        build(SIZE, sys.argv[1])
-    else:
-        sys.exit("usage: three_element.py OUT.msh | --size H OUT.msh")
+    meshing.finish(out, 2, fluid, h)
 
 
 if __name__ == "__main__":
-    main()
+    meshing.command_line(build, "three_element.py", SIZE)

@@ -15,9 +15,9 @@ for a node count close to the paper's 20,840 nodes (108,322 tetrahedra).
 Usage: python3 two_fish.py OUT.msh | --size H OUT.msh
 """
 
-import sys
-
 import gmsh
+
+import meshing
 
 SIZE = 0.0176
 
@@ -52,36 +52,12 @@ def build(h, out):
         gmsh.model.addPhysicalGroup(2, tags, name=name)
     fluid = gmsh.model.addPhysicalGroup(3, [volume[0][1]], name="fluid")
     f = gmsh.model.mesh.field
-    dist = f.add("Distance")
-    f.setNumbers(dist, "SurfacesList", groups["fish1"] + groups["fish2"])
-    thr = f.add("Threshold")
-    f.setNumber(thr, "InField", dist)
-    f.setNumber(thr, "SizeMin", h)
-    f.setNumber(thr, "SizeMax", 12 * h)
-    f.setNumber(thr, "DistMin", 0)
-    f.setNumber(thr, "DistMax", 1.2)
+    thr = meshing.graded("SurfacesList", groups["fish1"] + groups["fish2"], h, 12 * h, 0, 1.2)
     f.setAsBackgroundMesh(thr)
-    for key in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
-        gmsh.option.setNumber("Mesh." + key, 0)
     gmsh.option.setNumber("Mesh.Algorithm", 1)  # MeshAdapt: the scaled spheres defeat the default
     gmsh.option.setNumber("Mesh.OptimizeNetgen", 1)
-    gmsh.model.mesh.generate(3)
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    gmsh.option.setNumber("Mesh.Binary", 1)
-    nodes = len(gmsh.model.mesh.getNodesForPhysicalGroup(3, fluid)[0])
-    gmsh.write(out)
-    gmsh.finalize()
-    print(f"{out}: {nodes} nodes (h = {h})")
-
-
-def main():
-    if len(sys.argv) == 4 and sys.argv[1] == "--size":
-        build(float(sys.argv[2]), sys.argv[3])
-    elif len(sys.argv) == 2:
-        build(SIZE, sys.argv[1])
-    else:
-        sys.exit("usage: two_fish.py OUT.msh | --size H OUT.msh")
+    meshing.finish(out, 3, fluid, h)
 
 
 if __name__ == "__main__":
-    main()
+    meshing.command_line(build, "two_fish.py", SIZE)
