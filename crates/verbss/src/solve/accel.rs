@@ -22,15 +22,95 @@ use rayon::prelude::*;
 
 use super::amg::Hierarchy;
 use super::gmres::{self, Workspace};
-use super::{coupled, rotate, sweep, unrotate, verbss, Built, Layout, Method, SolveInfo, CHUNK};
+use super::{
+    coupled, rotate, sweep, unrotate, verbss, Accel, Built, Layout, Method, SolveInfo, SolveParams,
+    AUTO_AMG_NODES, CHUNK,
+};
 use crate::error::Result;
 use crate::geometry::{ldlt_mul, packed_len, point};
+use crate::mesh::{CellKind, Cells};
 use crate::springs::NodeBlocks;
 
 /// Krylov iterations between GMRES restarts.
 const RESTART: usize = 20;
 /// Relaxation factor of the finest level's VerBSS smoothing sweeps.
 const SMOOTHING_OMEGA: f64 = 1.0;
+
+/// What the engine keeps for the accelerated solve: the accelerator of the
+/// last system, and what [`Accel::Auto`] decides by.
+pub(crate) struct AccelState {
+    accelerator: Option<Accelerator>,
+    /// At least half the cells are triangles or tetrahedra.
+    simplicial: bool,
+    /// [`Accel::Auto`] could not build a multigrid for this mesh.
+    declined: bool,
+}
+
+impl AccelState {
+    /// Nothing built yet, for a mesh of `cells`.
+    pub(crate) fn new(cells: &Cells) -> AccelState {
+        let simplices = cells
+            .kinds
+            .iter()
+            .filter(|k| matches!(k, CellKind::Triangle | CellKind::Tetra))
+            .count();
+        AccelState {
+            accelerator: None,
+            simplicial: 2 * simplices >= cells.len(),
+            declined: false,
+        }
+    }
+
+    /// Whether the solve of `built` with `params` uses the multigrid: the
+    /// accelerator to use (`None`: plain sweeps), built first when the kept
+    /// one does not fit, with the seconds that took (`None`: nothing built).
+    /// Under [`Accel::Auto`] a hierarchy that cannot be built means plain
+    /// sweeps for the rest of the run.
+    pub(crate) fn prepare(
+        &mut self,
+        built: &Built,
+        pool: &rayon::ThreadPool,
+        params: &SolveParams,
+        dim: usize,
+    ) -> Result<(Option<&mut Accelerator>, Option<f64>)> {
+        let unknowns = built.layout.order.len();
+        let wanted = unknowns > 0
+            && matches!(params.method, Method::Verbss | Method::Spring)
+            && match params.accel {
+                Accel::None => false,
+                Accel::Amg => true,
+                Accel::Auto => !self.declined && self.simplicial && unknowns >= AUTO_AMG_NODES,
+            };
+        if !wanted {
+            return Ok((None, None));
+        }
+        let mut seconds = None;
+        if !self
+            .accelerator
+            .as_ref()
+            .is_some_and(|a| a.fits(params.method, &built.layout))
+        {
+            self.accelerator = None;
+            let started = Instant::now();
+            let method = params.method;
+            match pool.install(|| match dim {
+                2 => Accelerator::new::<2>(built, method),
+                _ => Accelerator::new::<3>(built, method),
+            }) {
+                Ok(a) => {
+                    self.accelerator = Some(a);
+                    seconds = Some(started.elapsed().as_secs_f64());
+                }
+                Err(_) if params.accel == Accel::Auto => {
+                    self.declined = true;
+                    return Ok((None, None));
+                }
+                Err(e) => return Err(e),
+            }
+        }
+        Ok((self.accelerator.as_mut(), seconds))
+    }
+}
 
 /// The hierarchy and the vectors the accelerated solve keeps between steps.
 pub(crate) struct Accelerator {
@@ -47,12 +127,12 @@ pub(crate) struct Accelerator {
 
 impl Accelerator {
     /// Whether this accelerator can serve a solve of `method` on `layout`.
-    pub(crate) fn fits(&self, method: Method, layout: &Layout) -> bool {
+    fn fits(&self, method: Method, layout: &Layout) -> bool {
         !self.stale && self.method == method && self.hierarchy.order == layout.order
     }
 
     /// Builds the hierarchy for the system of `built` (on its pool).
-    pub(crate) fn new<const D: usize>(built: &Built, method: Method) -> Result<Accelerator> {
+    fn new<const D: usize>(built: &Built, method: Method) -> Result<Accelerator> {
         let super::System::Blocks { blocks, .. } = &built.system else {
             unreachable!("the accelerated solve works on spring blocks")
         };

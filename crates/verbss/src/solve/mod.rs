@@ -82,7 +82,7 @@ use crate::error::{Error, Result};
 use crate::geometry::{
     ldlt_factor, norm, normal_frame, packed_index, packed_len, packed_mul, point,
 };
-use crate::mesh::{CellKind, Mesh};
+use crate::mesh::Mesh;
 use crate::springs::{self, Connectivity, NodeBlocks, Springs};
 use crate::topology;
 
@@ -237,11 +237,7 @@ pub struct Engine {
     normals: Vec<[f64; 3]>,
     built: Option<Built>,
     pool: Option<(usize, rayon::ThreadPool)>,
-    accelerator: Option<accel::Accelerator>,
-    /// At least half the cells are triangles or tetrahedra ([`Accel::Auto`]).
-    simplicial: bool,
-    /// [`Accel::Auto`] could not build a multigrid for this mesh.
-    auto_declined: bool,
+    accel: accel::AccelState,
 }
 
 /// What one reference configuration and method need: the system and scratch.
@@ -393,13 +389,7 @@ impl Engine {
             }
         }
         let conn = Connectivity::new(mesh);
-        let simplices = conn
-            .cells
-            .kinds
-            .iter()
-            .filter(|k| matches!(k, CellKind::Triangle | CellKind::Tetra))
-            .count();
-        let simplicial = 2 * simplices >= conn.cells.len();
+        let accel = accel::AccelState::new(&conn.cells);
         let fixed: Vec<usize> = (0..n).filter(|&i| roles[i] == NodeRole::Fixed).collect();
         let reach = topology::bfs_layers(&conn.graph, &fixed);
         if let Some(i) = (0..n).find(|&i| reach[i] == u32::MAX && roles[i] != NodeRole::Fixed) {
@@ -415,9 +405,7 @@ impl Engine {
             normals: unit,
             built: None,
             pool: None,
-            accelerator: None,
-            simplicial,
-            auto_declined: false,
+            accel,
         })
     }
 
@@ -463,9 +451,7 @@ impl Engine {
             normals,
             built,
             pool,
-            accelerator,
-            simplicial,
-            auto_declined,
+            accel,
         } = self;
         let built = built.as_mut().expect("built above");
         let pool = &pool.as_ref().expect("started above").1;
@@ -480,46 +466,7 @@ impl Engine {
                 _ => direct::Lu::new::<3>(&built.layout, blocks)?,
             });
         }
-        let mut amg = built.layout.len() > 0
-            && matches!(params.method, Method::Verbss | Method::Spring)
-            && match params.accel {
-                Accel::None => false,
-                Accel::Amg => true,
-                Accel::Auto => {
-                    !*auto_declined && *simplicial && built.layout.len() >= AUTO_AMG_NODES
-                }
-            };
-        let mut hierarchy_built = false;
-        let hierarchy_start = Instant::now();
-        if amg
-            && !accelerator
-                .as_ref()
-                .is_some_and(|a| a.fits(params.method, &built.layout))
-        {
-            *accelerator = None;
-            let method = params.method;
-            match pool.install(|| match conn.dim {
-                2 => accel::Accelerator::new::<2>(built, method),
-                _ => accel::Accelerator::new::<3>(built, method),
-            }) {
-                Ok(a) => {
-                    *accelerator = Some(a);
-                    hierarchy_built = true;
-                }
-                // `auto` falls back to plain sweeps for the rest of the run.
-                Err(_) if params.accel == Accel::Auto => {
-                    *auto_declined = true;
-                    amg = false;
-                }
-                Err(e) => return Err(e),
-            }
-        }
-        let hierarchy_seconds = if hierarchy_built {
-            hierarchy_start.elapsed().as_secs_f64()
-        } else {
-            0.0
-        };
-        let accelerator = if amg { accelerator.as_mut() } else { None };
+        let (accelerator, hierarchy_seconds) = accel.prepare(built, pool, params, conn.dim)?;
         let form_seconds = start.elapsed().as_secs_f64();
         let solving = Instant::now();
         let scale = prescribed_scale(conn.dim, roles, normals, displacement);
@@ -536,8 +483,8 @@ impl Engine {
         info.solve_seconds = solving.elapsed().as_secs_f64();
         info.seconds = start.elapsed().as_secs_f64();
         info.rebuilt = !reuse;
-        info.hierarchy_built = hierarchy_built;
-        info.hierarchy_seconds = hierarchy_seconds;
+        info.hierarchy_built = hierarchy_seconds.is_some();
+        info.hierarchy_seconds = hierarchy_seconds.unwrap_or(0.0);
         Ok(info)
     }
 
