@@ -56,6 +56,16 @@
 // Global solver of `VERBSS_METHOD_BALL_VERTEX`: exact sparse LU.
 #define VERBSS_SOLVER_DIRECT 1
 
+// Plain VerBSS sweeps (the paper's method).
+#define VERBSS_ACCEL_NONE 0
+
+// GMRES around a multigrid V-cycle whose smoother is the VerBSS sweep
+// (`tolerance` then bounds the estimated RMS error; docs/acceleration.md).
+#define VERBSS_ACCEL_AMG 1
+
+// `VERBSS_ACCEL_AMG` on large meshes of mostly triangles/tetrahedra, plain sweeps otherwise.
+#define VERBSS_ACCEL_AUTO 2
+
 // Springs built on the current coordinates each step, solve for the increment.
 #define VERBSS_REFERENCE_UPDATED 0
 
@@ -84,6 +94,8 @@ typedef struct VerbssSettings {
   size_t max_iterations;
   // Worker threads, 0 for one per core (default 0); results do not depend on it.
   size_t threads;
+  // `VERBSS_ACCEL_*`, for the methods verbss and spring (default `VERBSS_ACCEL_NONE`).
+  int32_t accel;
 } VerbssSettings;
 
 // What the last accepted step did.

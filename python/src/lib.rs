@@ -18,7 +18,7 @@ use pyo3::types::{PyDict, PyList};
 use verbss::deform::{Reference, Settings, StepReport};
 use verbss::io::WriteOptions;
 use verbss::motion::{Attachment, Motion, PositionSource};
-use verbss::solve::{Method, Solver};
+use verbss::solve::{Accel, Method, Solver};
 use verbss::{CellKind, Cells, Error, Group};
 
 create_exception!(
@@ -347,7 +347,8 @@ struct Moving {
 /// A mesh in motion, stepped by a flow solver (see `Deformer.step`).
 ///
 /// Deformer(mesh, method="verbss", omega=1.6, tolerance=1e-5,
-///          max_iterations=1000, threads=0, reference="updated", solver="sor")
+///          max_iterations=1000, threads=0, reference="updated", solver="sor",
+///          accel="none")
 ///
 /// - method: "verbss" (edge + ball-vertex springs, node by node), "ball-vertex"
 ///   (the same system solved globally by `solver`, "sor" or "direct"),
@@ -359,6 +360,10 @@ struct Moving {
 /// - threads: worker threads, 0 for one per core; results do not depend on it.
 /// - reference: "updated" (springs on the current mesh each step) or
 ///   "initial" (springs on the input mesh, solving for the total displacement).
+/// - accel: "none" (plain VerBSS sweeps), "amg" (GMRES around a multigrid
+///   V-cycle whose smoother is the VerBSS sweep; tolerance then bounds the
+///   estimated RMS error) or "auto" (amg on large meshes of mostly
+///   triangles/tetrahedra), for the methods verbss and spring.
 #[pyclass(module = "verbss")]
 struct Deformer {
     mesh: verbss::Mesh,
@@ -454,6 +459,7 @@ impl Deformer {
         threads = 0,
         reference = "updated",
         solver = "sor",
+        accel = "none",
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -465,6 +471,7 @@ impl Deformer {
         threads: usize,
         reference: &str,
         solver: &str,
+        accel: &str,
     ) -> PyResult<Deformer> {
         let mut settings = Settings::new(1);
         settings.reference = match reference {
@@ -494,6 +501,16 @@ impl Deformer {
             _ => {
                 return Err(invalid_setting(format!(
                     "unknown solver '{solver}' (expected sor or direct)"
+                )))
+            }
+        };
+        s.accel = match accel {
+            "none" => Accel::None,
+            "amg" => Accel::Amg,
+            "auto" => Accel::Auto,
+            _ => {
+                return Err(invalid_setting(format!(
+                    "unknown accel '{accel}' (expected none, amg or auto)"
                 )))
             }
         };

@@ -173,6 +173,15 @@ def test_errors_carry_the_command_message(cli, tmp_path):
     assert issubclass(verbss.VerbssError, ValueError)
 
 
+def test_accel_amg_matches_the_command(cli, tmp_path):
+    mesh, group, shift = CASES[1]
+    expected = cli_deform(cli, tmp_path, mesh, group, shift, extra=("--accel", "amg"))
+    d = verbss.Deformer(verbss.read(MESHES / mesh), accel="amg", **SETTINGS)
+    for n in range(1, STEPS + 1):
+        got = d.step({group: np.array(shift) * n / STEPS})
+    assert np.allclose(got, expected, rtol=0, atol=1e-12)
+
+
 def test_rejected_step_keeps_the_last_one_and_can_be_retried():
     mesh = verbss.read(NACA)
     d = verbss.Deformer(mesh, **SETTINGS)
@@ -216,6 +225,8 @@ def test_bad_settings_and_arrays_are_named():
          "invalid setting: unknown method 'fast' (expected verbss, ball-vertex, spring or laplacian)"),
         (lambda: verbss.Deformer(mesh, reference="fixed"),
          "invalid setting: unknown reference 'fixed' (expected updated or initial)"),
+        (lambda: verbss.Deformer(mesh, accel="fast"),
+         "invalid setting: unknown accel 'fast' (expected none, amg or auto)"),
         (lambda: verbss.Mesh([[0, 0], [1, 0], [0, 1]], {"tri": [[0, 1, 2]]}),
          "invalid mesh: unknown cell kind 'tri' (expected triangle, quad, tetra, hexahedron, wedge or pyramid)"),
         (lambda: verbss.Mesh([[0, 0], [1, 0], [0, 1]], {"triangle": [[0, 1, 3]]}),

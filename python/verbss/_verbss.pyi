@@ -104,6 +104,10 @@ class Deformer:
     - ``reference``: ``"updated"`` (springs on the current mesh each step) or
       ``"initial"`` (springs on the input mesh, solving for the total
       displacement).
+    - ``accel``: ``"none"`` (plain VerBSS sweeps), ``"amg"`` (GMRES around a
+      multigrid V-cycle whose smoother is the VerBSS sweep; ``tolerance`` then
+      bounds the estimated RMS error) or ``"auto"`` (``"amg"`` on large meshes
+      of mostly triangles/tetrahedra), for the methods verbss and spring.
     """
 
     def __new__(
@@ -116,6 +120,7 @@ class Deformer:
         threads: int = 0,
         reference: str = "updated",
         solver: str = "sor",
+        accel: str = "none",
     ) -> "Deformer": ...
     def step(self, displacements: Mapping[str, _Displacement]) -> np.ndarray:
         """Takes the next time step and returns the new node coordinates, an

@@ -47,7 +47,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use verbss::deform::{Deformer, Reference, Settings, StepReport};
 use verbss::motion::{Attachment, Motion, PositionSource};
-use verbss::solve::{Method, Solver};
+use verbss::solve::{Accel, Method, Solver};
 use verbss::{CellKind, Cells, Error, Group, Mesh};
 
 /// Success.
@@ -88,6 +88,14 @@ pub const VERBSS_SOLVER_SOR: i32 = 0;
 /// Global solver of `VERBSS_METHOD_BALL_VERTEX`: exact sparse LU.
 pub const VERBSS_SOLVER_DIRECT: i32 = 1;
 
+/// Plain VerBSS sweeps (the paper's method).
+pub const VERBSS_ACCEL_NONE: i32 = 0;
+/// GMRES around a multigrid V-cycle whose smoother is the VerBSS sweep
+/// (`tolerance` then bounds the estimated RMS error; docs/acceleration.md).
+pub const VERBSS_ACCEL_AMG: i32 = 1;
+/// `VERBSS_ACCEL_AMG` on large meshes of mostly triangles/tetrahedra, plain sweeps otherwise.
+pub const VERBSS_ACCEL_AUTO: i32 = 2;
+
 /// Springs built on the current coordinates each step, solve for the increment.
 pub const VERBSS_REFERENCE_UPDATED: i32 = 0;
 /// Springs built once on the input coordinates, solve for the total displacement.
@@ -114,6 +122,8 @@ pub struct VerbssSettings {
     pub max_iterations: usize,
     /// Worker threads, 0 for one per core (default 0); results do not depend on it.
     pub threads: usize,
+    /// `VERBSS_ACCEL_*`, for the methods verbss and spring (default `VERBSS_ACCEL_NONE`).
+    pub accel: i32,
 }
 
 impl Default for VerbssSettings {
@@ -127,6 +137,7 @@ impl Default for VerbssSettings {
             absolute_tolerance: 0,
             max_iterations: 1000,
             threads: 0,
+            accel: VERBSS_ACCEL_NONE,
         }
     }
 }
@@ -343,6 +354,12 @@ fn settings(s: &VerbssSettings) -> Result<Settings, Failure> {
         VERBSS_SOLVER_SOR => Solver::Sor,
         VERBSS_SOLVER_DIRECT => Solver::Direct,
         v => return Err(bad("solver", v)),
+    };
+    p.accel = match s.accel {
+        VERBSS_ACCEL_NONE => Accel::None,
+        VERBSS_ACCEL_AMG => Accel::Amg,
+        VERBSS_ACCEL_AUTO => Accel::Auto,
+        a => return Err(bad("accel", a)),
     };
     p.omega = s.omega;
     p.tolerance = s.tolerance;

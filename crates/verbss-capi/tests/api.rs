@@ -306,3 +306,68 @@ fn the_message_is_per_thread() {
     assert_eq!(other, "");
     assert_eq!(last_error(), "invalid setting: no moving node was given");
 }
+
+/// `create` with explicit settings.
+fn create_with(settings: &VerbssSettings) -> (i32, *mut VerbssDeformer) {
+    let (p, k, n) = square();
+    let mut d = ptr::null_mut();
+    let status = unsafe {
+        verbss_deformer_new(
+            2,
+            p.as_ptr(),
+            p.len() / 2,
+            k.as_ptr(),
+            k.len(),
+            n.as_ptr(),
+            n.len(),
+            MOVING.as_ptr(),
+            MOVING.len(),
+            settings,
+            &mut d,
+        )
+    };
+    (status, d)
+}
+
+#[test]
+fn the_accelerated_solve_is_selectable_and_gives_the_direct_solution() {
+    let u = [0.1, 0.05];
+    let mut direct = VerbssSettings {
+        method: VERBSS_METHOD_BALL_VERTEX,
+        solver: VERBSS_SOLVER_DIRECT,
+        ..VerbssSettings::default()
+    };
+    let (status, exact) = create_with(&direct);
+    assert_eq!(status, VERBSS_OK, "{}", last_error());
+    assert_eq!(
+        unsafe { verbss_deformer_step(exact, u.as_ptr(), 2) },
+        VERBSS_OK
+    );
+    let amg = VerbssSettings {
+        accel: VERBSS_ACCEL_AMG,
+        tolerance: 1e-12,
+        ..VerbssSettings::default()
+    };
+    let (status, fast) = create_with(&amg);
+    assert_eq!(status, VERBSS_OK, "{}", last_error());
+    assert_eq!(
+        unsafe { verbss_deformer_step(fast, u.as_ptr(), 2) },
+        VERBSS_OK
+    );
+    let diff = points(exact)
+        .iter()
+        .zip(points(fast))
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(diff < 1e-10, "largest difference {diff}");
+    for d in [exact, fast] {
+        assert_eq!(unsafe { verbss_deformer_free(d) }, VERBSS_OK);
+    }
+    direct.accel = 7;
+    let (status, _) = create_with(&direct);
+    assert_eq!(status, VERBSS_ERROR_INPUT);
+    assert_eq!(
+        last_error(),
+        "invalid setting: accel 7 is not one of VERBSS_ACCEL_*"
+    );
+}
