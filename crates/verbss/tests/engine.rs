@@ -5,7 +5,8 @@
 use std::path::Path;
 
 use verbss::solve::{
-    default_roles, Accel, Engine, Method, NodeRole, SolveInfo, SolveParams, Solver, AUTO_AMG_NODES,
+    default_roles, Accel, Engine, Method, NodeRole, SolveInfo, SolveParams, Solver,
+    AUTO_AMG_NODES_2D, AUTO_AMG_NODES_3D,
 };
 use verbss::springs::{assemble, Connectivity, Springs};
 use verbss::topology::boundary_nodes;
@@ -453,9 +454,21 @@ fn the_hierarchy_is_kept_while_the_mesh_moves_and_the_answer_stays_exact() {
 
 #[test]
 fn auto_accelerates_large_simplex_meshes_only() {
-    assert!(47usize.pow(3) >= AUTO_AMG_NODES);
-    for (layout, accelerated) in [(Layout::Tet, true), (Layout::Hex, false)] {
-        let mesh = grid(layout, 48);
+    assert!(47usize.pow(3) >= AUTO_AMG_NODES_3D && 59usize.pow(2) >= AUTO_AMG_NODES_2D);
+    for (layout, accelerated) in [
+        (Layout::Tet, true),
+        (Layout::Hex, false),
+        (Layout::Tri, true),
+        (Layout::Quad, false),
+    ] {
+        let mesh = grid(
+            layout,
+            if layout == Layout::Tri || layout == Layout::Quad {
+                60
+            } else {
+                48
+            },
+        );
         let roles = default_roles(&mesh);
         let mut u = wavy_boundary(&mesh);
         let mut p = params(Method::Verbss, Solver::Sor, 1e-2);
@@ -464,14 +477,15 @@ fn auto_accelerates_large_simplex_meshes_only() {
         assert!(info.converged);
         assert_eq!(info.levels >= 2, accelerated, "{layout:?}: {info:?}");
     }
-    let small = grid(Layout::Tet, 6);
-    let mut u = wavy_boundary(&small);
-    let mut p = params(Method::Verbss, Solver::Sor, 1e-6);
-    p.accel = Accel::Auto;
-    assert_eq!(
-        solve(&small, &default_roles(&small), &[], &mut u, &p).levels,
-        0
-    );
+    for small in [grid(Layout::Tet, 20), grid(Layout::Tri, 40)] {
+        let mut u = wavy_boundary(&small);
+        let mut p = params(Method::Verbss, Solver::Sor, 1e-6);
+        p.accel = Accel::Auto;
+        assert_eq!(
+            solve(&small, &default_roles(&small), &[], &mut u, &p).levels,
+            0
+        );
+    }
 }
 
 /// Roles with the interior of the `x = 0` side sliding in its plane (normal

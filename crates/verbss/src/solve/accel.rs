@@ -24,7 +24,7 @@ use super::amg::Hierarchy;
 use super::gmres::{self, Workspace};
 use super::{
     coupled, rotate, sweep, unrotate, verbss, Accel, Built, Layout, Method, SolveInfo, SolveParams,
-    AUTO_AMG_NODES, CHUNK,
+    AUTO_AMG_NODES_2D, AUTO_AMG_NODES_3D, CHUNK,
 };
 use crate::error::Result;
 use crate::geometry::{ldlt_mul, packed_len, point};
@@ -79,7 +79,14 @@ impl AccelState {
             && match params.accel {
                 Accel::None => false,
                 Accel::Amg => true,
-                Accel::Auto => !self.declined && self.simplicial && unknowns >= AUTO_AMG_NODES,
+                Accel::Auto => {
+                    let from = if dim == 2 {
+                        AUTO_AMG_NODES_2D
+                    } else {
+                        AUTO_AMG_NODES_3D
+                    };
+                    !self.declined && self.simplicial && unknowns >= from
+                }
             };
         if !wanted {
             return Ok((None, None));

@@ -134,14 +134,18 @@ pub enum Accel {
     /// (`docs/acceleration.md`).
     Amg,
     /// [`Accel::Amg`] for meshes of mostly triangles or tetrahedra with at
-    /// least [`AUTO_AMG_NODES`] unknown nodes, [`Accel::None`] otherwise; a
-    /// multigrid that cannot be built or a solve it cannot finish falls back
-    /// to plain sweeps.
+    /// least [`AUTO_AMG_NODES_2D`] (2D) or [`AUTO_AMG_NODES_3D`] (3D) unknown
+    /// nodes, [`Accel::None`] otherwise; a multigrid that cannot be built or a
+    /// solve it cannot finish falls back to plain sweeps.
     Auto,
 }
 
-/// The size from which [`Accel::Auto`] uses the multigrid.
-pub const AUTO_AMG_NODES: usize = 100_000;
+/// The size from which [`Accel::Auto`] uses the multigrid in 2D: where a
+/// first step, setup included, stops being slower than plain sweeps.
+pub const AUTO_AMG_NODES_2D: usize = 3_000;
+/// The same in 3D, where plain sweeps need fewer sweeps for the same size
+/// and each setup costs more.
+pub const AUTO_AMG_NODES_3D: usize = 100_000;
 
 /// Settings of one solve (one time step).
 #[derive(Debug, Clone, PartialEq)]
