@@ -46,6 +46,17 @@ fn create(
     nodes: &[i64],
     moving: &[i64],
 ) -> (i32, *mut VerbssDeformer) {
+    create_with(points, kinds, nodes, moving, None)
+}
+
+/// `create` with explicit settings (`None`: the defaults).
+fn create_with(
+    points: &[f64],
+    kinds: &[i32],
+    nodes: &[i64],
+    moving: &[i64],
+    settings: Option<&VerbssSettings>,
+) -> (i32, *mut VerbssDeformer) {
     let mut d = ptr::null_mut();
     let status = unsafe {
         verbss_deformer_new(
@@ -58,7 +69,7 @@ fn create(
             nodes.len(),
             moving.as_ptr(),
             moving.len(),
-            ptr::null(),
+            settings.map_or(ptr::null(), |s| s as *const VerbssSettings),
             &mut d,
         )
     };
@@ -307,30 +318,10 @@ fn the_message_is_per_thread() {
     assert_eq!(last_error(), "invalid setting: no moving node was given");
 }
 
-/// `create` with explicit settings.
-fn create_with(settings: &VerbssSettings) -> (i32, *mut VerbssDeformer) {
-    let (p, k, n) = square();
-    let mut d = ptr::null_mut();
-    let status = unsafe {
-        verbss_deformer_new(
-            2,
-            p.as_ptr(),
-            p.len() / 2,
-            k.as_ptr(),
-            k.len(),
-            n.as_ptr(),
-            n.len(),
-            MOVING.as_ptr(),
-            MOVING.len(),
-            settings,
-            &mut d,
-        )
-    };
-    (status, d)
-}
-
 #[test]
 fn the_accelerated_solve_is_selectable_and_gives_the_direct_solution() {
+    let (p, k, n) = square();
+    let create_with = |settings: &VerbssSettings| create_with(&p, &k, &n, &MOVING, Some(settings));
     let u = [0.1, 0.05];
     let mut direct = VerbssSettings {
         method: VERBSS_METHOD_BALL_VERTEX,

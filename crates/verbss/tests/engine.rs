@@ -200,6 +200,34 @@ fn solve(
     engine.solve(&mesh.coords, u, p).unwrap()
 }
 
+/// The exact (direct) ball-vertex solution for the initial values `u0`.
+fn direct_solution(mesh: &Mesh, roles: &[NodeRole], normals: &[[f64; 3]], u0: &[f64]) -> Vec<f64> {
+    let mut exact = u0.to_vec();
+    let p = params(Method::BallVertex, Solver::Direct, 0.0);
+    solve(mesh, roles, normals, &mut exact, &p);
+    exact
+}
+
+/// `p` solved with 1, 2 and 3 threads (a fresh engine each time, so that the
+/// direct solver factors anew), sweep histories recorded.
+fn thread_runs(
+    mesh: &Mesh,
+    roles: &[NodeRole],
+    u0: &[f64],
+    mut p: SolveParams,
+) -> Vec<(Vec<f64>, SolveInfo)> {
+    p.record_history = true;
+    [1, 2, 3]
+        .into_iter()
+        .map(|threads| {
+            p.threads = threads;
+            let mut u = u0.to_vec();
+            let info = solve(mesh, roles, &[], &mut u, &p);
+            (u, info)
+        })
+        .collect()
+}
+
 fn rel_diff(a: &[f64], b: &[f64]) -> f64 {
     let diff: f64 = a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum();
     let size: f64 = b.iter().map(|y| y * y).sum();
@@ -317,19 +345,7 @@ fn results_do_not_depend_on_the_thread_count() {
         let roles = default_roles(&mesh);
         let u0 = wavy_boundary(&mesh);
         for (method, solver) in METHODS {
-            let mut p = params(method, solver, 1e-5);
-            p.record_history = true;
-            let runs: Vec<(Vec<f64>, SolveInfo)> = [1, 2, 3]
-                .into_iter()
-                .map(|threads| {
-                    // A fresh engine each time, so that the direct solver factors anew.
-                    let mut engine = Engine::new(&mesh, &roles, &[]).unwrap();
-                    p.threads = threads;
-                    let mut u = u0.clone();
-                    let info = engine.solve(&mesh.coords, &mut u, &p).unwrap();
-                    (u, info)
-                })
-                .collect();
+            let runs = thread_runs(&mesh, &roles, &u0, params(method, solver, 1e-5));
             for (u, info) in &runs[1..] {
                 assert!(u == &runs[0].0, "{method:?}");
                 assert_eq!(info.history, runs[0].1.history, "{method:?}");
@@ -345,14 +361,7 @@ fn verbss_converges_to_the_direct_ball_vertex_solution() {
     for layout in LAYOUTS {
         let mesh = grid(layout, 4);
         let roles = default_roles(&mesh);
-        let mut exact = wavy_boundary(&mesh);
-        solve(
-            &mesh,
-            &roles,
-            &[],
-            &mut exact,
-            &params(Method::BallVertex, Solver::Direct, 0.0),
-        );
+        let exact = direct_solution(&mesh, &roles, &[], &wavy_boundary(&mesh));
         for (method, solver) in [
             (Method::Verbss, Solver::Sor),
             (Method::BallVertex, Solver::Sor),
@@ -375,19 +384,9 @@ fn the_multigrid_accelerated_solve_converges_to_the_direct_solution() {
         };
         let mesh = grid(layout, n);
         let roles = default_roles(&mesh);
-        let mut exact = wavy_boundary(&mesh);
-        solve(
-            &mesh,
-            &roles,
-            &[],
-            &mut exact,
-            &params(Method::BallVertex, Solver::Direct, 0.0),
-        );
+        let exact = direct_solution(&mesh, &roles, &[], &wavy_boundary(&mesh));
         let mut u = wavy_boundary(&mesh);
-        let mut p = params(Method::Verbss, Solver::Sor, 1e-13);
-        p.accel = Accel::Amg;
-        p.max_iterations = 500;
-        let info = solve(&mesh, &roles, &[], &mut u, &p);
+        let info = solve(&mesh, &roles, &[], &mut u, &amg(1e-13));
         assert!(info.converged && info.levels >= 2, "{layout:?}: {info:?}");
         let rel = rel_diff(&u, &exact);
         assert!(rel < 1e-8, "{layout:?}: {rel}");
@@ -406,17 +405,7 @@ fn accelerated_results_do_not_depend_on_the_thread_count() {
     for mesh in [grid(Layout::MixedTriQuad, 64), grid(Layout::Tet, 12)] {
         let roles = default_roles(&mesh);
         let u0 = wavy_boundary(&mesh);
-        let mut p = amg(1e-9);
-        p.record_history = true;
-        let runs: Vec<(Vec<f64>, SolveInfo)> = [1, 2, 3]
-            .into_iter()
-            .map(|threads| {
-                p.threads = threads;
-                let mut u = u0.clone();
-                let info = solve(&mesh, &roles, &[], &mut u, &p);
-                (u, info)
-            })
-            .collect();
+        let runs = thread_runs(&mesh, &roles, &u0, amg(1e-9));
         assert!(runs[0].1.converged && runs[0].1.levels >= 2 && runs[0].1.iterations >= 3);
         for (u, info) in &runs[1..] {
             assert!(u == &runs[0].0);
@@ -516,9 +505,7 @@ fn sliding_nodes_keep_their_normal_component() {
         let d = mesh.dim;
         let mut u = wavy_boundary(&mesh);
         let (roles, sliding) = sliding_side(&mesh, &mut u);
-        let mut exact = u.clone();
-        let direct = params(Method::BallVertex, Solver::Direct, 0.0);
-        solve(&mesh, &roles, &normals, &mut exact, &direct);
+        let exact = direct_solution(&mesh, &roles, &normals, &u);
         for &i in &sliding {
             assert!((exact[d * i] - 0.01).abs() < 1e-15, "{layout:?} node {i}");
             assert!(exact[d * i + 1..d * (i + 1)].iter().all(|&v| v != 0.0));
@@ -540,16 +527,15 @@ fn sliding_nodes_keep_their_normal_component() {
             assert!(rel < 1e-8, "{layout:?} {method:?}: {rel}");
         }
         let mut v = u.clone();
-        let big = grid(layout, if d == 2 { 24 } else { 8 });
         let info = solve(&mesh, &roles, &normals, &mut v, &amg(1e-13));
         assert!(info.converged, "{layout:?} amg: {info:?}");
         let rel = rel_diff(&v, &exact);
         assert!(rel < 1e-8, "{layout:?} amg: {rel}");
         // The same on a mesh large enough for several levels.
+        let big = grid(layout, if d == 2 { 24 } else { 8 });
         let mut w = wavy_boundary(&big);
         let (big_roles, big_sliding) = sliding_side(&big, &mut w);
-        let mut big_exact = w.clone();
-        solve(&big, &big_roles, &normals, &mut big_exact, &direct);
+        let big_exact = direct_solution(&big, &big_roles, &normals, &w);
         let info = solve(&big, &big_roles, &normals, &mut w, &amg(1e-13));
         assert!(info.converged && info.levels >= 2, "{layout:?}: {info:?}");
         assert!(rel_diff(&w, &big_exact) < 1e-8);

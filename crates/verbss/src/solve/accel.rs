@@ -128,8 +128,8 @@ pub(crate) struct Accelerator {
     /// Rebuild before the next solve.
     stale: bool,
     workspace: Workspace,
-    /// Residual, correction and zero vectors of the fine level.
-    vectors: [Vec<f64>; 3],
+    /// A zero right-hand side, for the product `A v = −ρ(v)` with `c = 0`.
+    zeros: Vec<f64>,
 }
 
 impl Accelerator {
@@ -151,7 +151,7 @@ impl Accelerator {
             baseline: None,
             stale: false,
             workspace: Workspace::new(n, RESTART),
-            vectors: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            zeros: vec![0.0; n],
         })
     }
 
@@ -175,7 +175,7 @@ impl Accelerator {
         let Accelerator {
             hierarchy,
             workspace,
-            vectors: [r, e, zeros],
+            zeros,
             ..
         } = self;
         let zeros: &[f64] = zeros;
@@ -191,11 +191,9 @@ impl Accelerator {
                 out.par_iter_mut().for_each(|x| *x = -*x);
             },
             |rhs, out| {
-                r.copy_from_slice(rhs);
-                let r: &[f64] = r;
                 hierarchy.vcycle(
-                    r,
-                    e,
+                    rhs,
+                    out,
                     |e: &mut [f64], r: &[f64], reverse: bool| {
                         sweep::<D, _>(
                             layout,
@@ -210,7 +208,6 @@ impl Accelerator {
                         residual::<D>(blocks, layout, r, e, out);
                     },
                 );
-                out.copy_from_slice(e);
             },
             record_history.then_some(&mut history),
         )?;

@@ -32,7 +32,7 @@
 
 use rayon::prelude::*;
 
-use super::bsr::{invert, madd_kernel, mul_kernel, Bsr};
+use super::bsr::{invert, madd_kernel, mul_kernel, Bsr, DenseLu};
 use super::{chunked_sum, rotate, unrotate, Layout};
 use crate::error::{Error, Result};
 use crate::geometry::{ldlt_mul, packed_len, packed_mul};
@@ -92,13 +92,6 @@ enum Coarsest {
     Sweeps(Coarse),
 }
 
-/// A dense LU with row pivots.
-struct DenseLu {
-    n: usize,
-    lu: Vec<f64>,
-    pivots: Vec<usize>,
-}
-
 /// The largest coarsest level factored densely.
 const DENSE_LIMIT: usize = 1000;
 /// Gauss–Seidel sweeps (each way) of a coarsest level too large to factor.
@@ -144,7 +137,7 @@ impl Hierarchy {
         }
         let last = mats.pop().unwrap_or(fine);
         let coarsest = if last.rows * last.r <= DENSE_LIMIT {
-            Coarsest::Exact(DenseLu::new(&last)?)
+            Coarsest::Exact(dense_lu(&last)?)
         } else {
             Coarsest::Sweeps(Coarse::new(last)?)
         };
@@ -342,66 +335,23 @@ fn diagonal_inverses(a: &Bsr) -> Result<Vec<f64>> {
     Ok(inverse)
 }
 
-impl DenseLu {
-    fn new(a: &Bsr) -> Result<DenseLu> {
-        let (b, n) = (a.r, a.rows * a.r);
-        let mut lu = vec![0.0; n * n];
-        for i in 0..a.rows {
-            for e in a.offsets[i]..a.offsets[i + 1] {
-                let j = a.columns[e] as usize;
-                let blk = a.block(e);
-                for x in 0..b {
-                    for y in 0..b {
-                        lu[(b * i + x) * n + b * j + y] += blk[x * b + y];
-                    }
+/// The dense LU of a (small) block matrix.
+fn dense_lu(a: &Bsr) -> Result<DenseLu> {
+    let (b, n) = (a.r, a.rows * a.r);
+    let mut dense = vec![0.0; n * n];
+    for i in 0..a.rows {
+        for e in a.offsets[i]..a.offsets[i + 1] {
+            let j = a.columns[e] as usize;
+            let blk = a.block(e);
+            for x in 0..b {
+                for y in 0..b {
+                    dense[(b * i + x) * n + b * j + y] += blk[x * b + y];
                 }
             }
-        }
-        let mut pivots = vec![0; n];
-        for col in 0..n {
-            let p = (col..n)
-                .max_by(|&x, &y| lu[x * n + col].abs().total_cmp(&lu[y * n + col].abs()))
-                .unwrap_or(col);
-            let v = lu[p * n + col];
-            if !(v.is_finite() && v != 0.0) {
-                return Err(Error::InvalidMesh(
-                    "the multigrid's coarsest system is singular".into(),
-                ));
-            }
-            pivots[col] = p;
-            if p != col {
-                for k in 0..n {
-                    lu.swap(p * n + k, col * n + k);
-                }
-            }
-            for row in col + 1..n {
-                let f = lu[row * n + col] / v;
-                lu[row * n + col] = f;
-                if f != 0.0 {
-                    for k in col + 1..n {
-                        lu[row * n + k] -= f * lu[col * n + k];
-                    }
-                }
-            }
-        }
-        Ok(DenseLu { n, lu, pivots })
-    }
-
-    /// Solves in place.
-    fn solve(&self, x: &mut [f64]) {
-        let n = self.n;
-        for col in 0..n {
-            x.swap(col, self.pivots[col]);
-        }
-        for i in 0..n {
-            let s: f64 = (0..i).map(|k| self.lu[i * n + k] * x[k]).sum();
-            x[i] -= s;
-        }
-        for i in (0..n).rev() {
-            let s: f64 = (i + 1..n).map(|k| self.lu[i * n + k] * x[k]).sum();
-            x[i] = (x[i] - s) / self.lu[i * n + i];
         }
     }
+    DenseLu::factor(dense, n)
+        .ok_or_else(|| Error::InvalidMesh("the multigrid's coarsest system is singular".into()))
 }
 
 /// The fine system as full `D × D` blocks in mesh axes: `R_pᵀ K̃_pp R_p`

@@ -1,5 +1,8 @@
 //! Block sparse rows: the matrices of the multigrid hierarchy (`solve/amg.rs`).
 //!
+//! With them, the small dense kernels they need: block products and a
+//! pivoted LU ([`DenseLu`]) for block inverses and the coarsest level.
+//!
 //! A [`Bsr`] holds `rows × cols` blocks of `r × c` dense numbers, row-major;
 //! block row `i` is entries `offsets[i]..offsets[i + 1]`, entry `e` has block
 //! column `columns[e]` and values `values[r·c·e..r·c·(e + 1)]`. Every
@@ -279,39 +282,74 @@ pub(crate) fn madd_kernel(r: usize, c: usize, k: usize) -> MulKernel {
     }
 }
 
-/// The inverse of the dense `n × n` row-major matrix `a` by Gauss–Jordan
-/// elimination with partial pivoting; `None` when a pivot is zero or not
-/// finite.
-pub(crate) fn invert(a: &[f64], n: usize) -> Option<Vec<f64>> {
-    let mut m = a.to_vec();
-    let mut inv: Vec<f64> = (0..n * n)
-        .map(|k| f64::from(u8::from(k / n == k % n)))
-        .collect();
-    for col in 0..n {
-        let pivot =
-            (col..n).max_by(|&x, &y| m[x * n + col].abs().total_cmp(&m[y * n + col].abs()))?;
-        let p = m[pivot * n + col];
-        if !(p.is_finite() && p != 0.0) {
-            return None;
-        }
-        if pivot != col {
-            for k in 0..n {
-                m.swap(pivot * n + k, col * n + k);
-                inv.swap(pivot * n + k, col * n + k);
+/// A dense LU factorisation with row pivots (`P A = L U`, `L` unit lower
+/// triangular stored below the diagonal of `lu`, `U` on and above it).
+pub(crate) struct DenseLu {
+    n: usize,
+    lu: Vec<f64>,
+    pivots: Vec<usize>,
+}
+
+impl DenseLu {
+    /// Factors the `n × n` row-major matrix `a` by Gaussian elimination with
+    /// partial pivoting; `None` when a pivot is zero or not finite.
+    pub(crate) fn factor(mut lu: Vec<f64>, n: usize) -> Option<DenseLu> {
+        let mut pivots = vec![0; n];
+        for col in 0..n {
+            let p = (col..n)
+                .max_by(|&x, &y| lu[x * n + col].abs().total_cmp(&lu[y * n + col].abs()))?;
+            let v = lu[p * n + col];
+            if !(v.is_finite() && v != 0.0) {
+                return None;
             }
-        }
-        for k in 0..n {
-            m[col * n + k] /= p;
-            inv[col * n + k] /= p;
-        }
-        for row in 0..n {
-            let f = m[row * n + col];
-            if row != col && f != 0.0 {
+            pivots[col] = p;
+            if p != col {
                 for k in 0..n {
-                    m[row * n + k] -= f * m[col * n + k];
-                    inv[row * n + k] -= f * inv[col * n + k];
+                    lu.swap(p * n + k, col * n + k);
                 }
             }
+            for row in col + 1..n {
+                let f = lu[row * n + col] / v;
+                lu[row * n + col] = f;
+                if f != 0.0 {
+                    for k in col + 1..n {
+                        lu[row * n + k] -= f * lu[col * n + k];
+                    }
+                }
+            }
+        }
+        Some(DenseLu { n, lu, pivots })
+    }
+
+    /// Solves `A x = b` in place (`x` holds `b` on entry).
+    pub(crate) fn solve(&self, x: &mut [f64]) {
+        let n = self.n;
+        for col in 0..n {
+            x.swap(col, self.pivots[col]);
+        }
+        for i in 0..n {
+            let s: f64 = (0..i).map(|k| self.lu[i * n + k] * x[k]).sum();
+            x[i] -= s;
+        }
+        for i in (0..n).rev() {
+            let s: f64 = (i + 1..n).map(|k| self.lu[i * n + k] * x[k]).sum();
+            x[i] = (x[i] - s) / self.lu[i * n + i];
+        }
+    }
+}
+
+/// The inverse of the dense `n × n` row-major matrix `a`, column by column
+/// from its [`DenseLu`]; `None` when `a` is singular to working precision.
+pub(crate) fn invert(a: &[f64], n: usize) -> Option<Vec<f64>> {
+    let lu = DenseLu::factor(a.to_vec(), n)?;
+    let mut inv = vec![0.0; n * n];
+    let mut column = vec![0.0; n];
+    for c in 0..n {
+        column.fill(0.0);
+        column[c] = 1.0;
+        lu.solve(&mut column);
+        for (r, v) in column.iter().enumerate() {
+            inv[r * n + c] = *v;
         }
     }
     inv.iter().all(|v| v.is_finite()).then_some(inv)
@@ -406,5 +444,12 @@ mod tests {
             }
         }
         assert!(invert(&[1.0, 2.0, 2.0, 4.0], 2).is_none());
+        let lu = DenseLu::factor(a.to_vec(), 3).expect("regular");
+        let mut x = [1.0, -2.0, 0.5];
+        lu.solve(&mut x);
+        for i in 0..3 {
+            let v: f64 = (0..3).map(|k| a[i * 3 + k] * x[k]).sum();
+            assert!((v - [1.0, -2.0, 0.5][i]).abs() < 1e-14);
+        }
     }
 }

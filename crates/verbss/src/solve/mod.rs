@@ -758,9 +758,7 @@ fn run<const D: usize>(
         next,
         partials,
     } = scratch;
-    for (p, &i) in layout.order.iter().enumerate() {
-        work[D * p..D * (p + 1)].copy_from_slice(&displacement[D * i..D * (i + 1)]);
-    }
+    gather::<D>(layout, displacement, work);
     match system {
         System::Blocks { blocks, kn, .. } => {
             block_constants::<D>(blocks, kn, layout, displacement, constant)
@@ -812,10 +810,7 @@ fn run<const D: usize>(
                     let keep = params.accel != Accel::Auto
                         || result.as_ref().is_ok_and(|info| info.converged);
                     if !keep {
-                        for (p, &i) in layout.order.iter().enumerate() {
-                            work[D * p..D * (p + 1)]
-                                .copy_from_slice(&displacement[D * i..D * (i + 1)]);
-                        }
+                        gather::<D>(layout, displacement, work);
                     }
                     keep.then_some(result)
                 });
@@ -864,6 +859,13 @@ fn run<const D: usize>(
         displacement[D * i..D * (i + 1)].copy_from_slice(&work[D * p..D * (p + 1)]);
     }
     Ok(info)
+}
+
+/// The initial guess by position: `work_p = displacement_{order[p]}`.
+fn gather<const D: usize>(layout: &Layout, displacement: &[f64], work: &mut [f64]) {
+    for (p, &i) in layout.order.iter().enumerate() {
+        work[D * p..D * (p + 1)].copy_from_slice(&displacement[D * i..D * (i + 1)]);
+    }
 }
 
 /// The blocks of a [`System::Blocks`].
