@@ -1,0 +1,125 @@
+//! Per-rank `.vtu` pieces and the `.pvtu` that joins them for ParaView.
+//!
+//! Rank `r` writes `NAME_r.vtu`: the cells it owns (those whose first node
+//! it owns, [`Part::own_cells`]) with their nodes, point data
+//! `displacement` and `node_tag`, cell data `quality`, `rank`, `cell_tag`
+//! and `group`. Rank 0 writes `NAME.pvtu` listing the pieces.
+
+use std::path::Path;
+
+use verbss::io::{vtu, write_atomic};
+use verbss::{Cells, Mesh, Result};
+
+use crate::part::Part;
+
+/// Writes rank `part.rank`'s piece of the whole-mesh configuration
+/// `coords` (displacements from `initial`, per-cell `quality`) as
+/// `dir/NAME_RANK.vtu`.
+pub fn write_piece(
+    dir: &Path,
+    name: &str,
+    part: &Part,
+    initial: &Mesh,
+    coords: &[f64],
+    quality: &[f64],
+) -> Result<()> {
+    let dim = part.dim;
+    let cells = part.own_cells();
+    let mut local = vec![u32::MAX; part.node_count()];
+    let mut nodes = Vec::new();
+    for &c in &cells {
+        for &v in part.cells.cell(c) {
+            if local[v] == u32::MAX {
+                local[v] = 0;
+            }
+        }
+    }
+    for (i, l) in local.iter_mut().enumerate() {
+        if *l == 0 {
+            *l = nodes.len() as u32;
+            nodes.push(i);
+        }
+    }
+    let mut piece_cells = Cells::new();
+    for &c in &cells {
+        let renumbered: Vec<usize> = part
+            .cells
+            .cell(c)
+            .iter()
+            .map(|&v| local[v] as usize)
+            .collect();
+        piece_cells.push(part.cells.kinds[c], &renumbered);
+    }
+    let mut points = Vec::with_capacity(dim * nodes.len());
+    let mut displacement = vec![0.0; 3 * nodes.len()];
+    for (k, &i) in nodes.iter().enumerate() {
+        let g = part.global[i] as usize;
+        points.extend_from_slice(&coords[dim * g..dim * (g + 1)]);
+        for d in 0..dim {
+            displacement[3 * k + d] = coords[dim * g + d] - initial.coords[dim * g + d];
+        }
+    }
+    let mesh = Mesh {
+        dim,
+        coords: points,
+        node_tags: nodes.iter().map(|&i| part.node_tags[i]).collect(),
+        cells: piece_cells,
+        cell_tags: cells.iter().map(|&c| part.cell_tags[c]).collect(),
+        groups: Vec::new(),
+    };
+    let mut fields = vtu::Fields::default();
+    fields.point.push(("displacement".into(), 3, displacement));
+    fields.cell.push((
+        "quality".into(),
+        1,
+        cells
+            .iter()
+            .map(|&c| quality[part.cell_global[c] as usize])
+            .collect(),
+    ));
+    fields
+        .cell
+        .push(("rank".into(), 1, vec![f64::from(part.rank); cells.len()]));
+    vtu::write(&piece_path(dir, name, part.rank), &mesh, &fields)
+}
+
+/// `dir/NAME_RANK.vtu`.
+pub fn piece_path(dir: &Path, name: &str, rank: i32) -> std::path::PathBuf {
+    dir.join(format!("{name}_{rank}.vtu"))
+}
+
+/// Writes `dir/NAME.pvtu` joining the pieces of ranks `0..ranks`.
+pub fn write_pvtu(dir: &Path, name: &str, ranks: i32) -> Result<()> {
+    write_atomic(&dir.join(format!("{name}.pvtu")), |w| {
+        writeln!(w, r#"<?xml version="1.0"?>"#)?;
+        writeln!(
+            w,
+            r#"<VTKFile type="PUnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">"#
+        )?;
+        writeln!(w, r#"  <PUnstructuredGrid GhostLevel="0">"#)?;
+        writeln!(w, r#"    <PPointData Vectors="displacement">"#)?;
+        writeln!(w, r#"      <PDataArray type="Int64" Name="node_tag"/>"#)?;
+        writeln!(
+            w,
+            r#"      <PDataArray type="Float64" Name="displacement" NumberOfComponents="3"/>"#
+        )?;
+        writeln!(w, "    </PPointData>")?;
+        writeln!(w, r#"    <PCellData Scalars="quality">"#)?;
+        writeln!(w, r#"      <PDataArray type="Int32" Name="group"/>"#)?;
+        writeln!(w, r#"      <PDataArray type="Int64" Name="cell_tag"/>"#)?;
+        writeln!(w, r#"      <PDataArray type="Float64" Name="quality"/>"#)?;
+        writeln!(w, r#"      <PDataArray type="Float64" Name="rank"/>"#)?;
+        writeln!(w, "    </PCellData>")?;
+        writeln!(w, "    <PPoints>")?;
+        writeln!(
+            w,
+            r#"      <PDataArray type="Float64" Name="Points" NumberOfComponents="3"/>"#
+        )?;
+        writeln!(w, "    </PPoints>")?;
+        for r in 0..ranks {
+            writeln!(w, r#"    <Piece Source="{name}_{r}.vtu"/>"#)?;
+        }
+        writeln!(w, "  </PUnstructuredGrid>")?;
+        writeln!(w, "</VTKFile>")
+    })
+}

@@ -1,0 +1,594 @@
+//! The distributed VerBSS sweep.
+//!
+//! Every rank holds the rows `K_ii u_i = Σ_j B_ij u_j` of its own unknown
+//! nodes (assembled from its [`Part`], identical to the single-process rows)
+//! and sweeps them colour by colour:
+//!
+//! ```text
+//! for each colour c:
+//!     for each owned unknown i of colour c:  u_i ← ω K_ii⁻¹ (c_i + Σ_j B_ij u_j) + (1 − ω) u_i
+//!     send the new u_i to the ranks holding them as ghosts; receive the ghosts of colour c
+//! ```
+//!
+//! Nodes of one colour never share a cell, so within a colour the order does
+//! not matter, and with the same colours as the single-process engine every
+//! rank computes the same numbers as it does: the iterates are those of one
+//! process, bit for bit. Only the eq.-8 value (the mean absolute change of
+//! a sweep, paper eq. 8) is a sum over ranks (an all-reduce), whose rounding
+//! can differ in the last bits from the single-process sum.
+//!
+//! Sliding nodes are solved in their tangent frame as in
+//! [`verbss::solve`]: `Tᵀ K_ii T a = Tᵀ (Σ_j B_ij u_j − d K_ii n)`.
+
+use std::time::Instant;
+
+use mpi::collective::SystemOperation;
+use mpi::traits::*;
+use verbss::geometry::{
+    ldlt_factor, ldlt_solve, norm, normal_frame, packed_index, packed_len, packed_mul, point,
+};
+use verbss::solve::{Accel, Method, NodeRole, SolveInfo, SolveParams};
+use verbss::springs::{self, Connectivity, NodeBlocks, Springs};
+use verbss::topology;
+use verbss::{Error, Result};
+
+use crate::halo::{swap, Halo};
+use crate::part::Part;
+
+/// A rank's solver: its [`Part`], the roles of its nodes, the ghost
+/// exchange lists and, once built, its rows of the spring system.
+pub struct Sweeper<'c, C: Communicator> {
+    comm: &'c C,
+    part: Part,
+    conn: Connectivity,
+    roles: Vec<NodeRole>,
+    /// Unit plane normals (normalised as [`verbss::solve::Engine::new`] does).
+    normals: Vec<[f64; 3]>,
+    halo: Halo,
+    built: Option<Built>,
+}
+
+/// The rows of one reference configuration and colouring.
+struct Built {
+    coords: Vec<f64>,
+    colours: Vec<u32>,
+    method: Method,
+    /// Position → local node: owned unknowns colour by colour, then ghost unknowns.
+    order: Vec<usize>,
+    /// Owned colour `c` holds positions `colour_starts[c]..colour_starts[c + 1]`.
+    colour_starts: Vec<usize>,
+    /// Per colour and neighbour: positions sent and received after the colour.
+    exchanges: Vec<(Vec<Vec<u32>>, Vec<Vec<u32>>)>,
+    /// Per owned position: index of its sliding frame, `u32::MAX` if free.
+    slide_of: Vec<u32>,
+    /// `D×D` per sliding node, rows `t₁ … t_{D−1}, n`.
+    frames: Vec<f64>,
+    blocks: NodeBlocks,
+    /// `K_ii n` per sliding node.
+    kn: Vec<f64>,
+    /// Unknown components of all ranks.
+    dofs: u64,
+}
+
+impl<'c, C: Communicator> Sweeper<'c, C> {
+    /// Prepares rank `part.rank` of `comm`: `roles` per local node (the same
+    /// on every rank that holds the node), `normals` for
+    /// [`NodeRole::Slide`] (the first `D` numbers used, normalised). Finds the
+    /// ghost exchange lists (collective).
+    pub fn new(
+        comm: &'c C,
+        part: Part,
+        roles: Vec<NodeRole>,
+        normals: &[[f64; 3]],
+    ) -> Result<Sweeper<'c, C>> {
+        let dim = part.dim;
+        if roles.len() != part.node_count() {
+            return Err(Error::InvalidSetting(format!(
+                "{} node roles for {} local nodes",
+                roles.len(),
+                part.node_count()
+            )));
+        }
+        let mut unit = Vec::with_capacity(normals.len());
+        for (k, v) in normals.iter().enumerate() {
+            let len = norm(&[v[0], v[1], if dim == 3 { v[2] } else { 0.0 }]);
+            if !(len > 0.0 && len.is_finite()) {
+                return Err(Error::InvalidSetting(format!(
+                    "sliding normal {k} is zero or not finite"
+                )));
+            }
+            let mut u = [v[0] / len, v[1] / len, 0.0];
+            if dim == 3 {
+                u[2] = v[2] / len;
+            }
+            unit.push(u);
+        }
+        if let Some(k) = roles.iter().find_map(|r| match r {
+            NodeRole::Slide(k) if *k >= normals.len() => Some(*k),
+            _ => None,
+        }) {
+            return Err(Error::InvalidSetting(format!(
+                "a node slides on normal {k} but {} normals were given",
+                normals.len()
+            )));
+        }
+        let n = part.node_count();
+        let edges = topology::edges(&part.cells);
+        let conn = Connectivity {
+            dim,
+            node_cells: topology::node_cells(&part.cells, n),
+            graph: topology::node_graph(&part.cells, n),
+            edge_graph: topology::Csr::from_pairs(
+                n,
+                edges
+                    .iter()
+                    .flat_map(|&[a, b]| [(a, b), (b, a)].into_iter()),
+            ),
+            cells: part.cells.clone(),
+            node_tags: part.node_tags.clone(),
+            cell_tags: part.cell_tags.clone(),
+        };
+        let halo = Halo::new(comm, &part.global, &part.owner);
+        Ok(Sweeper {
+            comm,
+            part,
+            conn,
+            roles,
+            normals: unit,
+            halo,
+            built: None,
+        })
+    }
+
+    /// The rank's part.
+    pub fn part(&self) -> &Part {
+        &self.part
+    }
+
+    /// The role of each local node.
+    pub fn roles(&self) -> &[NodeRole] {
+        &self.roles
+    }
+
+    /// The ghost exchange lists.
+    pub fn halo(&self) -> &Halo {
+        &self.halo
+    }
+
+    /// Copies the owners' values of every ghost (`width` numbers per local
+    /// node) into `data` (collective).
+    pub fn exchange(&self, data: &mut [f64], width: usize) {
+        self.halo.exchange(self.comm, data, width);
+    }
+
+    /// One solve on local reference coordinates `coords` (`D` per local
+    /// node) with `colours` (per local node: the colour of an unknown node,
+    /// the same on every rank holding it; anything for a prescribed one).
+    /// `displacement` (`D` per local node) holds the prescribed values and
+    /// the initial guess of the owned nodes on entry (ghosts are taken from
+    /// their owners), the solution of all local nodes on return. Collective;
+    /// the springs are rebuilt only when `coords`, `colours` or the method
+    /// changed. Settings as [`verbss::solve::Engine::solve`]; only the sweeps of
+    /// [`Method::Verbss`] and [`Method::Spring`] without acceleration are
+    /// distributed.
+    pub fn solve(
+        &mut self,
+        coords: &[f64],
+        colours: &[u32],
+        displacement: &mut [f64],
+        params: &SolveParams,
+    ) -> Result<SolveInfo> {
+        let start = Instant::now();
+        self.check(coords, colours, displacement, params)?;
+        let reuse = self.built.as_ref().is_some_and(|b| {
+            b.method == params.method && b.coords == coords && b.colours == colours
+        });
+        let rebuilt = if reuse {
+            Ok(())
+        } else {
+            self.built = None;
+            match self.part.dim {
+                2 => self.build::<2>(coords, colours, params.method),
+                _ => self.build::<3>(coords, colours, params.method),
+            }
+            .map(|b| self.built = Some(b))
+        };
+        // A rank whose rows failed must not leave the others waiting.
+        let failed = self.any(rebuilt.is_err());
+        rebuilt?;
+        if failed {
+            return Err(Error::InvalidMesh(
+                "another rank could not assemble its rows (see its message)".into(),
+            ));
+        }
+        let form_seconds = start.elapsed().as_secs_f64();
+        let solving = Instant::now();
+        self.halo.exchange(self.comm, displacement, self.part.dim);
+        let mut info = match self.part.dim {
+            2 => self.run::<2>(displacement, params),
+            _ => self.run::<3>(displacement, params),
+        }?;
+        info.form_seconds = form_seconds;
+        info.solve_seconds = solving.elapsed().as_secs_f64();
+        info.seconds = start.elapsed().as_secs_f64();
+        info.rebuilt = !reuse;
+        Ok(info)
+    }
+
+    /// Whether `flag` is set on any rank (collective).
+    fn any(&self, flag: bool) -> bool {
+        let mut out = 0u8;
+        self.comm
+            .all_reduce_into(&u8::from(flag), &mut out, SystemOperation::max());
+        out != 0
+    }
+
+    /// Validates the arrays and settings of [`Sweeper::solve`].
+    fn check(
+        &self,
+        coords: &[f64],
+        colours: &[u32],
+        displacement: &[f64],
+        params: &SolveParams,
+    ) -> Result<()> {
+        let dim = self.part.dim;
+        let n = self.part.node_count();
+        if coords.len() != dim * n || displacement.len() != dim * n || colours.len() != n {
+            return Err(Error::InvalidSetting(format!(
+                "{} coordinates, {} displacements and {} colours for {n} local nodes in {dim}D",
+                coords.len(),
+                displacement.len(),
+                colours.len()
+            )));
+        }
+        if !matches!(params.method, Method::Verbss | Method::Spring) || params.accel != Accel::None
+        {
+            return Err(Error::InvalidSetting(
+                "over MPI only the sweeps of --method verbss and spring are distributed \
+                 (with --accel none)"
+                    .into(),
+            ));
+        }
+        if !(params.omega > 0.0 && params.omega < 2.0) {
+            return Err(Error::InvalidSetting(format!(
+                "omega {} is outside (0, 2)",
+                params.omega
+            )));
+        }
+        if !(params.tolerance >= 0.0 && params.tolerance.is_finite()) {
+            return Err(Error::InvalidSetting(format!(
+                "tolerance {} is not a finite number ≥ 0",
+                params.tolerance
+            )));
+        }
+        if params.max_iterations == 0 {
+            return Err(Error::InvalidSetting(
+                "max_iterations is 0 (expected at least 1 sweep)".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Numbers the unknowns, assembles and factors the owned rows and lists
+    /// the exchanges of each colour.
+    fn build<const D: usize>(
+        &self,
+        coords: &[f64],
+        colours: &[u32],
+        method: Method,
+    ) -> Result<Built> {
+        let part = &self.part;
+        let n = part.node_count();
+        let unknown = |i: usize| self.roles[i] != NodeRole::Fixed;
+        let mut order: Vec<usize> = (0..n).filter(|&i| part.owns(i) && unknown(i)).collect();
+        order.sort_by_key(|&i| (colours[i], part.global[i]));
+        let owned = order.len();
+        order.extend((0..n).filter(|&i| !part.owns(i) && unknown(i)));
+        let local_colours = order.iter().map(|&i| colours[i] + 1).max().unwrap_or(0);
+        let mut count = 0u32;
+        self.comm
+            .all_reduce_into(&local_colours, &mut count, SystemOperation::max());
+        let count = count as usize;
+        let mut colour_starts = vec![0usize; count + 1];
+        for &i in &order[..owned] {
+            colour_starts[colours[i] as usize + 1] += 1;
+        }
+        for c in 0..count {
+            colour_starts[c + 1] += colour_starts[c];
+        }
+        let mut position = vec![u32::MAX; n];
+        for (p, &i) in order.iter().enumerate() {
+            position[i] = p as u32;
+        }
+        let mut exchanges = vec![(Vec::new(), Vec::new()); count];
+        for (send, recv) in &mut exchanges {
+            *send = vec![Vec::new(); self.halo.ranks.len()];
+            *recv = vec![Vec::new(); self.halo.ranks.len()];
+        }
+        for k in 0..self.halo.ranks.len() {
+            for &i in &self.halo.send[k] {
+                if unknown(i as usize) {
+                    exchanges[colours[i as usize] as usize].0[k].push(position[i as usize]);
+                }
+            }
+            for &i in &self.halo.recv[k] {
+                if unknown(i as usize) {
+                    exchanges[colours[i as usize] as usize].1[k].push(position[i as usize]);
+                }
+            }
+        }
+        let mut slide_of = vec![u32::MAX; owned];
+        let mut frames = Vec::new();
+        let mut dofs = 0u64;
+        for (p, &i) in order[..owned].iter().enumerate() {
+            dofs += D as u64;
+            if let NodeRole::Slide(k) = self.roles[i] {
+                let nrm: [f64; D] = std::array::from_fn(|c| self.normals[k][c]);
+                slide_of[p] = (frames.len() / (D * D)) as u32;
+                frames.extend(normal_frame(&nrm).iter().flatten());
+                dofs -= 1;
+            }
+        }
+        let mut total = 0u64;
+        self.comm
+            .all_reduce_into(&dofs, &mut total, SystemOperation::sum());
+        let kind = if method == Method::Spring {
+            Springs::Edge
+        } else {
+            Springs::BallVertex
+        };
+        let mut blocks = springs::assemble(&self.conn, coords, &order[..owned], &position, kind)?;
+        let kn = self.prepare_diag::<D>(&mut blocks, &order, &slide_of, &frames)?;
+        Ok(Built {
+            coords: coords.to_vec(),
+            colours: colours.to_vec(),
+            method,
+            order,
+            colour_starts,
+            exchanges,
+            slide_of,
+            frames,
+            blocks,
+            kn,
+            dofs: total,
+        })
+    }
+
+    /// Projects the diagonal blocks of sliding nodes on their tangent frame
+    /// (padded `[[Tᵀ K T, 0], [0, 1]]`) and factors every diagonal block as
+    /// LDLᵀ. Returns `K_ii n` per sliding node.
+    fn prepare_diag<const D: usize>(
+        &self,
+        blocks: &mut NodeBlocks,
+        order: &[usize],
+        slide_of: &[u32],
+        frames: &[f64],
+    ) -> Result<Vec<f64>> {
+        let s = packed_len(D);
+        let mut kn = vec![0.0; frames.len() / D];
+        for (p, &slot) in slide_of.iter().enumerate() {
+            let diag = &mut blocks.diag[s * p..s * (p + 1)];
+            if let Some(r) = frame::<D>(slide_of, frames, p) {
+                let k = diag.to_vec();
+                let slot = slot as usize;
+                let n = r[D - 1];
+                kn[D * slot..D * (slot + 1)].copy_from_slice(&packed_mul::<D>(&k, &n));
+                for a in 0..D {
+                    for b in 0..=a {
+                        diag[packed_index(a, b)] = if a == D - 1 {
+                            f64::from(u8::from(b == D - 1))
+                        } else {
+                            let kb = packed_mul::<D>(&k, &r[b]);
+                            (0..D).map(|c| r[a][c] * kb[c]).sum()
+                        };
+                    }
+                }
+            }
+            let a = diag.to_vec();
+            if !ldlt_factor::<D>(&a, diag) {
+                return Err(Error::InvalidMesh(format!(
+                    "node {}: its springs do not hold it in every direction \
+                     (singular stiffness block)",
+                    self.part.node_tags[order[p]]
+                )));
+            }
+        }
+        Ok(kn)
+    }
+
+    /// Right-hand side, sweeps until the eq.-8 test, solution back into
+    /// `displacement`.
+    fn run<const D: usize>(
+        &self,
+        displacement: &mut [f64],
+        params: &SolveParams,
+    ) -> Result<SolveInfo> {
+        let b = self.built.as_ref().expect("built before the run");
+        let owned = b.slide_of.len();
+        let mut scale = 0.0f64;
+        for &i in b.order[..owned].iter().chain(self.fixed_owned().iter()) {
+            let ui = &displacement[D * i..D * (i + 1)];
+            let size = match self.roles[i] {
+                NodeRole::Free => continue,
+                NodeRole::Fixed => ui.iter().map(|v| v * v).sum::<f64>().sqrt(),
+                NodeRole::Slide(k) => ui
+                    .iter()
+                    .zip(&self.normals[k])
+                    .map(|(a, b)| a * b)
+                    .sum::<f64>()
+                    .abs(),
+            };
+            scale = scale.max(size);
+        }
+        let mut global_scale = 0.0f64;
+        self.comm
+            .all_reduce_into(&scale, &mut global_scale, SystemOperation::max());
+        let threshold = if params.absolute_tolerance || global_scale == 0.0 {
+            params.tolerance
+        } else {
+            params.tolerance * global_scale
+        };
+        let mut work = vec![0.0; D * b.order.len()];
+        for (p, &i) in b.order.iter().enumerate() {
+            work[D * p..D * (p + 1)].copy_from_slice(&displacement[D * i..D * (i + 1)]);
+        }
+        let constant = self.constants::<D>(b, displacement);
+        let mut info = SolveInfo::default();
+        if b.dofs == 0 {
+            info.converged = true;
+            return Ok(info);
+        }
+        let mut first = None;
+        while info.iterations < params.max_iterations {
+            let mut local = 0.0;
+            for c in 0..b.colour_starts.len() - 1 {
+                for p in b.colour_starts[c]..b.colour_starts[c + 1] {
+                    let (value, change) = self.update::<D>(b, &constant, params.omega, p, &work);
+                    work[D * p..D * (p + 1)].copy_from_slice(&value);
+                    local += change;
+                }
+                let (send, recv) = &b.exchanges[c];
+                swap(self.comm, &self.halo.ranks, send, recv, &mut work, D);
+            }
+            let mut sum = 0.0;
+            self.comm
+                .all_reduce_into(&local, &mut sum, SystemOperation::sum());
+            let value = sum / b.dofs as f64;
+            info.iterations += 1;
+            info.residual = value;
+            if params.record_history {
+                info.history.push(value);
+            }
+            let first = *first.get_or_insert(value);
+            if !value.is_finite() || value > 1e6 * first {
+                return Err(Error::InvalidSetting(format!(
+                    "the sweeps diverged (eq.-8 value {value:.3e} at sweep {}, {first:.3e} at \
+                     the first); omega {} is too large for this mesh",
+                    info.iterations, params.omega
+                )));
+            }
+            if value < threshold {
+                info.converged = true;
+                break;
+            }
+        }
+        for (p, &i) in b.order.iter().enumerate() {
+            displacement[D * i..D * (i + 1)].copy_from_slice(&work[D * p..D * (p + 1)]);
+        }
+        Ok(info)
+    }
+
+    /// The owned prescribed nodes.
+    fn fixed_owned(&self) -> Vec<usize> {
+        (0..self.part.node_count())
+            .filter(|&i| self.part.owns(i) && self.roles[i] == NodeRole::Fixed)
+            .collect()
+    }
+
+    /// `c_p = Σ_{j prescribed} B_pj u_j`, minus `d K_pp n` for a sliding node.
+    fn constants<const D: usize>(&self, b: &Built, displacement: &[f64]) -> Vec<f64> {
+        let s = packed_len(D);
+        let blocks = &b.blocks;
+        let owned = b.slide_of.len();
+        let mut constant = vec![0.0; D * owned];
+        for p in 0..owned {
+            let mut c = [0.0; D];
+            for e in blocks.fixed_offsets[p]..blocks.fixed_offsets[p + 1] {
+                let v = packed_mul::<D>(
+                    &blocks.fixed_blocks[s * e..],
+                    &point(displacement, blocks.fixed_nodes[e]),
+                );
+                for k in 0..D {
+                    c[k] += v[k];
+                }
+            }
+            if let Some(r) = frame::<D>(&b.slide_of, &b.frames, p) {
+                let slot = b.slide_of[p] as usize;
+                let u = point::<D>(displacement, b.order[p]);
+                let d: f64 = (0..D).map(|k| r[D - 1][k] * u[k]).sum();
+                for k in 0..D {
+                    c[k] -= d * b.kn[D * slot + k];
+                }
+            }
+            constant[D * p..D * (p + 1)].copy_from_slice(&c);
+        }
+        constant
+    }
+
+    /// Position `p`'s relaxed block solution and the sum of the absolute
+    /// changes of its unknown components (paper eq. 13).
+    #[inline]
+    fn update<const D: usize>(
+        &self,
+        b: &Built,
+        constant: &[f64],
+        omega: f64,
+        p: usize,
+        work: &[f64],
+    ) -> ([f64; D], f64) {
+        let blocks = &b.blocks;
+        let s = packed_len(D);
+        let mut r = point::<D>(constant, p);
+        for e in blocks.offsets[p]..blocks.offsets[p + 1] {
+            let v = packed_mul::<D>(
+                &blocks.blocks[s * e..],
+                &point(work, blocks.neighbours[e] as usize),
+            );
+            for k in 0..D {
+                r[k] += v[k];
+            }
+        }
+        let old = point::<D>(work, p);
+        let factor = &blocks.diag[s * p..];
+        match frame::<D>(&b.slide_of, &b.frames, p) {
+            None => {
+                let x = ldlt_solve::<D>(factor, &r);
+                let delta: [f64; D] = std::array::from_fn(|k| omega * (x[k] - old[k]));
+                (
+                    std::array::from_fn(|k| old[k] + delta[k]),
+                    delta.iter().map(|v| v.abs()).sum(),
+                )
+            }
+            Some(frame) => {
+                let mut rhs = rotate(&frame, &r);
+                rhs[D - 1] = 0.0;
+                let x = ldlt_solve::<D>(factor, &rhs);
+                let a = rotate(&frame, &old);
+                let delta: [f64; D] = std::array::from_fn(|k| {
+                    if k < D - 1 {
+                        omega * (x[k] - a[k])
+                    } else {
+                        0.0
+                    }
+                });
+                let step = unrotate(&frame, &delta);
+                (
+                    std::array::from_fn(|k| old[k] + step[k]),
+                    delta.iter().map(|v| v.abs()).sum(),
+                )
+            }
+        }
+    }
+}
+
+/// The frame of position `p`, if it slides.
+#[inline]
+fn frame<const D: usize>(slide_of: &[u32], frames: &[f64], p: usize) -> Option<[[f64; D]; D]> {
+    let s = slide_of[p];
+    (s != u32::MAX).then(|| {
+        let f = &frames[D * D * s as usize..D * D * (s as usize + 1)];
+        std::array::from_fn(|r| std::array::from_fn(|c| f[D * r + c]))
+    })
+}
+
+/// `R v` for a frame with rows `R`.
+#[inline]
+fn rotate<const D: usize>(r: &[[f64; D]; D], v: &[f64; D]) -> [f64; D] {
+    std::array::from_fn(|k| (0..D).map(|l| r[k][l] * v[l]).sum())
+}
+
+/// `Rᵀ a` for a frame with rows `R`.
+#[inline]
+fn unrotate<const D: usize>(r: &[[f64; D]; D], a: &[f64; D]) -> [f64; D] {
+    std::array::from_fn(|l| (0..D).map(|k| r[k][l] * a[k]).sum())
+}
