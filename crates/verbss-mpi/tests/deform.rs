@@ -1,0 +1,260 @@
+//! `mpirun -np N verbss-mpi deform …` on the shared meshes against the
+//! single-process stepper (what `verbss deform` runs): the same output file
+//! for 1, 2 and 3 ranks, per-rank pieces that cover the mesh once, and the
+//! messages of bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use verbss::deform::{Deformer, Settings};
+use verbss::io::{self, WriteOptions};
+use verbss::motion::{Attachment, Motion};
+use verbss::Mesh;
+
+/// `mpirun --oversubscribe -np N verbss-mpi ARGS…` (root allowed, as in containers).
+fn mpirun(np: usize, args: &[&str]) -> Output {
+    Command::new("mpirun")
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .args(["--oversubscribe", "-np", &np.to_string()])
+        .arg(env!("CARGO_BIN_EXE_verbss-mpi"))
+        .args(args)
+        .output()
+        .expect("run mpirun (Debian: openmpi-bin)")
+}
+
+fn mesh(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/meshes/su2")
+        .join(name)
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The single-process result: the stepper `verbss deform` runs, with its
+/// default settings, written in the output's format.
+fn single(input: &Path, attachments: &[Attachment], steps: usize, out: &Path) -> Mesh {
+    let mesh = io::read(input).unwrap();
+    let mut d = Deformer::new(&mesh, attachments, Settings::new(steps)).unwrap();
+    for n in 1..=steps {
+        d.step(n).unwrap();
+    }
+    io::write(out, &d.mesh(), &WriteOptions::default()).unwrap();
+    d.mesh()
+}
+
+/// Largest coordinate difference relative to the largest coordinate.
+fn relative_difference(a: &Mesh, b: &Mesh) -> f64 {
+    let scale = a.coords.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let diff = a
+        .coords
+        .iter()
+        .zip(&b.coords)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    diff / scale
+}
+
+/// Runs `verbss-mpi deform` on 1, 2 and 3 ranks and checks each output
+/// against the single-process one (1e-12 relative; in practice the files
+/// are byte for byte the same) and the pieces against the mesh.
+fn same_as_single(input: &Path, extra: &[&str], attachments: &[Attachment], steps: usize) {
+    let dir = tempfile::tempdir().unwrap();
+    let reference = dir.path().join("single.su2");
+    let expected = single(input, attachments, steps, &reference);
+    let whole = io::read(input).unwrap();
+    for np in 1..=3 {
+        let out = dir.path().join(format!("np{np}.su2"));
+        let steps = steps.to_string();
+        let mut args = vec![
+            "deform",
+            input.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--steps",
+            &steps,
+            "--quiet",
+        ];
+        args.extend_from_slice(extra);
+        let o = mpirun(np, &args);
+        assert!(o.status.success(), "{np} ranks: {}", stderr(&o));
+        let got = io::read(&out).unwrap();
+        assert_eq!(got.cells, expected.cells);
+        assert_eq!(got.node_tags, expected.node_tags);
+        let diff = relative_difference(&expected, &got);
+        assert!(diff <= 1e-12, "{np} ranks: relative difference {diff:e}");
+        check_pieces(dir.path(), &format!("np{np}"), np, &whole, &got);
+    }
+}
+
+/// The `.pvtu` names `np` pieces; together they hold every cell once, with
+/// the moved coordinates; meshio reads each piece when it is installed.
+fn check_pieces(dir: &Path, name: &str, np: usize, whole: &Mesh, moved: &Mesh) {
+    let pvtu = std::fs::read_to_string(dir.join(format!("{name}.pvtu"))).unwrap();
+    let mut cell_seen = vec![0u32; whole.cell_count()];
+    for r in 0..np {
+        let piece = format!("{name}_{r}.vtu");
+        assert!(
+            pvtu.contains(&format!(r#"<Piece Source="{piece}"/>"#)),
+            "{pvtu}"
+        );
+        let data = io::vtu::read(&dir.join(&piece)).unwrap();
+        for (i, &tag) in data.mesh.node_tags.iter().enumerate() {
+            let g = (tag - 1) as usize;
+            assert_eq!(data.mesh.point(i), moved.point(g), "piece {r} node {tag}");
+        }
+        for &tag in &data.mesh.cell_tags {
+            cell_seen[(tag - 1) as usize] += 1;
+        }
+        let rank = &data.fields.cell.iter().find(|f| f.0 == "rank").unwrap().2;
+        assert!(rank.iter().all(|&v| v == r as f64));
+        if meshio_available() {
+            let o = Command::new("python3")
+                .args([
+                    "-c",
+                    "import meshio,sys; m=meshio.read(sys.argv[1]); print(sum(len(c.data) for c in m.cells))",
+                ])
+                .arg(dir.join(&piece))
+                .output()
+                .unwrap();
+            assert!(o.status.success(), "{}", stderr(&o));
+            let cells: usize = String::from_utf8_lossy(&o.stdout).trim().parse().unwrap();
+            assert_eq!(cells, data.mesh.cell_count());
+        }
+    }
+    assert!(cell_seen.iter().all(|&k| k == 1));
+    assert!(pvtu.matches("<Piece ").count() == np);
+}
+
+/// Whether python3 with meshio is here; CI installs it, so there it must be.
+fn meshio_available() -> bool {
+    let ok = Command::new("python3")
+        .args(["-c", "import meshio"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    assert!(
+        ok || std::env::var_os("CI").is_none(),
+        "python3 with meshio is required under CI"
+    );
+    ok
+}
+
+#[test]
+fn naca0012_rotation_matches_one_process() {
+    let rotate = Attachment {
+        groups: vec!["airfoil".into()],
+        motion: Motion::Rotation {
+            center: [0.25, 0.0, 0.0],
+            axis: [0.0, 0.0, 1.0],
+            angle: 5f64.to_radians(),
+        },
+    };
+    same_as_single(
+        &mesh("mesh_NACA0012_inv.su2"),
+        &["--moving", "airfoil", "--rotate", "5", "--center", "0.25,0"],
+        &[rotate],
+        2,
+    );
+}
+
+#[test]
+fn rae2822_hybrid_translation_matches_one_process() {
+    let translate = Attachment {
+        groups: vec!["AIRFOIL".into()],
+        motion: Motion::Translation {
+            displacement: [0.0, 0.02, 0.0],
+        },
+    };
+    same_as_single(
+        &mesh("mesh_RAE2822_turb_ffd.su2"),
+        &["--moving", "AIRFOIL", "--translate", "0,0.02"],
+        &[translate],
+        1,
+    );
+}
+
+#[test]
+fn tetrahedral_brick_with_sliding_sides_matches_one_process() {
+    let slide = Attachment {
+        groups: vec!["y_m".into(), "y_p".into()],
+        motion: Motion::Slide { normal: None },
+    };
+    let lift = Attachment {
+        groups: vec!["z_p".into()],
+        motion: Motion::Translation {
+            displacement: [0.05, 0.0, 0.1],
+        },
+    };
+    same_as_single(
+        &mesh("mesh_brick_tets_ffd.su2"),
+        &[
+            "--moving",
+            "z_p",
+            "--translate",
+            "0.05,0,0.1",
+            "--slide",
+            "y_m,y_p",
+        ],
+        &[slide, lift],
+        1,
+    );
+}
+
+#[test]
+fn bad_input_gives_the_message_of_verbss_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.su2");
+    let o = mpirun(
+        2,
+        &[
+            "deform",
+            mesh("mesh_NACA0012_inv.su2").to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--moving",
+            "wing",
+            "--translate",
+            "0,1",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let text = stderr(&o);
+    assert_eq!(
+        text.matches("error: unknown group 'wing' (the mesh has: airfoil, farfield)")
+            .count(),
+        1,
+        "{text}"
+    );
+}
+
+#[test]
+fn methods_that_are_not_distributed_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.su2");
+    let o = mpirun(
+        2,
+        &[
+            "deform",
+            mesh("mesh_NACA0012_inv.su2").to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--moving",
+            "airfoil",
+            "--translate",
+            "0,0.01",
+            "--method",
+            "laplacian",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(
+            "error: invalid setting: over MPI only the sweeps of --method verbss and spring are \
+             distributed (with --accel none)"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!out.exists());
+}
