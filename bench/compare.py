@@ -1,0 +1,328 @@
+#!/usr/bin/env python3
+"""verbss against OpenFOAM's moveDynamicMesh on the sphere-in-a-cube series.
+
+    python3 bench/compare.py [--sizes 1.0,0.5,0.35,0.25,0.18] [--work DIR]
+                             [--threads 1,2] [--accel none,amg] [--json OUT]
+    python3 bench/compare.py --smoke      # seconds: a tiny mesh, 2 steps
+
+Per mesh (bench/sphere_cube.py: a sphere of radius 5 in the cube
+[-50, 50]^3, element size growing from --h-sphere on the sphere to
+12 x that at distance 45), the sphere moves 16 units along x in 16 steps:
+
+* verbss (crates/verbss/examples/motion_bench.rs, the stepper of
+  `verbss deform`, updated reference, eq.-8 tolerance 1e-6 relative): per
+  thread count and acceleration, wall and CPU seconds per step, sweeps (or
+  GMRES iterations) per step, seconds per sweep, bytes per node, peak memory
+  (/usr/bin/time -v), the true error of steps 1 and 16 against a reference
+  solved to 1e-13 (one-thread runs; results do not depend on the threads),
+  and the final mesh's minimum quality and inverted count (`verbss quality`);
+* OpenFOAM (when `moveDynamicMesh` is installed; Debian package `openfoam`):
+  the mesh imported with gmshToFoam from MSH 2.2, displacementLaplacian with
+  inverseDistance diffusivity on the sphere, GAMG to 1e-6, the sphere's
+  pointDisplacement a table reaching (16 0 0) at time 16; moveDynamicMesh
+  (which runs a full mesh check after every step) and moveMesh (the motion
+  solver alone), each timed per step (wall: when each step's ExecutionTime
+  line appears; CPU: the ExecutionTime values), peak memory, and the final
+  mesh exported by foamToVTK and measured by `verbss quality`.
+
+Prints a Markdown table and writes every number to --json. The 16 units
+are the VerBSS paper's §5.1 motion; in the paper's cube of half width 25
+the finer meshes' elements between the sphere and the wall (compressed
+from 20 to 4 units) invert, hence the cube of half width 50.
+"""
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+STEPS = 16
+TRAVEL = 16.0
+
+
+def run(cmd, **kw):
+    return subprocess.run(cmd, check=True, text=True, capture_output=True, **kw)
+
+
+def timed(cmd, **kw):
+    """Runs cmd under /usr/bin/time -v; returns (stdout, peak RSS bytes)."""
+    r = run(["/usr/bin/time", "-v"] + cmd, **kw)
+    peak = re.search(r"Maximum resident set size \(kbytes\): (\d+)", r.stderr)
+    return r.stdout, int(peak.group(1)) * 1024 if peak else None
+
+
+def mesh_for(work, h, smoke):
+    path = work / f"sphere_h{h}.msh"
+    if not path.exists():
+        run([sys.executable, str(ROOT / "bench" / "sphere_cube.py"), str(path),
+             "--h-sphere", str(h), "--h-far", str(12 * h), "--box", "50",
+             "--dist-max", "45"])
+    return path
+
+
+def quality(verbss, path):
+    q = json.loads(run([verbss, "quality", str(path), "--json"]).stdout)
+    return q["quality"]["min"], q["inverted"], q["elements"]
+
+
+def verbss_runs(bins, mesh, work, threads, accels, steps):
+    out = []
+    for accel in accels:
+        for t in threads:
+            final = work / f"{mesh.stem}_{accel}_final.vtu"
+            cmd = [bins["motion_bench"], str(mesh), "--moving", "sphere",
+                   "--translate", f"{TRAVEL * steps / STEPS},0,0", "--steps", str(steps),
+                   "--threads", str(t), "--accel", accel]
+            if t == threads[0]:
+                cmd += ["--error-steps", f"1,{steps}", "--output", str(final)]
+            stdout, peak = timed(cmd)
+            r = json.loads(stdout)
+            r["peak_rss_time_v"] = peak
+            if r["failure"] is None and t == threads[0]:
+                r["final_min_quality"], r["final_inverted"], _ = quality(bins["verbss"], final)
+            out.append(r)
+            print(f"  verbss {accel} {t} thread(s): {summary(r)}", file=sys.stderr)
+    return out
+
+
+def summary(r):
+    n = len(r["seconds"])
+    if n == 0:
+        return f"failed: {r['failure']}"
+    return (f"{sum(r['seconds']) / n:.3f} s/step, {sum(r['iterations']) / n:.1f} "
+            f"iterations/step, error {r['true_error']}")
+
+
+FOAM_HEADER = "FoamFile { version 2.0; format ascii; class %s; object %s; }\n"
+
+
+def foam_case(case, msh22, steps):
+    """Writes the OpenFOAM case for `steps` steps of 1 unit each."""
+    for d in ("system", "constant", "0"):
+        (case / d).mkdir(parents=True, exist_ok=True)
+    files = {
+        "system/controlDict": ("dictionary", "controlDict", f"""
+application moveDynamicMesh;
+startFrom startTime; startTime 0; stopAt endTime; endTime {steps}; deltaT 1;
+writeControl timeStep; writeInterval {steps}; purgeWrite 0; writeFormat binary;
+writePrecision 17; writeCompression off; timeFormat general; timePrecision 6;
+runTimeModifiable false;
+"""),
+        "system/fvSchemes": ("dictionary", "fvSchemes", """
+ddtSchemes { default Euler; }
+gradSchemes { default Gauss linear; }
+divSchemes { default none; }
+laplacianSchemes { default Gauss linear corrected; }
+interpolationSchemes { default linear; }
+snGradSchemes { default corrected; }
+"""),
+        "system/fvSolution": ("dictionary", "fvSolution", """
+solvers
+{
+    "cellDisplacement.*" { solver GAMG; smoother GaussSeidel; tolerance 1e-6; relTol 0; }
+}
+"""),
+        "constant/dynamicMeshDict": ("dictionary", "dynamicMeshDict", """
+dynamicFvMesh dynamicMotionSolverFvMesh;
+motionSolverLibs (fvMotionSolvers);
+motionSolver displacementLaplacian;
+displacementLaplacianCoeffs { diffusivity inverseDistance (sphere); }
+"""),
+        "0/pointDisplacement": ("pointVectorField", "pointDisplacement", f"""
+dimensions [0 1 0 0 0 0 0];
+internalField uniform (0 0 0);
+boundaryField
+{{
+    sphere {{ type uniformFixedValue; uniformValue table ((0 (0 0 0)) ({steps} ({steps} 0 0))); }}
+    farfield {{ type fixedValue; value uniform (0 0 0); }}
+}}
+"""),
+        "0/cellDisplacement": ("volVectorField", "cellDisplacement", """
+dimensions [0 1 0 0 0 0 0];
+internalField uniform (0 0 0);
+boundaryField
+{
+    sphere { type cellMotion; value uniform (0 0 0); }
+    farfield { type cellMotion; value uniform (0 0 0); }
+}
+"""),
+    }
+    for name, (cls, obj, body) in files.items():
+        (case / name).write_text(FOAM_HEADER % (cls, obj) + body)
+    r = run(["gmshToFoam", str(msh22)], cwd=case, env=foam_env())
+    (case / "log.gmshToFoam").write_text(r.stdout + r.stderr)
+
+
+def foam_env():
+    env = dict(os.environ)
+    env.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")
+    return env
+
+
+def foam_timed(app, case):
+    """Runs an OpenFOAM application, timestamping each step's end; returns
+    per-step wall seconds, per-step CPU seconds, GAMG iterations per step
+    (x, y, z summed) and peak RSS."""
+    proc = subprocess.Popen(["/usr/bin/time", "-v", app], cwd=case, env=foam_env(),
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    wall, cpu, iters, log = [], [], [], []
+    start = None
+    current = 0
+    for line in proc.stdout:
+        now = time.monotonic()
+        log.append(line)
+        if line.startswith("Time = ") and start is None:
+            start = now
+        m = re.match(r"GAMG:\s+Solving for cellDisplacement\w, .* No Iterations (\d+)", line)
+        if m:
+            current += int(m.group(1))
+        m = re.match(r"ExecutionTime = ([\d.e+-]+) s", line)
+        if m:
+            wall.append(now - start)
+            start = now
+            cpu.append(float(m.group(1)))
+            iters.append(current)
+            current = 0
+    err = proc.stderr.read()
+    proc.wait()
+    (Path(case) / f"log.{app}").write_text("".join(log) + err)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{app} failed in {case}: {err[-2000:]}")
+    # ExecutionTime is the process's CPU time since it started: the first
+    # step's value includes reading the mesh, so the first step has none.
+    cpu = [float("nan")] + [b - a for a, b in zip(cpu[:-1], cpu[1:])]
+    peak = re.search(r"Maximum resident set size \(kbytes\): (\d+)", err)
+    return wall, cpu, iters, int(peak.group(1)) * 1024
+
+
+def openfoam_run(bins, mesh, work, steps):
+    msh22 = work / f"{mesh.stem}_22.msh"
+    run([bins["verbss"], "convert", str(mesh), str(msh22), "--msh-version", "2.2"])
+    out = {}
+    for app in ("moveDynamicMesh", "moveMesh"):
+        case = work / f"{mesh.stem}_{app}"
+        shutil.rmtree(case, ignore_errors=True)
+        foam_case(case, msh22, steps)
+        wall, cpu, iters, peak = foam_timed(app, case)
+        r = {"seconds": wall, "cpu_seconds": cpu, "gamg_iterations": iters,
+             "peak_rss_time_v": peak}
+        if app == "moveDynamicMesh":
+            run(["foamToVTK", "-latestTime", "-no-boundary", "-no-point-data",
+                 "-fields", "()"], cwd=case, env=foam_env())
+            vtu = case / "VTK" / f"{case.name}_{steps}" / "internal.vtu"
+            r["final_min_quality"], r["final_inverted"], r["final_elements"] = \
+                quality(bins["verbss"], vtu)
+        out[app] = r
+        n = len(wall)
+        print(f"  OpenFOAM {app}: {sum(wall) / n:.3f} s/step wall, {later(cpu):.3f} "
+              f"CPU, {sum(iters) / n:.1f} GAMG iterations/step", file=sys.stderr)
+    return out
+
+
+def build(debug):
+    profile = [] if debug else ["--release"]
+    subprocess.run(["cargo", "build", "-q"] + profile + ["-p", "verbss", "--example",
+                    "motion_bench", "-p", "verbss-cli"], check=True, cwd=ROOT)
+    target = ROOT / "target" / ("debug" if debug else "release")
+    return {"motion_bench": str(target / "examples" / "motion_bench"),
+            "verbss": str(target / "verbss")}
+
+
+def mean(x):
+    return sum(x) / len(x) if x else float("nan")
+
+
+def later(x):
+    """The mean over steps 2, 3, …: the first step of OpenFOAM's CPU times
+    includes reading the mesh."""
+    return mean(x[1:])
+
+
+def table(results):
+    print("| tets | nodes | who | threads | s/step (wall) | s/step (CPU, steps 2–) | iterations/step "
+          "| s/sweep | bytes/node | peak MB | error step 1 | error last step | min quality "
+          "| inverted | OpenFOAM / this (wall) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for m in results:
+        foam = m.get("openfoam", {}).get("moveDynamicMesh")
+        rows = []
+        for r in m["verbss"]:
+            ok = len(r["seconds"]) == r["steps_total"]
+            per = mean(r["seconds"])
+            sweeps = mean(r["iterations"])
+            err = dict((s, e) for s, e in r["true_error"])
+            rows.append([f"verbss {r['accel']}", r["threads"], f"{per:.3f}" if ok else
+                         f"failed at step {len(r['seconds']) + 1}",
+                         f"{later(r['cpu_seconds']):.3f}", f"{sweeps:.1f}",
+                         f"{mean(r['solve_seconds']) / sweeps:.2e}",
+                         f"{r['bytes_per_node']:.0f}", f"{r['peak_rss_time_v'] / 1e6:.0f}",
+                         f"{err.get(1, float('nan')):.1e}" if err else "",
+                         f"{err.get(r['steps_total'], float('nan')):.1e}" if err else "",
+                         f"{r['final_min_quality']:.4f}" if "final_min_quality" in r else "",
+                         r.get("final_inverted", ""),
+                         f"{mean(foam['seconds']) / per:.1f}x" if foam and ok else ""])
+        for app, f in m.get("openfoam", {}).items():
+            rows.append([f"OpenFOAM {app}", 1, f"{mean(f['seconds']):.3f}",
+                         f"{later(f['cpu_seconds']):.3f}",
+                         f"{mean(f['gamg_iterations']):.1f} (GAMG)", "", "",
+                         f"{f['peak_rss_time_v'] / 1e6:.0f}", "", "",
+                         f"{f['final_min_quality']:.4f}" if "final_min_quality" in f else "",
+                         f.get("final_inverted", ""), ""])
+        for row in rows:
+            print(f"| {m['cells']:,} | {m['nodes']:,} | " + " | ".join(map(str, row)) + " |")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--sizes", default="1.0,0.5,0.35,0.25,0.18")
+    ap.add_argument("--work", default="/tmp/verbss-bench")
+    ap.add_argument("--threads", default="1,2")
+    ap.add_argument("--accel", default="none,amg")
+    ap.add_argument("--json", default=None)
+    ap.add_argument("--no-openfoam", action="store_true")
+    ap.add_argument("--smoke", action="store_true",
+                    help="a tiny mesh (h 2.5), 2 steps, debug build: checks that it all runs")
+    a = ap.parse_args()
+    work = Path(a.work)
+    work.mkdir(parents=True, exist_ok=True)
+    sizes = [2.5] if a.smoke else [float(h) for h in a.sizes.split(",")]
+    steps = 2 if a.smoke else STEPS
+    bins = build(a.smoke)
+    have_foam = shutil.which("moveDynamicMesh") is not None and not a.no_openfoam
+    if not have_foam:
+        print("OpenFOAM: skipped (moveDynamicMesh not installed or --no-openfoam)",
+              file=sys.stderr)
+    print(f"load average at start: {os.getloadavg()}", file=sys.stderr)
+    results = []
+    for h in sizes:
+        mesh = mesh_for(work, h, a.smoke)
+        print(f"{mesh}:", file=sys.stderr)
+        runs = verbss_runs(bins, mesh, work, [int(t) for t in a.threads.split(",")],
+                           a.accel.split(","), steps)
+        for r in runs:
+            r["steps_total"] = steps
+        m = {"h_sphere": h, "mesh": str(mesh), "nodes": runs[0]["nodes"],
+             "cells": runs[0]["cells"], "verbss": runs, "load_average": os.getloadavg()}
+        if have_foam:
+            m["openfoam"] = openfoam_run(bins, mesh, work, steps)
+        results.append(m)
+    print(f"load average at end: {os.getloadavg()}", file=sys.stderr)
+    table(results)
+    if a.json:
+        Path(a.json).write_text(json.dumps(results, indent=1))
+    if a.smoke:
+        for m in results:
+            for r in m["verbss"]:
+                assert r["failure"] is None and len(r["seconds"]) == steps, r
+            if have_foam:
+                for f in m["openfoam"].values():
+                    assert len(f["seconds"]) == steps, f
+
+
+if __name__ == "__main__":
+    main()
