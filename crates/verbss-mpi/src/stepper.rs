@@ -10,7 +10,9 @@
 //! from the whole graph on every rank), so the solution is the
 //! single-process one. After each solve one all-gather gives every rank the
 //! whole displacement, from which the new coordinates, the inversion check
-//! and the adaptive sub-steps follow as in the single-process stepper.
+//! and the adaptive sub-steps follow as in the single-process stepper. The
+//! other near-wall treatments ([`Robust`]: the rigid layer and its stiffened
+//! springs) are not distributed yet and are refused.
 
 use std::time::Instant;
 
@@ -18,6 +20,7 @@ use mpi::traits::*;
 use verbss::deform::{Deformer, Reference, Settings, Snapshot, StepReport};
 use verbss::motion::Attachment;
 use verbss::quality::{self, Inversion, Summary};
+use verbss::robust::Robust;
 use verbss::solve::{NodeRole, SolveInfo};
 use verbss::topology::{self, Csr};
 use verbss::{Error, Mesh, Result};
@@ -52,6 +55,15 @@ impl<'c, C: Communicator> Stepper<'c, C> {
         attachments: &[Attachment],
         settings: Settings,
     ) -> Result<Stepper<'c, C>> {
+        let mut treatments = settings.robust;
+        treatments.substeps = 0;
+        if treatments != Robust::off() {
+            return Err(Error::InvalidSetting(
+                "over MPI the near-wall treatments other than --substeps are not distributed \
+                 (use --rigid-layer off)"
+                    .into(),
+            ));
+        }
         let deformer = Deformer::new(mesh, attachments, settings)?;
         let mut owner = if comm.rank() == 0 {
             partition(mesh, comm.size() as usize)?

@@ -127,6 +127,7 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
             cells: part.cells.clone(),
             node_tags: part.node_tags.clone(),
             cell_tags: part.cell_tags.clone(),
+            stiffness: Vec::new(),
         };
         let halo = Halo::new(comm, &part.global, &part.owner);
         Ok(Sweeper {
