@@ -14,6 +14,7 @@ use clap::{ArgGroup, Args, ValueEnum};
 use verbss::deform::{Reference, Settings};
 use verbss::io::{self, Format};
 use verbss::motion::{Attachment, Motion, PositionSource};
+use verbss::robust::{Layer, Robust};
 use verbss::solve::{Accel, Method, Solver};
 
 use crate::render::{PictureArgs, Recorder};
@@ -51,8 +52,26 @@ pub struct DeformArgs {
     /// New node positions (SU2 surface file `GlobalID x y [z]`, or CSV), reached at the last step.
     #[arg(long)]
     positions: Option<PathBuf>,
-    /// The spring system and its solution strategy.
-    #[arg(long, value_enum, default_value = "verbss")]
+    /// Groups whose nodes slide in their own plane (symmetry planes), comma separated.
+    #[arg(long, value_delimiter = ',')]
+    slide: Vec<String>,
+    /// Nodes this close to a moving wall move with it: off, auto (the boundary
+    /// layer, at least 5% of the body's size) or a wall distance [default:
+    /// auto for robust, off otherwise].
+    #[arg(long, value_parser = parse_layer)]
+    rigid_layer: Option<Layer>,
+    /// A step that inverts an element is redone in smaller increments, down
+    /// to 1/2^K of the step; 0: off [default: 6 for robust, 0 otherwise].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=30))]
+    substeps: Option<u32>,
+    /// Springs at wall distance d scaled by (t/max(d,t))^P, t the rigid
+    /// layer's thickness; 0: off [default: 1 for robust, 0 otherwise].
+    #[arg(long, value_parser = parse_exponent)]
+    stiffening: Option<f64>,
+    /// The spring system and its solution strategy: robust is VerBSS with
+    /// the near-wall treatments (rigid layer auto, stiffening 1, substeps 6);
+    /// verbss is the paper's method exactly.
+    #[arg(long, value_enum, default_value = "robust")]
     method: MethodArg,
     /// The global solver of `--method ball-vertex`.
     #[arg(long, value_enum, default_value = "sor")]
@@ -94,6 +113,7 @@ pub struct DeformArgs {
 
 #[derive(Clone, Copy, ValueEnum)]
 enum MethodArg {
+    Robust,
     Verbss,
     BallVertex,
     Spring,
@@ -119,6 +139,28 @@ enum ReferenceArg {
     Initial,
 }
 
+/// `off`, `auto` or a positive wall distance.
+fn parse_layer(s: &str) -> Result<Layer, String> {
+    match s {
+        "off" => Ok(Layer::Off),
+        "auto" => Ok(Layer::Auto),
+        _ => match s.parse::<f64>() {
+            Ok(t) if t > 0.0 && t.is_finite() => Ok(Layer::Thickness(t)),
+            _ => Err(format!(
+                "expected off, auto or a positive wall distance, got '{s}'"
+            )),
+        },
+    }
+}
+
+/// A finite exponent ≥ 0.
+fn parse_exponent(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(p) if p >= 0.0 && p.is_finite() => Ok(p),
+        _ => Err(format!("expected a number ≥ 0, got '{s}'")),
+    }
+}
+
 /// A point of 2 or 3 numbers as 3 (z = 0).
 fn point3(name: &str, v: &[f64], dim: usize) -> anyhow::Result<[f64; 3]> {
     if v.len() != dim {
@@ -137,7 +179,7 @@ fn point3(name: &str, v: &[f64], dim: usize) -> anyhow::Result<[f64; 3]> {
 pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
     let format = Format::from_path(&args.output)?;
     let mesh = io::read(&args.mesh)?;
-    for g in &args.moving {
+    for g in args.moving.iter().chain(&args.slide) {
         mesh.group(g)?;
     }
     let dim = mesh.dim;
@@ -170,9 +212,17 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
         ReferenceArg::Updated => Reference::Updated,
         ReferenceArg::Initial => Reference::Fixed,
     };
+    let mut robust = match args.method {
+        MethodArg::Robust => Robust::recommended(),
+        _ => Robust::off(),
+    };
+    robust.layer = args.rigid_layer.unwrap_or(robust.layer);
+    robust.substeps = args.substeps.unwrap_or(robust.substeps);
+    robust.stiffening = args.stiffening.unwrap_or(robust.stiffening);
+    settings.robust = robust;
     let s = &mut settings.solve;
     s.method = match args.method {
-        MethodArg::Verbss => Method::Verbss,
+        MethodArg::Robust | MethodArg::Verbss => Method::Verbss,
         MethodArg::BallVertex => Method::BallVertex,
         MethodArg::Spring => Method::Spring,
         MethodArg::Laplacian => Method::Laplacian,
@@ -199,10 +249,13 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
         name: file_stem(&args.output),
         source: args.mesh.display().to_string(),
         mesh,
-        attachments: vec![Attachment {
-            groups: args.moving.clone(),
-            motion,
-        }],
+        attachments: slides(&args.slide)
+            .into_iter()
+            .chain([Attachment {
+                groups: args.moving.clone(),
+                motion,
+            }])
+            .collect(),
         settings,
         every: 1,
         series: false,
@@ -214,4 +267,15 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
     let mut recorder = Recorder::new(&args.pictures, &job.mesh, job.settings.steps, None);
     let summary = execute(&job, args.quiet, &mut recorder)?;
     Ok(summary.print(&job))
+}
+
+/// The `--slide` groups, each sliding in its own plane.
+fn slides(groups: &[String]) -> Vec<Attachment> {
+    if groups.is_empty() {
+        return Vec::new();
+    }
+    vec![Attachment {
+        groups: groups.to_vec(),
+        motion: Motion::Slide { normal: None },
+    }]
 }

@@ -33,7 +33,7 @@ enum Command {
     /// Convert a mesh between formats, chosen by extension (.msh, .su2, .vtu).
     Convert(convert::ConvertArgs),
     /// Move groups by a translation, a rotation or given positions, in N steps.
-    Deform(deform::DeformArgs),
+    Deform(Box<deform::DeformArgs>),
     /// Run a case file: moving boundaries over time steps, with outputs.
     Run(run::RunArgs),
     /// Run the paper's pitching–plunging NACA0012 case with no input files.
@@ -48,7 +48,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Quality(args) => quality::run(args),
         Command::Convert(args) => convert::run(args),
-        Command::Deform(args) => deform::run(args),
+        Command::Deform(args) => deform::run(*args),
         Command::Run(args) => run::run(args),
         Command::Demo(args) => demo::run(args),
         Command::Render(args) => render::run(args),

@@ -156,14 +156,48 @@ fn the_accelerated_solve_gives_the_direct_solution() {
         "direct.su2",
         &["--method", "ball-vertex", "--solver", "direct"],
     );
-    let fast = moved("amg.su2", &["--accel", "amg", "--tolerance", "1e-11"]);
-    let diff = exact
-        .coords
-        .iter()
-        .zip(&fast.coords)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max);
+    let largest_difference = |a: &verbss::mesh::Mesh, b: &verbss::mesh::Mesh| {
+        a.coords
+            .iter()
+            .zip(&b.coords)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max)
+    };
+    let fast = moved(
+        "amg.su2",
+        &[
+            "--method",
+            "verbss",
+            "--accel",
+            "amg",
+            "--tolerance",
+            "1e-11",
+        ],
+    );
+    let diff = largest_difference(&exact, &fast);
     assert!(diff < 1e-8, "largest difference {diff}");
+    // The default (robust) method: the same springs, stiffened, around a rigid layer.
+    let exact = moved(
+        "direct-robust.su2",
+        &[
+            "--method",
+            "ball-vertex",
+            "--solver",
+            "direct",
+            "--rigid-layer",
+            "auto",
+            "--stiffening",
+            "1",
+        ],
+    );
+    let fast = moved(
+        "amg-robust.su2",
+        &["--accel", "amg", "--tolerance", "1e-11"],
+    );
+    let diff = largest_difference(&exact, &fast);
+    assert!(diff < 1e-8, "largest difference {diff}");
+    let plain = moved("plain.su2", &["--method", "verbss"]);
+    assert!(largest_difference(&exact, &plain) > 1e-4);
     let (o, _) = deform("x.su2", &["--method", "laplacian", "--accel", "amg"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(

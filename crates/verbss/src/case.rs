@@ -13,6 +13,7 @@ use crate::deform::{Reference, Settings};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Motion, PositionSource};
+use crate::robust::{Layer, Robust};
 use crate::solve::{Accel, Method, SolveParams, Solver};
 
 /// A parsed case file.
@@ -85,6 +86,7 @@ enum ReferenceName {
 #[serde(rename_all = "kebab-case")]
 enum MethodName {
     #[default]
+    Robust,
     Verbss,
     BallVertex,
     Spring,
@@ -122,6 +124,17 @@ struct SolverTable {
     absolute_tolerance: Option<bool>,
     max_iterations: Option<usize>,
     threads: Option<usize>,
+    rigid_layer: Option<LayerSpec>,
+    substeps: Option<u32>,
+    stiffening: Option<f64>,
+}
+
+/// `rigid_layer = "off" | "auto" | THICKNESS`.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum LayerSpec {
+    Name(String),
+    Thickness(f64),
 }
 
 #[derive(Deserialize)]
@@ -269,7 +282,7 @@ impl Case {
         let s = &file.solver;
         let mut solve = SolveParams {
             method: match s.method {
-                MethodName::Verbss => Method::Verbss,
+                MethodName::Robust | MethodName::Verbss => Method::Verbss,
                 MethodName::BallVertex => Method::BallVertex,
                 MethodName::Spring => Method::Spring,
                 MethodName::Laplacian => Method::Laplacian,
@@ -324,6 +337,47 @@ impl Case {
             }
             solve.threads = t;
         }
+        let mut robust = match s.method {
+            MethodName::Robust => Robust::recommended(),
+            _ => Robust::off(),
+        };
+        if let Some(spec) = &s.rigid_layer {
+            robust.layer = match spec {
+                LayerSpec::Name(n) if n == "off" => Layer::Off,
+                LayerSpec::Name(n) if n == "auto" => Layer::Auto,
+                LayerSpec::Thickness(t) if *t > 0.0 && t.is_finite() => Layer::Thickness(*t),
+                LayerSpec::Name(n) => {
+                    return Err(at(
+                        top("rigid_layer"),
+                        format!("`solver.rigid_layer` must be \"off\", \"auto\" or a positive thickness (got \"{n}\")"),
+                    ))
+                }
+                LayerSpec::Thickness(t) => {
+                    return Err(at(
+                        top("rigid_layer"),
+                        format!("`solver.rigid_layer` must be \"off\", \"auto\" or a positive thickness (got {t})"),
+                    ))
+                }
+            };
+        }
+        if let Some(k) = s.substeps {
+            if k > 30 {
+                return Err(at(
+                    top("substeps"),
+                    format!("`solver.substeps` must be at most 30 (got {k})"),
+                ));
+            }
+            robust.substeps = k;
+        }
+        if let Some(p) = s.stiffening {
+            if !(p >= 0.0 && p.is_finite()) {
+                return Err(at(
+                    top("stiffening"),
+                    format!("`solver.stiffening` must be zero or positive (got {p})"),
+                ));
+            }
+            robust.stiffening = p;
+        }
         if file.output.every == 0 {
             return Err(at(top("every"), "`output.every` must be at least 1".into()));
         }
@@ -348,6 +402,7 @@ impl Case {
                     ReferenceName::Fixed => Reference::Fixed,
                 },
                 solve,
+                robust,
             },
             output: Output {
                 dir: file.output.dir.map(|d| base.join(d)),
@@ -576,7 +631,7 @@ final = false
     fn unknown_method() {
         assert_eq!(
             err("mesh = \"m.su2\"\nsteps = 3\n[solver]\nmethod = \"fem\"\n"),
-            "cases/c.toml:4: unknown variant `fem`, expected one of `verbss`, `ball-vertex`, `spring`, `laplacian`"
+            "cases/c.toml:4: unknown variant `fem`, expected one of `robust`, `verbss`, `ball-vertex`, `spring`, `laplacian`"
         );
     }
 

@@ -21,6 +21,9 @@
 //!
 //! Either way the previous step's solution is the next step's initial guess,
 //! and prescribed nodes are set exactly to their motion's positions.
+//!
+//! [`Settings::robust`] adds the near-wall treatments of [`crate::robust`]:
+//! a rigid layer of nodes that move with their wall, and adaptive sub-steps.
 
 use std::collections::HashMap;
 use std::time::Instant;
@@ -32,7 +35,8 @@ use crate::geometry::{cross, norm};
 use crate::mesh::{CellKind, Mesh};
 use crate::motion::{Attachment, Clock, Motion};
 use crate::quality::{self, Inversion, Summary};
-use crate::solve::{Engine, NodeRole, SolveParams};
+use crate::robust::{self, Robust};
+use crate::solve::{Engine, NodeRole, SolveInfo, SolveParams};
 use crate::topology;
 
 /// Which configuration the springs are built on (the paper's options 1 and 2).
@@ -58,6 +62,8 @@ pub struct Settings {
     pub reference: Reference,
     /// The solver's settings for every step.
     pub solve: SolveParams,
+    /// The near-wall treatments (off: the paper's method).
+    pub robust: Robust,
 }
 
 impl Settings {
@@ -68,6 +74,7 @@ impl Settings {
             dt: 1.0 / steps.max(1) as f64,
             reference: Reference::Updated,
             solve: SolveParams::default(),
+            robust: Robust::off(),
         }
     }
 }
@@ -78,7 +85,9 @@ impl Settings {
 pub struct StepReport {
     /// The step `n` (0: the input mesh).
     pub step: usize,
-    /// Solver sweeps.
+    /// The increments the step was taken in (1 unless sub-steps were needed).
+    pub substeps: usize,
+    /// Solver sweeps (of all increments).
     pub iterations: usize,
     /// The final eq.-8 value (mean absolute change in the last sweep).
     pub residual: f64,
@@ -126,7 +135,13 @@ pub struct Deformer {
     motions: Vec<Motion>,
     /// Moving nodes and the motions (indices into `motions`) they follow, in order.
     moving: Vec<(usize, Vec<usize>)>,
+    /// Rigid-layer nodes, the moving node (index into `moving`) each follows,
+    /// and the plane it slides in, if it does.
+    layer: Vec<(usize, usize, Option<usize>)>,
+    /// The rigid layer's thickness around each body.
+    layer_thickness: Vec<f64>,
     orientation: Vec<i8>,
+    /// The last increment per unit step fraction: the next increment's guess.
     guess: Vec<f64>,
     current: Snapshot,
     failed: Option<Snapshot>,
@@ -154,8 +169,22 @@ impl Deformer {
                 format_point(mesh.point(a))
             )));
         }
-        let plan = plan_roles(mesh, attachments)?;
-        let engine = Engine::new(mesh, &plan.roles, &plan.normals)?;
+        let mut plan = plan_roles(mesh, attachments)?;
+        let rigid = robust::prepare(mesh, &plan.roles, &plan.moving, &settings.robust)?;
+        let layer = rigid
+            .nodes
+            .iter()
+            .map(|&(i, k)| {
+                let plane = match plan.roles[i] {
+                    NodeRole::Slide(p) => Some(p),
+                    _ => None,
+                };
+                plan.roles[i] = NodeRole::Fixed;
+                (i, k, plane)
+            })
+            .collect();
+        let mut engine = Engine::new(mesh, &plan.roles, &plan.normals)?;
+        engine.set_stiffness(rigid.stiffness);
         let orientation = quality::orientation(mesh);
         let start = Instant::now();
         let (quality, inversions) = check(mesh, &mesh.coords, &orientation);
@@ -184,6 +213,8 @@ impl Deformer {
             normals: plan.normals,
             motions,
             moving: plan.moving,
+            layer,
+            layer_thickness: rigid.thickness,
             orientation,
             failed: None,
         })
@@ -194,9 +225,21 @@ impl Deformer {
         &self.settings
     }
 
-    /// The role of each node.
+    /// The role of each node in the spring system (rigid-layer nodes are
+    /// prescribed: [`NodeRole::Fixed`]).
     pub fn roles(&self) -> &[NodeRole] {
         &self.roles
+    }
+
+    /// The unit plane normals of the sliding nodes ([`NodeRole::Slide`]`(k)` is `normals()[k]`).
+    pub fn normals(&self) -> &[[f64; 3]] {
+        &self.normals
+    }
+
+    /// The number of rigid-layer nodes and the layer's thickness around each
+    /// body (moving nodes sharing a chain of motions).
+    pub fn rigid_layer(&self) -> (usize, &[f64]) {
+        (self.layer.len(), &self.layer_thickness)
     }
 
     /// The last accepted step (0 before the first).
@@ -234,26 +277,144 @@ impl Deformer {
     /// Moves the boundary to its position at step `n` and the interior with
     /// it, from the last accepted configuration. On success the new
     /// configuration is accepted and its report returned. When an element
-    /// inverts the configuration is rejected (kept in [`Deformer::failed`],
-    /// the current one stays) and [`Error::Inverted`] names the worst element.
+    /// inverts — in the smallest increment [`Settings::robust`] allows — the
+    /// configuration is rejected (kept in [`Deformer::failed`], the current
+    /// one stays) and [`Error::Inverted`] names the worst element.
     pub fn step(&mut self, n: usize) -> Result<StepReport> {
         let start = Instant::now();
+        let targets = self.targets(n)?;
+        let substeps = match self.settings.reference {
+            Reference::Updated => self.settings.robust.substeps.min(30),
+            Reference::Fixed => 0,
+        };
+        let floor = 0.5f64.powi(substeps as i32);
+        let from = self.current.coords.clone();
+        let mut coords = from.clone();
+        let (mut done, mut h) = (0.0, 1.0);
+        let mut report = StepReport {
+            step: n,
+            converged: true,
+            ..StepReport::default()
+        };
+        loop {
+            let end = if done + h >= 1.0 { 1.0 } else { done + h };
+            let at: Vec<(usize, Vec<f64>)> = targets
+                .iter()
+                .map(|(i, p)| {
+                    let x0 = &from[self.mesh.dim * i..self.mesh.dim * (i + 1)];
+                    let q = if end == 1.0 {
+                        p.clone()
+                    } else {
+                        x0.iter().zip(p).map(|(a, b)| a + end * (b - a)).collect()
+                    };
+                    (*i, q)
+                })
+                .collect();
+            let Attempt {
+                coords: trial,
+                u,
+                info,
+                inversions,
+            } = self.attempt(&coords, &at, end - done)?;
+            report.iterations += info.iterations;
+            report.residual = info.residual;
+            report.converged &= info.converged;
+            report.form_seconds += info.form_seconds;
+            report.solve_seconds += info.solve_seconds;
+            report.history = info.history;
+            if let Some(worst) = inversions
+                .iter()
+                .min_by(|a, b| a.volume.total_cmp(&b.volume))
+            {
+                if h * 0.5 >= floor {
+                    h *= 0.5;
+                    continue;
+                }
+                report.substeps += 1;
+                let err = Error::Inverted {
+                    step: n,
+                    count: inversions.len(),
+                    element: self.mesh.cell_tags[worst.cell],
+                    centroid: worst.centroid.clone(),
+                    volume: worst.volume,
+                };
+                self.failed = Some(self.snapshot(trial, &inversions, report, start));
+                return Err(err);
+            }
+            report.substeps += 1;
+            let fraction = end - done;
+            self.guess = u.iter().map(|v| v / fraction).collect();
+            coords = trial;
+            done = end;
+            if done >= 1.0 {
+                self.current = self.snapshot(coords, &inversions, report, start);
+                return Ok(self.current.report.clone());
+            }
+            h = (2.0 * h).min(1.0 - done);
+        }
+    }
+
+    /// Where the prescribed nodes (moving and rigid-layer) are at step `n`.
+    pub fn targets(&self, n: usize) -> Result<Vec<(usize, Vec<f64>)>> {
         let clock = Clock {
             step: n,
             steps: self.settings.steps,
             dt: self.settings.dt,
         };
+        let dim = self.mesh.dim;
         let frames = self
             .motions
             .iter()
-            .map(|m| m.frame(clock, self.mesh.node_count(), self.mesh.dim))
+            .map(|m| m.frame(clock, self.mesh.node_count(), dim))
             .collect::<Result<Vec<_>>>()?;
+        let mut targets = Vec::with_capacity(self.moving.len() + self.layer.len());
+        for (node, chain) in &self.moving {
+            let mut p = self.mesh.point(*node).to_vec();
+            for &m in chain {
+                self.motions[m].apply(*node, &mut p, clock, &frames[m])?;
+            }
+            targets.push((*node, p));
+        }
+        for &(node, k, plane) in &self.layer {
+            let (anchor, chain) = &self.moving[k];
+            let mut p = self.mesh.point(node).to_vec();
+            if chain.iter().all(|&m| self.motions[m].is_field()) {
+                for &m in chain {
+                    self.motions[m].apply(node, &mut p, clock, &frames[m])?;
+                }
+            } else {
+                let x = self.mesh.point(*anchor);
+                for d in 0..dim {
+                    p[d] += targets[k].1[d] - x[d];
+                }
+            }
+            if let Some(plane) = plane {
+                let x = &self.current.coords[dim * node..dim * (node + 1)];
+                let nrm = &self.normals[plane];
+                let off: f64 = (0..dim).map(|d| (p[d] - x[d]) * nrm[d]).sum();
+                for d in 0..dim {
+                    p[d] -= off * nrm[d];
+                }
+            }
+            targets.push((node, p));
+        }
+        Ok(targets)
+    }
+
+    /// One solve from `coords` with the prescribed nodes at `targets`, an
+    /// increment of `fraction` of a step.
+    fn attempt(
+        &mut self,
+        coords: &[f64],
+        targets: &[(usize, Vec<f64>)],
+        fraction: f64,
+    ) -> Result<Attempt> {
         let dim = self.mesh.dim;
         let base = match self.settings.reference {
-            Reference::Updated => &self.current.coords,
+            Reference::Updated => coords,
             Reference::Fixed => &self.mesh.coords,
         };
-        let mut u = self.guess.clone();
+        let mut u: Vec<f64> = self.guess.iter().map(|v| v * fraction).collect();
         for (i, role) in self.roles.iter().enumerate() {
             let ui = &mut u[dim * i..dim * (i + 1)];
             match *role {
@@ -268,59 +429,50 @@ impl Deformer {
                 }
             }
         }
-        let mut targets = Vec::with_capacity(self.moving.len());
-        for (node, chain) in &self.moving {
-            let mut p = self.mesh.point(*node).to_vec();
-            for &m in chain {
-                self.motions[m].apply(*node, &mut p, clock, &frames[m])?;
-            }
+        for (node, p) in targets {
             for d in 0..dim {
                 u[dim * node + d] = p[d] - base[dim * node + d];
             }
-            targets.push(p);
         }
         let info = self.engine.solve(base, &mut u, &self.settings.solve)?;
-        let mut coords: Vec<f64> = base.iter().zip(&u).map(|(x, d)| x + d).collect();
-        for ((node, _), p) in self.moving.iter().zip(&targets) {
-            coords[dim * node..dim * (node + 1)].copy_from_slice(p);
+        let mut next: Vec<f64> = base.iter().zip(&u).map(|(x, d)| x + d).collect();
+        for (node, p) in targets {
+            next[dim * node..dim * (node + 1)].copy_from_slice(p);
         }
-        let (quality, inversions) = check(&self.mesh, &coords, &self.orientation);
-        let mut report = summarize(&quality, &inversions);
-        report.step = n;
-        report.iterations = info.iterations;
-        report.residual = info.residual;
-        report.converged = info.converged;
-        report.form_seconds = info.form_seconds;
-        report.solve_seconds = info.solve_seconds;
-        report.history = info.history;
+        let inversions = quality::inversions(&self.mesh, &next, &self.orientation);
+        Ok(Attempt {
+            coords: next,
+            u,
+            info,
+            inversions,
+        })
+    }
+
+    /// The configuration `coords` with its quality, for the step of `report`.
+    fn snapshot(
+        &self,
+        coords: Vec<f64>,
+        inversions: &[Inversion],
+        mut report: StepReport,
+        start: Instant,
+    ) -> Snapshot {
+        let quality = quality::qualities(&self.mesh, &coords, &self.orientation);
+        let summary = summarize(&quality, inversions);
+        report.min_quality = summary.min_quality;
+        report.mean_quality = summary.mean_quality;
+        report.inverted = summary.inverted;
+        report.bins = summary.bins;
         report.seconds = start.elapsed().as_secs_f64();
         let mut inverted = vec![false; quality.len()];
-        for inv in &inversions {
+        for inv in inversions {
             inverted[inv.cell] = true;
         }
-        let snapshot = Snapshot {
+        Snapshot {
             coords,
             quality,
             inverted,
-            report: report.clone(),
-        };
-        if let Some(worst) = inversions
-            .iter()
-            .min_by(|a, b| a.volume.total_cmp(&b.volume))
-        {
-            let err = Error::Inverted {
-                step: n,
-                count: inversions.len(),
-                element: self.mesh.cell_tags[worst.cell],
-                centroid: worst.centroid.clone(),
-                volume: worst.volume,
-            };
-            self.failed = Some(snapshot);
-            return Err(err);
+            report,
         }
-        self.guess = u;
-        self.current = snapshot;
-        Ok(report)
     }
 
     /// Replaces the motion of attachment `k` (in the order given to
@@ -350,6 +502,18 @@ impl Deformer {
     pub fn advance(&mut self) -> Result<StepReport> {
         self.step(self.current_step() + 1)
     }
+}
+
+/// What one solve of a (sub-)step gave.
+struct Attempt {
+    /// The new coordinates.
+    coords: Vec<f64>,
+    /// The solved displacement (increment, or total for the fixed reference).
+    u: Vec<f64>,
+    /// The solver's account.
+    info: SolveInfo,
+    /// The inverted cells.
+    inversions: Vec<Inversion>,
 }
 
 /// `x − X`.

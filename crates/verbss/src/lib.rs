@@ -70,6 +70,7 @@ pub mod motion;
 pub mod quality;
 pub mod render;
 pub mod report;
+pub mod robust;
 pub mod solve;
 pub mod springs;
 pub mod topology;

@@ -252,6 +252,12 @@ impl Motion {
         }
     }
 
+    /// Whether the motion is a field defined at every point (all but
+    /// [`Motion::Positions`], which prescribes given nodes only).
+    pub fn is_field(&self) -> bool {
+        !matches!(self, Motion::Positions(_))
+    }
+
     /// Loads what the motion needs at `clock.step` (the step's positions
     /// file) for a mesh of `nodes` nodes in dimension `dim`.
     pub fn frame(&self, clock: Clock, nodes: usize, dim: usize) -> Result<Frame> {

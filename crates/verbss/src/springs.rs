@@ -55,6 +55,10 @@ pub struct Connectivity {
     pub node_tags: Vec<u64>,
     /// The file's cell numbers (for messages).
     pub cell_tags: Vec<u64>,
+    /// Per-node stiffness factors `φ` (empty: all 1): an edge spring is
+    /// scaled by `(φ_i + φ_j)/2`, the ball-vertex springs of a cell by the
+    /// mean `φ` of its nodes. Scaling keeps `Σ_j B_ij = K_ii`.
+    pub stiffness: Vec<f64>,
 }
 
 impl Connectivity {
@@ -76,6 +80,7 @@ impl Connectivity {
             cells: mesh.cells.clone(),
             node_tags: mesh.node_tags.clone(),
             cell_tags: mesh.cell_tags.clone(),
+            stiffness: Vec::new(),
         }
     }
 }
@@ -145,6 +150,7 @@ fn assemble_d<const D: usize>(
         .max()
         .unwrap_or(0);
     let mut acc = vec![0.0; s * widest];
+    let phi = |j: usize| conn.stiffness.get(j).copied().unwrap_or(1.0);
     for &i in order {
         let row = conn.graph.row(i);
         let acc = &mut acc[..s * row.len()];
@@ -162,14 +168,20 @@ fn assemble_d<const D: usize>(
                 )));
             }
             let n = d.map(|v| v / len);
-            add_outer(&mut kii, 1.0 / len, &n);
+            let k = 0.5 * (phi(i) + phi(j)) / len;
+            add_outer(&mut kii, k, &n);
             let at = slot(j);
-            add_outer(&mut acc[at..at + s], 1.0 / len, &n);
+            add_outer(&mut acc[at..at + s], k, &n);
         }
         if springs == Springs::BallVertex {
             for &c in conn.node_cells.row(i) {
                 let nodes = conn.cells.cell(c);
                 let local = nodes.iter().position(|&v| v == i).expect("incidence");
+                let scale = if conn.stiffness.is_empty() {
+                    1.0
+                } else {
+                    nodes.iter().map(|&v| phi(v)).sum::<f64>() / nodes.len() as f64
+                };
                 for facet in conn.cells.kinds[c].table().facets {
                     if facet.contains(&local) {
                         continue;
@@ -190,10 +202,10 @@ fn assemble_d<const D: usize>(
                         )));
                     }
                     let n = d.map(|v| v / h);
-                    add_outer(&mut kii, 1.0 / h, &n);
+                    add_outer(&mut kii, scale / h, &n);
                     for (&f, &wf) in facet.iter().zip(&w[..m]) {
                         let at = slot(nodes[f]);
-                        add_outer(&mut acc[at..at + s], wf / h, &n);
+                        add_outer(&mut acc[at..at + s], scale * wf / h, &n);
                     }
                 }
             }

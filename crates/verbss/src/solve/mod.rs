@@ -492,6 +492,14 @@ impl Engine {
         Ok(info)
     }
 
+    /// Sets per-node spring stiffness factors (see
+    /// [`Connectivity::stiffness`]; empty: all 1); the system is rebuilt at
+    /// the next solve.
+    pub fn set_stiffness(&mut self, factors: Vec<f64>) {
+        self.conn.stiffness = factors;
+        self.built = None;
+    }
+
     /// Bytes of the sweep's stored data per unknown node: diagonal factors,
     /// coupling blocks and neighbour indices, offsets, sliding frames,
     /// right-hand side and displacement arrays (0 before the first solve).
