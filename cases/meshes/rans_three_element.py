@@ -2,7 +2,7 @@
 element and flap of three_element.py (same sections, chords and placement),
 each with a blunt trailing edge of thickness 0.3% of its own chord, and a
 boundary layer of quadrilaterals on all three (first cell 1e-5 of the main
-chord, growth 1.2, total 0.008: 26 cells, so that two layers and a few
+chord, growth 1.2, total 0.008: 28 cells, so that two layers and a few
 triangles fit the narrowest slot, 0.028) with a fan of cells at every
 trailing-edge corner. Triangles outside, graded from the wall sizes to 1.5
 at a circular far field of radius 10 about (0.5, 0).
