@@ -497,13 +497,9 @@ mod tests {
         );
         let seeds: Vec<usize> = moving.iter().map(|m| m.0).collect();
         let (dist, _) = nearest_seed(&graph, &mesh, &seeds);
-        for i in 0..mesh.node_count() {
-            let expected = if dist[i] <= 0.1 {
-                1.0
-            } else {
-                (0.1 / dist[i]).powi(2)
-            };
-            assert!((t.stiffness[i] - expected).abs() < 1e-15 * expected.max(1.0));
+        for (phi, d) in t.stiffness.iter().zip(&dist) {
+            let expected = if *d <= 0.1 { 1.0 } else { (0.1 / d).powi(2) };
+            assert!((phi - expected).abs() < 1e-15 * expected.max(1.0));
         }
         let off = prepare(&mesh, d.roles(), &moving, &Robust::off()).unwrap();
         assert_eq!(off, Treatment::default());
