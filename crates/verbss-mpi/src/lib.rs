@@ -17,6 +17,7 @@
 #![warn(missing_docs)]
 
 pub mod colouring;
+pub mod cost;
 pub mod coupled;
 pub mod halo;
 pub mod part;

@@ -46,5 +46,7 @@ pub fn partition_graph(graph: &Csr, parts: usize) -> Result<Vec<i32>> {
         .set_option(metis::option::Seed(1))
         .part_kway(&mut part)
         .map_err(|e| Error::InvalidSetting(format!("METIS could not partition: {e}")))?;
+    // METIS's index is 32 or 64 bits wide depending on its build.
+    #[allow(clippy::unnecessary_cast)]
     Ok(part.into_iter().map(|p| p as i32).collect())
 }

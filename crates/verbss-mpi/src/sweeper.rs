@@ -48,6 +48,9 @@ pub struct Sweeper<'c, C: Communicator> {
     built: Option<Built>,
 }
 
+/// Per neighbouring rank, a list of positions.
+type Lists = Vec<Vec<u32>>;
+
 /// The rows of one reference configuration and colouring.
 struct Built {
     coords: Vec<f64>,
@@ -58,7 +61,7 @@ struct Built {
     /// Owned colour `c` holds positions `colour_starts[c]..colour_starts[c + 1]`.
     colour_starts: Vec<usize>,
     /// Per colour and neighbour: positions sent and received after the colour.
-    exchanges: Vec<(Vec<Vec<u32>>, Vec<Vec<u32>>)>,
+    exchanges: Vec<(Lists, Lists)>,
     /// Per owned position: index of its sliding frame, `u32::MAX` if free.
     slide_of: Vec<u32>,
     /// `D×D` per sliding node, rows `t₁ … t_{D−1}, n`.
@@ -507,8 +510,8 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
                 let slot = b.slide_of[p] as usize;
                 let u = point::<D>(displacement, b.order[p]);
                 let d: f64 = (0..D).map(|k| r[D - 1][k] * u[k]).sum();
-                for k in 0..D {
-                    c[k] -= d * b.kn[D * slot + k];
+                for (ck, kn) in c.iter_mut().zip(&b.kn[D * slot..D * (slot + 1)]) {
+                    *ck -= d * kn;
                 }
             }
             constant[D * p..D * (p + 1)].copy_from_slice(&c);
