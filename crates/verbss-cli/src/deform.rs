@@ -58,7 +58,7 @@ pub struct DeformArgs {
     /// Nodes this close to a moving wall move with it: off, auto (the boundary
     /// layer, at least 5% of the body's size) or a wall distance [default:
     /// auto for robust, off otherwise].
-    #[arg(long, value_parser = parse_layer)]
+    #[arg(long, value_parser = parse_layer, allow_negative_numbers = true)]
     rigid_layer: Option<Layer>,
     /// A step that inverts an element is redone in smaller increments, down
     /// to 1/2^K of the step; 0: off [default: 6 for robust, 0 otherwise].
@@ -66,7 +66,7 @@ pub struct DeformArgs {
     substeps: Option<u32>,
     /// Springs at wall distance d scaled by (t/max(d,t))^P, t the rigid
     /// layer's thickness; 0: off [default: 1 for robust, 0 otherwise].
-    #[arg(long, value_parser = parse_exponent)]
+    #[arg(long, value_parser = parse_exponent, allow_negative_numbers = true)]
     stiffening: Option<f64>,
     /// The spring system and its solution strategy: robust is VerBSS with
     /// the near-wall treatments (rigid layer auto, stiffening 1, substeps 6);

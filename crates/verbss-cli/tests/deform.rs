@@ -274,3 +274,82 @@ fn pushing_the_airfoil_through_the_farfield_stops_with_exit_3() {
     let reference = verbss::quality::orientation(&verbss::io::read(&naca()).unwrap());
     assert!(verbss::quality::inverted_cells(&last, &last.coords, &reference).is_empty());
 }
+
+#[test]
+fn slide_groups_keep_their_plane_and_let_nodes_move_in_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let brick = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/meshes/su2/mesh_brick_tets_ffd.su2");
+    let run = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        let mut args = vec![
+            "deform",
+            brick.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--moving",
+            "x_p",
+            "--translate",
+            "0,0,0.05",
+            "--quiet",
+        ];
+        args.extend_from_slice(extra);
+        let o = verbss(&args);
+        (o, out)
+    };
+    let input = verbss::io::read(&brick).unwrap();
+    let plane = input.group("y_m").unwrap().nodes();
+    let (o, out) = run("slide.su2", &["--slide", "y_m"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let moved = verbss::io::read(&out).unwrap();
+    let mut largest: f64 = 0.0;
+    for &i in &plane {
+        let (p, q) = (input.point(i), moved.point(i));
+        assert_eq!(q[1], p[1], "node {i} left the plane y = 0");
+        largest = largest.max((q[2] - p[2]).abs());
+    }
+    assert!(largest > 0.01, "the plane's nodes moved at most {largest}");
+    // Without --slide the plane is a fixed wall.
+    let (o, out) = run("fixed.su2", &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let moved = verbss::io::read(&out).unwrap();
+    let x_p = input.group("x_p").unwrap().nodes();
+    for &i in plane.iter().filter(|i| !x_p.contains(i)) {
+        assert_eq!(moved.point(i), input.point(i));
+    }
+    let (o, _) = run("x.su2", &["--slide", "wing"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("'wing'"), "{}", stderr(&o));
+}
+
+#[test]
+fn near_wall_options_are_checked() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.su2");
+    for (option, value, message) in [
+        (
+            "--rigid-layer",
+            "-1",
+            "expected off, auto or a positive wall distance, got '-1'",
+        ),
+        ("--stiffening", "nan", "expected a number ≥ 0, got 'nan'"),
+        ("--substeps", "31", "31 is not in 0..=30"),
+    ] {
+        let o = verbss(&[
+            "deform",
+            naca().to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--moving",
+            "airfoil",
+            "--rotate",
+            "1",
+            "--center",
+            "0.25,0",
+            option,
+            value,
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{option} {value}");
+        assert!(stderr(&o).contains(message), "{}", stderr(&o));
+    }
+}

@@ -636,6 +636,47 @@ final = false
     }
 
     #[test]
+    fn near_wall_treatments_follow_the_method_unless_given() {
+        let head = "mesh = \"m.su2\"\nsteps = 3\n";
+        let robust = parse(head).unwrap().settings.robust;
+        assert_eq!(robust, Robust::recommended());
+        let paper = parse(&format!("{head}[solver]\nmethod = \"verbss\"\n"))
+            .unwrap()
+            .settings
+            .robust;
+        assert_eq!(paper, Robust::off());
+        let mixed = parse(&format!(
+            "{head}[solver]\nmethod = \"verbss\"\nrigid_layer = 0.2\nsubsteps = 3\nstiffening = 2.0\n"
+        ))
+        .unwrap()
+        .settings
+        .robust;
+        assert_eq!(mixed.layer, Layer::Thickness(0.2));
+        assert_eq!((mixed.substeps, mixed.stiffening), (3, 2.0));
+        let off = parse(&format!("{head}[solver]\nrigid_layer = \"off\"\n"))
+            .unwrap()
+            .settings
+            .robust;
+        assert_eq!(off.layer, Layer::Off);
+        assert_eq!(
+            err(&format!("{head}[solver]\nrigid_layer = \"thick\"\n")),
+            "cases/c.toml:4: `solver.rigid_layer` must be \"off\", \"auto\" or a positive thickness (got \"thick\")"
+        );
+        assert_eq!(
+            err(&format!("{head}[solver]\nrigid_layer = -0.5\n")),
+            "cases/c.toml:4: `solver.rigid_layer` must be \"off\", \"auto\" or a positive thickness (got -0.5)"
+        );
+        assert_eq!(
+            err(&format!("{head}[solver]\nsubsteps = 40\n")),
+            "cases/c.toml:4: `solver.substeps` must be at most 30 (got 40)"
+        );
+        assert_eq!(
+            err(&format!("{head}[solver]\nstiffening = -1.0\n")),
+            "cases/c.toml:4: `solver.stiffening` must be zero or positive (got -1)"
+        );
+    }
+
+    #[test]
     fn unknown_motion_kind() {
         assert_eq!(
             err("mesh = \"m.su2\"\nsteps = 3\n[[motion]]\nkind = \"spin\"\ngroups = [\"a\"]\n"),
