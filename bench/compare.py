@@ -32,6 +32,7 @@ from 20 to 4 units) invert, hence the cube of half width 50.
 """
 import argparse
 import json
+import math
 import os
 import re
 import shutil
@@ -200,11 +201,11 @@ def foam_timed(app, case):
     return wall, cpu, iters, int(peak.group(1)) * 1024
 
 
-def openfoam_run(bins, mesh, work, steps):
+def openfoam_run(bins, mesh, work, steps, apps):
     msh22 = work / f"{mesh.stem}_22.msh"
     run([bins["verbss"], "convert", str(mesh), str(msh22), "--msh-version", "2.2"])
     out = {}
-    for app in ("moveDynamicMesh", "moveMesh"):
+    for app in apps:
         case = work / f"{mesh.stem}_{app}"
         shutil.rmtree(case, ignore_errors=True)
         foam_case(case, msh22, steps)
@@ -277,6 +278,58 @@ def table(results):
             print(f"| {m['cells']:,} | {m['nodes']:,} | " + " | ".join(map(str, row)) + " |")
 
 
+def fits(results):
+    """Log-log slopes against unknown nodes of the one-thread runs: seconds
+    per step, sweeps (iterations) per step and seconds per sweep."""
+    print("\n| run | slope of s/step | slope of iterations/step | slope of s/sweep | meshes |")
+    print("|---|---|---|---|---|")
+    for accel in ("none", "amg"):
+        pts = []
+        for m in results:
+            for r in m["verbss"]:
+                if r["accel"] == accel and r["threads"] == 1 and len(r["seconds"]) == r["steps_total"]:
+                    sweeps = mean(r["iterations"])
+                    pts.append((r["unknown_nodes"], mean(r["seconds"]), sweeps,
+                                mean(r["solve_seconds"]) / sweeps))
+        if len(pts) < 2:
+            continue
+        x = [math.log(p[0]) for p in pts]
+        slope = []
+        for k in (1, 2, 3):
+            y = [math.log(p[k]) for p in pts]
+            xm, ym = mean(x), mean(y)
+            slope.append(sum((a - xm) * (b - ym) for a, b in zip(x, y))
+                         / sum((a - xm) ** 2 for a in x))
+        print(f"| verbss {accel}, 1 thread | {slope[0]:.2f} | {slope[1]:.2f} | {slope[2]:.2f} "
+              f"| {len(pts)} |")
+
+
+def plot(results, path):
+    """Seconds per step against unknown nodes, log-log, one line per run."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    lines = {}
+    for m in results:
+        for r in m["verbss"]:
+            if len(r["seconds"]) == r["steps_total"]:
+                key = f"verbss {r['accel']}, {r['threads']} thread(s)"
+                lines.setdefault(key, []).append((r["unknown_nodes"], mean(r["seconds"])))
+        for app, f in m.get("openfoam", {}).items():
+            lines.setdefault(f"OpenFOAM {app}", []).append(
+                (m["verbss"][0]["unknown_nodes"], mean(f["seconds"])))
+    for key, pts in sorted(lines.items()):
+        pts.sort()
+        ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=key)
+    ax.set_xlabel("unknown nodes")
+    ax.set_ylabel("wall seconds per step")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--sizes", default="1.0,0.5,0.35,0.25,0.18")
@@ -285,9 +338,22 @@ def main():
     ap.add_argument("--accel", default="none,amg")
     ap.add_argument("--json", default=None)
     ap.add_argument("--no-openfoam", action="store_true")
+    ap.add_argument("--foam-apps", default="moveDynamicMesh,moveMesh",
+                    help="the OpenFOAM applications to time")
+    ap.add_argument("--report", nargs="+", default=None, metavar="JSON",
+                    help="print the tables of earlier runs' --json files (and --plot)")
+    ap.add_argument("--plot", default=None, help="with --report: a log-log PNG here")
     ap.add_argument("--smoke", action="store_true",
                     help="a tiny mesh (h 2.5), 2 steps, debug build: checks that it all runs")
     a = ap.parse_args()
+    if a.report:
+        results = [m for f in a.report for m in json.loads(Path(f).read_text())]
+        results.sort(key=lambda m: m["nodes"])
+        table(results)
+        fits(results)
+        if a.plot:
+            plot(results, a.plot)
+        return
     work = Path(a.work)
     work.mkdir(parents=True, exist_ok=True)
     sizes = [2.5] if a.smoke else [float(h) for h in a.sizes.split(",")]
@@ -309,10 +375,11 @@ def main():
         m = {"h_sphere": h, "mesh": str(mesh), "nodes": runs[0]["nodes"],
              "cells": runs[0]["cells"], "verbss": runs, "load_average": os.getloadavg()}
         if have_foam:
-            m["openfoam"] = openfoam_run(bins, mesh, work, steps)
+            m["openfoam"] = openfoam_run(bins, mesh, work, steps, a.foam_apps.split(","))
         results.append(m)
     print(f"load average at end: {os.getloadavg()}", file=sys.stderr)
     table(results)
+    fits(results)
     if a.json:
         Path(a.json).write_text(json.dumps(results, indent=1))
     if a.smoke:

@@ -4,7 +4,7 @@
 //!
 //! ```sh
 //! cargo run --release -p verbss --example sweep_bandwidth -- \
-//!     --moving sphere --translate 1,0,0 [--sweeps 50] [--triad-mb 256] MESH…
+//!     --moving sphere --translate 1,0,0 [--sweeps 5] [--repeat 20] [--triad-mb 256] MESH…
 //! ```
 //!
 //! The triad moves 24 bytes per element (read `b`, `c`, write `a`; STREAM's
@@ -14,8 +14,10 @@
 //! write each unknown's displacement once: `Engine::bytes_per_node` × unknown
 //! nodes bytes (diagonal factors, coupling blocks, 32-bit neighbour indices,
 //! offsets, right-hand side, the displacement read and written). Its seconds
-//! are the best of 3 solves of `--sweeps` sweeps each (the eq.-8 test never
-//! met: tolerance 0), springs formed beforehand. Effective bandwidth = bytes
+//! are the best of `--repeat` solves of `--sweeps` sweeps each (the eq.-8
+//! test never met: tolerance 0), springs formed beforehand: best-of timings
+//! on both sides, so that a shared machine's interruptions count as little
+//! as they can. Effective bandwidth = bytes
 //! per sweep / seconds per sweep. The two thread counts' displacements are
 //! compared bit by bit.
 //!
@@ -65,6 +67,7 @@ fn sweeps(
     u0: &[f64],
     threads: usize,
     count: usize,
+    repeat: usize,
 ) -> (f64, f64, Vec<f64>) {
     let mut engine = Engine::new(mesh, roles, &[]).expect("engine");
     let mut p = SolveParams::default();
@@ -75,7 +78,7 @@ fn sweeps(
     let mut last = Vec::new();
     let mut warm = u0.to_vec();
     engine.solve(&mesh.coords, &mut warm, &p).expect("solve");
-    for _ in 0..3 {
+    for _ in 0..repeat {
         let mut u = u0.to_vec();
         let info = engine.solve(&mesh.coords, &mut u, &p).expect("solve");
         assert!(!info.rebuilt);
@@ -89,7 +92,8 @@ fn main() {
     let mut meshes = Vec::new();
     let mut moving = String::new();
     let mut translate = [1.0, 0.0, 0.0];
-    let mut count = 50;
+    let mut count = 5;
+    let mut repeat = 20;
     let mut triad_mb = 256.0;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -101,6 +105,7 @@ fn main() {
                 translate = [v[0], v[1], *v.get(2).unwrap_or(&0.0)];
             }
             "--sweeps" => count = value().parse().unwrap(),
+            "--repeat" => repeat = value().parse().unwrap(),
             "--triad-mb" => triad_mb = value().parse().unwrap(),
             _ => meshes.push(PathBuf::from(a)),
         }
@@ -127,8 +132,8 @@ fn main() {
             u0[d * i..d * (i + 1)].copy_from_slice(&translate[..d]);
         }
         let unknown = roles.iter().filter(|r| **r == NodeRole::Free).count();
-        let (s1, bytes, u1) = sweeps(&mesh, &roles, &u0, 1, count);
-        let (s2, _, u2) = sweeps(&mesh, &roles, &u0, 2, count);
+        let (s1, bytes, u1) = sweeps(&mesh, &roles, &u0, 1, count, repeat);
+        let (s2, _, u2) = sweeps(&mesh, &roles, &u0, 2, count, repeat);
         let per_sweep = bytes * unknown as f64;
         let (b1, b2) = (per_sweep / s1, per_sweep / s2);
         println!(
