@@ -135,9 +135,10 @@ pub struct Deformer {
     motions: Vec<Motion>,
     /// Moving nodes and the motions (indices into `motions`) they follow, in order.
     moving: Vec<(usize, Vec<usize>)>,
-    /// Rigid-layer nodes, the moving node (index into `moving`) each follows,
-    /// and the plane it slides in, if it does.
-    layer: Vec<(usize, usize, Option<usize>)>,
+    /// Rigid-layer nodes, the moving node (index into `moving`) each follows
+    /// (`None`: it stays, near a fixed wall), and the plane it slides in, if
+    /// it does.
+    layer: Vec<(usize, Option<usize>, Option<usize>)>,
     /// The rigid layer's thickness around each body.
     layer_thickness: Vec<f64>,
     orientation: Vec<i8>,
@@ -234,6 +235,12 @@ impl Deformer {
     /// The unit plane normals of the sliding nodes ([`NodeRole::Slide`]`(k)` is `normals()[k]`).
     pub fn normals(&self) -> &[[f64; 3]] {
         &self.normals
+    }
+
+    /// The per-node spring stiffness factors of the wall-distance stiffening
+    /// (empty: none).
+    pub fn stiffness(&self) -> &[f64] {
+        self.engine.stiffness()
     }
 
     /// The number of rigid-layer nodes and the layer's thickness around each
@@ -376,16 +383,18 @@ impl Deformer {
             targets.push((*node, p));
         }
         for &(node, k, plane) in &self.layer {
-            let (anchor, chain) = &self.moving[k];
             let mut p = self.mesh.point(node).to_vec();
-            if chain.iter().all(|&m| self.motions[m].is_field()) {
-                for &m in chain {
-                    self.motions[m].apply(node, &mut p, clock, &frames[m])?;
-                }
-            } else {
-                let x = self.mesh.point(*anchor);
-                for d in 0..dim {
-                    p[d] += targets[k].1[d] - x[d];
+            if let Some(k) = k {
+                let (anchor, chain) = &self.moving[k];
+                if chain.iter().all(|&m| self.motions[m].is_field()) {
+                    for &m in chain {
+                        self.motions[m].apply(node, &mut p, clock, &frames[m])?;
+                    }
+                } else {
+                    let x = self.mesh.point(*anchor);
+                    for d in 0..dim {
+                        p[d] += targets[k].1[d] - x[d];
+                    }
                 }
             }
             if let Some(plane) = plane {

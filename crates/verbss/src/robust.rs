@@ -98,8 +98,9 @@ impl Robust {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Treatment {
     /// Each layer node and the moving node it follows (an index into the
-    /// deformer's list of moving nodes).
-    pub nodes: Vec<(usize, usize)>,
+    /// deformer's list of moving nodes), or `None` near a fixed wall: the
+    /// node stays.
+    pub nodes: Vec<(usize, Option<usize>)>,
     /// The layer's thickness around each body, in order of the bodies' first
     /// moving node.
     pub thickness: Vec<f64>,
@@ -154,8 +155,19 @@ pub fn prepare(
         body_seeds[b].push(*node);
         anchor_index[*node] = k;
     }
+    // Fixed walls inside the domain (a fixed element of a multi-element
+    // airfoil) are bodies that stay; the outer boundary is not.
+    let mut in_fixed_wall = vec![false; n];
+    for nodes in fixed_walls(mesh, roles, &anchor_index) {
+        for &i in &nodes {
+            in_fixed_wall[i] = true;
+        }
+        body_seeds.push(nodes);
+    }
     let fixed: Vec<usize> = (0..n)
-        .filter(|&i| roles[i] == NodeRole::Fixed && anchor_index[i] == usize::MAX)
+        .filter(|&i| {
+            roles[i] == NodeRole::Fixed && anchor_index[i] == usize::MAX && !in_fixed_wall[i]
+        })
         .collect();
     let fields: Vec<(Vec<f64>, Vec<usize>)> = body_seeds
         .iter()
@@ -209,7 +221,8 @@ pub fn prepare(
             .map(|(_, f)| f.0[i])
             .fold(to_fixed[i], f64::min);
         if d <= thickness[b] && d <= GAP_SHARE * other {
-            nodes.push((i, anchor_index[seed[i]]));
+            let anchor = anchor_index[seed[i]];
+            nodes.push((i, (anchor != usize::MAX).then_some(anchor)));
         }
     }
     Ok(Treatment {
@@ -217,6 +230,28 @@ pub fn prepare(
         thickness,
         stiffness,
     })
+}
+
+/// The nodes of each group that is a fixed wall inside the domain: all its
+/// nodes prescribed, none moving, and its bounding box inside the mesh's
+/// (so that the outer boundary is not one).
+fn fixed_walls(mesh: &Mesh, roles: &[NodeRole], anchor: &[usize]) -> Vec<Vec<usize>> {
+    let all: Vec<usize> = (0..mesh.node_count()).collect();
+    let outer = bounds(mesh, &all);
+    mesh.groups
+        .iter()
+        .map(|g| g.nodes())
+        .filter(|nodes| {
+            !nodes.is_empty()
+                && nodes
+                    .iter()
+                    .all(|&i| roles[i] == NodeRole::Fixed && anchor[i] == usize::MAX)
+                && {
+                    let (lo, hi) = bounds(mesh, nodes);
+                    (0..mesh.dim).all(|d| lo[d] > outer.0[d] && hi[d] < outer.1[d])
+                }
+        })
+        .collect()
 }
 
 /// For every node the distance to its nearest seed and that seed, found by
@@ -305,16 +340,22 @@ fn aspect_ratio(mesh: &Mesh, c: usize) -> f64 {
     hi / lo
 }
 
-/// The diagonal of the bounding box of nodes `seeds`.
-fn size(mesh: &Mesh, seeds: &[usize]) -> f64 {
+/// The corners of the bounding box of nodes `nodes`.
+fn bounds(mesh: &Mesh, nodes: &[usize]) -> ([f64; 3], [f64; 3]) {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
-    for &s in seeds {
+    for &s in nodes {
         for (d, x) in mesh.point(s).iter().enumerate() {
             lo[d] = lo[d].min(*x);
             hi[d] = hi[d].max(*x);
         }
     }
+    (lo, hi)
+}
+
+/// The diagonal of the bounding box of nodes `seeds`.
+fn size(mesh: &Mesh, seeds: &[usize]) -> f64 {
+    let (lo, hi) = bounds(mesh, seeds);
     (0..mesh.dim)
         .map(|d| (hi[d] - lo[d]).powi(2))
         .sum::<f64>()
@@ -443,7 +484,7 @@ mod tests {
             body[*i] = chain[0];
         }
         for &(i, k) in &t.nodes {
-            body[i] = moving[k].1[0];
+            body[i] = moving[k.expect("every element moves")].1[0];
         }
         let far: Vec<bool> = {
             let mut f = vec![false; mesh.node_count()];
@@ -464,6 +505,38 @@ mod tests {
             );
             let in_layer = nodes.iter().any(|&i| t.nodes.iter().any(|&(j, _)| j == i));
             assert!(!(in_layer && nodes.iter().any(|&i| far[i])));
+        }
+    }
+
+    #[test]
+    fn a_fixed_element_keeps_its_layer_in_place_while_the_others_move() {
+        let mesh = crate::io::read(Path::new(THREE)).unwrap();
+        let attachments = [
+            attach(&["slat"], rotation([0.0, 0.0], -5.0)),
+            attach(&["flap"], rotation([1.0, 0.0], 5.0)),
+        ];
+        let robust = Robust {
+            layer: Layer::Auto,
+            ..Robust::off()
+        };
+        let mut d = Deformer::new(&mesh, &attachments, settings(1, robust)).unwrap();
+        d.step(1).unwrap();
+        let x = &d.current().coords;
+        let nearest = |i: usize, group: &str| {
+            mesh.group(group)
+                .unwrap()
+                .nodes()
+                .iter()
+                .map(|&w| distance(mesh.point(i), mesh.point(w)))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let staying: Vec<usize> = layer_nodes(&mesh, &d)
+            .into_iter()
+            .filter(|&i| nearest(i, "main") < nearest(i, "slat").min(nearest(i, "flap")))
+            .collect();
+        assert!(staying.len() > 50, "{} nodes", staying.len());
+        for i in staying {
+            assert_eq!(&x[2 * i..2 * i + 2], mesh.point(i), "node {i}");
         }
     }
 
