@@ -11,8 +11,8 @@
 //! single-process one. After each solve one all-gather gives every rank the
 //! whole displacement, from which the new coordinates, the inversion check
 //! and the adaptive sub-steps follow as in the single-process stepper. The
-//! other near-wall treatments ([`Robust`]: the rigid layer and its stiffened
-//! springs) are not distributed yet and are refused.
+//! near-wall treatments come along: rigid-layer nodes are prescribed nodes
+//! with targets, and the stiffened springs are the Deformer's factors.
 
 use std::time::Instant;
 
@@ -20,7 +20,6 @@ use mpi::traits::*;
 use verbss::deform::{Deformer, Reference, Settings, Snapshot, StepReport};
 use verbss::motion::Attachment;
 use verbss::quality::{self, Inversion, Summary};
-use verbss::robust::Robust;
 use verbss::solve::{NodeRole, SolveInfo};
 use verbss::topology::{self, Csr};
 use verbss::{Error, Mesh, Result};
@@ -42,6 +41,9 @@ pub struct Stepper<'c, C: Communicator> {
     orientation: Vec<i8>,
     /// The last increment per unit step fraction, every node.
     guess: Vec<f64>,
+    /// The reference coordinates the colours were made for, and the colours:
+    /// like the engine, a new colouring only with new springs.
+    colouring: Option<(Vec<f64>, Vec<u32>)>,
     current: Snapshot,
     failed: Option<Snapshot>,
 }
@@ -55,15 +57,6 @@ impl<'c, C: Communicator> Stepper<'c, C> {
         attachments: &[Attachment],
         settings: Settings,
     ) -> Result<Stepper<'c, C>> {
-        let mut treatments = settings.robust;
-        treatments.substeps = 0;
-        if treatments != Robust::off() {
-            return Err(Error::InvalidSetting(
-                "over MPI the near-wall treatments other than --substeps are not distributed \
-                 (use --rigid-layer off)"
-                    .into(),
-            ));
-        }
         let deformer = Deformer::new(mesh, attachments, settings)?;
         let mut owner = if comm.rank() == 0 {
             partition(mesh, comm.size() as usize)?
@@ -82,13 +75,21 @@ impl<'c, C: Communicator> Stepper<'c, C> {
             .map(|i| part.global[i])
             .collect();
         let owned = all_gather_lists(comm, &mine);
-        let sweeper = Sweeper::new(comm, part, roles, deformer.normals())?;
+        let stiffness = deformer.stiffness();
+        let factors = if stiffness.is_empty() {
+            Vec::new()
+        } else {
+            part.global.iter().map(|&g| stiffness[g as usize]).collect()
+        };
+        let mut sweeper = Sweeper::new(comm, part, roles, deformer.normals())?;
+        sweeper.set_stiffness(factors);
         Ok(Stepper {
             comm,
             graph: topology::node_graph(&mesh.cells, mesh.node_count()),
             owned,
             orientation: quality::orientation(mesh),
             guess: vec![0.0; mesh.coords.len()],
+            colouring: None,
             current: deformer.current().clone(),
             failed: None,
             sweeper,
@@ -232,14 +233,18 @@ impl<'c, C: Communicator> Stepper<'c, C> {
                 u[dim * node + d] = p[d] - base[dim * node + d];
             }
         }
-        let normals = unit_normals(self.deformer.normals(), dim);
-        let seeds: Vec<usize> = (0..roles.len())
-            .filter(|&i| match dim {
-                2 => is_seed::<2>(roles[i], &normals, &u, i),
-                _ => is_seed::<3>(roles[i], &normals, &u, i),
-            })
-            .collect();
-        let colours = engine_colours(&self.graph, roles, &seeds);
+        if self.colouring.as_ref().is_none_or(|(x, _)| x != base) {
+            let normals = unit_normals(self.deformer.normals(), dim);
+            let seeds: Vec<usize> = (0..roles.len())
+                .filter(|&i| match dim {
+                    2 => is_seed::<2>(roles[i], &normals, &u, i),
+                    _ => is_seed::<3>(roles[i], &normals, &u, i),
+                })
+                .collect();
+            let colours = engine_colours(&self.graph, roles, &seeds);
+            self.colouring = Some((base.to_vec(), colours));
+        }
+        let colours = &self.colouring.as_ref().expect("coloured above").1;
         let part = self.sweeper.part();
         let pick = |a: &[f64], width: usize| -> Vec<f64> {
             let mut out = Vec::with_capacity(width * part.node_count());

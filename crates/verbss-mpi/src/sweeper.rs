@@ -154,6 +154,14 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
         &self.roles
     }
 
+    /// Sets per-local-node spring stiffness factors (as
+    /// [`verbss::solve::Engine::set_stiffness`]; empty: all 1); the rows are
+    /// rebuilt at the next solve.
+    pub fn set_stiffness(&mut self, factors: Vec<f64>) {
+        self.conn.stiffness = factors;
+        self.built = None;
+    }
+
     /// The ghost exchange lists.
     pub fn halo(&self) -> &Halo {
         &self.halo
@@ -248,7 +256,7 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
         if !matches!(params.method, Method::Verbss | Method::Spring) || params.accel != Accel::None
         {
             return Err(Error::InvalidSetting(
-                "over MPI only the sweeps of --method verbss and spring are distributed \
+                "over MPI only the sweeps of --method robust, verbss and spring are distributed \
                  (with --accel none)"
                     .into(),
             ));

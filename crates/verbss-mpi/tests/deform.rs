@@ -9,6 +9,7 @@ use std::process::{Command, Output};
 use verbss::deform::{Deformer, Settings};
 use verbss::io::{self, WriteOptions};
 use verbss::motion::{Attachment, Motion};
+use verbss::robust::Robust;
 use verbss::Mesh;
 
 /// `mpirun --oversubscribe -np N verbss-mpi ARGS…` (root allowed, as in containers).
@@ -33,11 +34,20 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// The single-process result: the stepper `verbss deform` runs, with its
-/// default settings, written in the output's format.
-fn single(input: &Path, attachments: &[Attachment], steps: usize, out: &Path) -> Mesh {
+/// The single-process result: the stepper `verbss deform` runs, with the
+/// near-wall treatments of its default `--method robust` or none (`--method
+/// verbss`), written in the output's format.
+fn single(
+    input: &Path,
+    attachments: &[Attachment],
+    steps: usize,
+    robust: Robust,
+    out: &Path,
+) -> Mesh {
     let mesh = io::read(input).unwrap();
-    let mut d = Deformer::new(&mesh, attachments, Settings::new(steps)).unwrap();
+    let mut settings = Settings::new(steps);
+    settings.robust = robust;
+    let mut d = Deformer::new(&mesh, attachments, settings).unwrap();
     for n in 1..=steps {
         d.step(n).unwrap();
     }
@@ -59,10 +69,16 @@ fn relative_difference(a: &Mesh, b: &Mesh) -> f64 {
 /// Runs `verbss-mpi deform` on 1, 2 and 3 ranks and checks each output
 /// against the single-process one (1e-12 relative; in practice the files
 /// are byte for byte the same) and the pieces against the mesh.
-fn same_as_single(input: &Path, extra: &[&str], attachments: &[Attachment], steps: usize) {
+fn same_as_single(
+    input: &Path,
+    extra: &[&str],
+    attachments: &[Attachment],
+    steps: usize,
+    robust: Robust,
+) {
     let dir = tempfile::tempdir().unwrap();
     let reference = dir.path().join("single.su2");
-    let expected = single(input, attachments, steps, &reference);
+    let expected = single(input, attachments, steps, robust, &reference);
     let whole = io::read(input).unwrap();
     for np in 1..=3 {
         let out = dir.path().join(format!("np{np}.su2"));
@@ -140,6 +156,7 @@ fn meshio_available() -> bool {
     ok
 }
 
+/// The default `--method robust`: rigid layer, stiffened springs, sub-steps.
 #[test]
 fn naca0012_rotation_matches_one_process() {
     let rotate = Attachment {
@@ -155,9 +172,11 @@ fn naca0012_rotation_matches_one_process() {
         &["--moving", "airfoil", "--rotate", "5", "--center", "0.25,0"],
         &[rotate],
         2,
+        Robust::recommended(),
     );
 }
 
+/// The paper's method on triangles and quadrilaterals.
 #[test]
 fn rae2822_hybrid_translation_matches_one_process() {
     let translate = Attachment {
@@ -168,9 +187,17 @@ fn rae2822_hybrid_translation_matches_one_process() {
     };
     same_as_single(
         &mesh("mesh_RAE2822_turb_ffd.su2"),
-        &["--moving", "AIRFOIL", "--translate", "0,0.02"],
+        &[
+            "--moving",
+            "AIRFOIL",
+            "--translate",
+            "0,0.02",
+            "--method",
+            "verbss",
+        ],
         &[translate],
         1,
+        Robust::off(),
     );
 }
 
@@ -198,6 +225,7 @@ fn tetrahedral_brick_with_sliding_sides_matches_one_process() {
         ],
         &[slide, lift],
         1,
+        Robust::recommended(),
     );
 }
 
@@ -250,8 +278,8 @@ fn methods_that_are_not_distributed_are_refused() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(
         stderr(&o).contains(
-            "error: invalid setting: over MPI only the sweeps of --method verbss and spring are \
-             distributed (with --accel none)"
+            "error: invalid setting: over MPI only the sweeps of --method robust, verbss and spring \
+             are distributed (with --accel none)"
         ),
         "{}",
         stderr(&o)
