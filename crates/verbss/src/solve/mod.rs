@@ -500,6 +500,11 @@ impl Engine {
         self.built = None;
     }
 
+    /// The per-node spring stiffness factors (empty: all 1).
+    pub fn stiffness(&self) -> &[f64] {
+        &self.conn.stiffness
+    }
+
     /// Bytes of the sweep's stored data per unknown node: diagonal factors,
     /// coupling blocks and neighbour indices, offsets, sliding frames,
     /// right-hand side and displacement arrays (0 before the first solve).
