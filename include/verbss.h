@@ -50,6 +50,10 @@
 // Method: component-wise Laplacian with `k = 1/L`.
 #define VERBSS_METHOD_LAPLACIAN 3
 
+// Method: VerBSS with the near-wall treatments (rigid layer, inverse
+// wall-distance stiffening, sub-steps; docs/robustness.md), the command's default.
+#define VERBSS_METHOD_ROBUST 4
+
 // Global solver of `VERBSS_METHOD_BALL_VERTEX`: scalar SOR.
 #define VERBSS_SOLVER_SOR 0
 

@@ -18,6 +18,7 @@ use pyo3::types::{PyDict, PyList};
 use verbss::deform::{Reference, Settings, StepReport};
 use verbss::io::WriteOptions;
 use verbss::motion::{Attachment, Motion, PositionSource};
+use verbss::robust::Robust;
 use verbss::solve::{Accel, Method, Solver};
 use verbss::{CellKind, Cells, Error, Group};
 
@@ -350,7 +351,9 @@ struct Moving {
 ///          max_iterations=1000, threads=0, reference="updated", solver="sor",
 ///          accel="none")
 ///
-/// - method: "verbss" (edge + ball-vertex springs, node by node), "ball-vertex"
+/// - method: "verbss" (the paper's method: edge + ball-vertex springs, node
+///   by node), "robust" (verbss with the near-wall treatments of
+///   docs/robustness.md, the command's default), "ball-vertex"
 ///   (the same system solved globally by `solver`, "sor" or "direct"),
 ///   "spring" (edge springs only) or "laplacian".
 /// - omega: the over-relaxation factor of the sweeps.
@@ -483,15 +486,18 @@ impl Deformer {
                 )))
             }
         };
+        if method == "robust" {
+            settings.robust = Robust::recommended();
+        }
         let s = &mut settings.solve;
         s.method = match method {
-            "verbss" => Method::Verbss,
+            "robust" | "verbss" => Method::Verbss,
             "ball-vertex" => Method::BallVertex,
             "spring" => Method::Spring,
             "laplacian" => Method::Laplacian,
             _ => {
                 return Err(invalid_setting(format!(
-                    "unknown method '{method}' (expected verbss, ball-vertex, spring or laplacian)"
+                    "unknown method '{method}' (expected robust, verbss, ball-vertex, spring or laplacian)"
                 )))
             }
         };

@@ -51,14 +51,14 @@ def run_cli(cli, *args):
     return subprocess.run([cli, *map(str, args)], capture_output=True, text=True)
 
 
-def cli_deform(cli, tmp_path, mesh, group, shift, steps=STEPS, extra=()):
-    """The coordinates ``verbss deform --translate`` writes."""
+def cli_deform(cli, tmp_path, mesh, group, shift, steps=STEPS, extra=(), method="verbss"):
+    """The coordinates ``verbss deform --translate --method METHOD`` writes."""
     out = tmp_path / "cli.su2"
     done = run_cli(
         cli, "deform", MESHES / mesh, "-o", out, "--moving", group,
         "--translate", ",".join(map(repr, shift)), "--steps", steps,
         "--omega", SETTINGS["omega"], "--tolerance", SETTINGS["tolerance"],
-        "--max-iterations", SETTINGS["max_iterations"], "--quiet", *extra,
+        "--max-iterations", SETTINGS["max_iterations"], "--method", method, "--quiet", *extra,
     )
     assert done.returncode == 0, done.stderr
     return verbss.read(out).points
@@ -182,6 +182,17 @@ def test_accel_amg_matches_the_command(cli, tmp_path):
     assert np.allclose(got, expected, rtol=0, atol=1e-12)
 
 
+def test_robust_method_matches_the_command_default(cli, tmp_path):
+    mesh, group, shift = CASES[1]
+    expected = cli_deform(cli, tmp_path, mesh, group, shift, method="robust")
+    plain = cli_deform(cli, tmp_path, mesh, group, shift)
+    d = verbss.Deformer(verbss.read(MESHES / mesh), method="robust", **SETTINGS)
+    for n in range(1, STEPS + 1):
+        got = d.step({group: np.array(shift) * n / STEPS})
+    assert np.array_equal(got, expected)
+    assert not np.allclose(got, plain, rtol=0, atol=1e-6)
+
+
 def test_rejected_step_keeps_the_last_one_and_can_be_retried():
     mesh = verbss.read(NACA)
     d = verbss.Deformer(mesh, **SETTINGS)
@@ -222,7 +233,7 @@ def test_bad_settings_and_arrays_are_named():
     mesh = verbss.read(NACA)
     cases = [
         (lambda: verbss.Deformer(mesh, method="fast"),
-         "invalid setting: unknown method 'fast' (expected verbss, ball-vertex, spring or laplacian)"),
+         "invalid setting: unknown method 'fast' (expected robust, verbss, ball-vertex, spring or laplacian)"),
         (lambda: verbss.Deformer(mesh, reference="fixed"),
          "invalid setting: unknown reference 'fixed' (expected updated or initial)"),
         (lambda: verbss.Deformer(mesh, accel="fast"),

@@ -47,6 +47,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use verbss::deform::{Deformer, Reference, Settings, StepReport};
 use verbss::motion::{Attachment, Motion, PositionSource};
+use verbss::robust::Robust;
 use verbss::solve::{Accel, Method, Solver};
 use verbss::{CellKind, Cells, Error, Group, Mesh};
 
@@ -82,6 +83,9 @@ pub const VERBSS_METHOD_BALL_VERTEX: i32 = 1;
 pub const VERBSS_METHOD_SPRING: i32 = 2;
 /// Method: component-wise Laplacian with `k = 1/L`.
 pub const VERBSS_METHOD_LAPLACIAN: i32 = 3;
+/// Method: VerBSS with the near-wall treatments (rigid layer, inverse
+/// wall-distance stiffening, sub-steps; docs/robustness.md), the command's default.
+pub const VERBSS_METHOD_ROBUST: i32 = 4;
 
 /// Global solver of `VERBSS_METHOD_BALL_VERTEX`: scalar SOR.
 pub const VERBSS_SOLVER_SOR: i32 = 0;
@@ -342,9 +346,12 @@ fn settings(s: &VerbssSettings) -> Result<Settings, Failure> {
         VERBSS_REFERENCE_INITIAL => Reference::Fixed,
         r => return Err(bad("reference", r)),
     };
+    if s.method == VERBSS_METHOD_ROBUST {
+        settings.robust = Robust::recommended();
+    }
     let p = &mut settings.solve;
     p.method = match s.method {
-        VERBSS_METHOD_VERBSS => Method::Verbss,
+        VERBSS_METHOD_VERBSS | VERBSS_METHOD_ROBUST => Method::Verbss,
         VERBSS_METHOD_BALL_VERTEX => Method::BallVertex,
         VERBSS_METHOD_SPRING => Method::Spring,
         VERBSS_METHOD_LAPLACIAN => Method::Laplacian,

@@ -8,6 +8,7 @@ use std::ptr;
 
 use verbss::deform::{Deformer, Settings};
 use verbss::motion::{Attachment, Motion};
+use verbss::robust::Robust;
 use verbss::{CellKind, Cells, Group, Mesh};
 use verbss_capi::*;
 
@@ -117,7 +118,7 @@ fn steps_match_the_library_and_a_rejected_step_changes_nothing() {
     assert_eq!(info(d).step, 0);
     assert_eq!(points(d), p);
     // The same step with a smaller displacement is accepted, then a second.
-    let mut library = library_deformer(&p, &n);
+    let mut library = library_deformer(&p, &n, Robust::off());
     for (step, u) in [[0.1, 0.05], [0.15, -0.05]].iter().enumerate() {
         assert_eq!(unsafe { verbss_deformer_step(d, u.as_ptr(), 2) }, VERBSS_OK);
         let i = info(d);
@@ -141,7 +142,7 @@ fn steps_match_the_library_and_a_rejected_step_changes_nothing() {
 }
 
 /// The library's deformer for the same mesh: a vertex group of node 12.
-fn library_deformer(points: &[f64], nodes: &[i64]) -> Deformer {
+fn library_deformer(points: &[f64], nodes: &[i64], robust: Robust) -> Deformer {
     let mut cells = Cells::new();
     for t in nodes.chunks(3) {
         cells.push(
@@ -162,6 +163,7 @@ fn library_deformer(points: &[f64], nodes: &[i64]) -> Deformer {
     settings.solve.tolerance = c.tolerance;
     settings.solve.max_iterations = c.max_iterations;
     settings.solve.threads = c.threads;
+    settings.robust = robust;
     let given = Motion::Positions(verbss::motion::PositionSource::Given(Default::default()));
     let attachment = Attachment {
         groups: vec!["moving".into()],
@@ -361,4 +363,35 @@ fn the_accelerated_solve_is_selectable_and_gives_the_direct_solution() {
         last_error(),
         "invalid setting: accel 7 is not one of VERBSS_ACCEL_*"
     );
+}
+
+#[test]
+fn the_robust_method_is_the_library_with_the_recommended_treatments() {
+    let (p, k, n) = square();
+    let settings = VerbssSettings {
+        method: VERBSS_METHOD_ROBUST,
+        ..VerbssSettings::default()
+    };
+    let (status, d) = create_with(&p, &k, &n, &MOVING, Some(&settings));
+    assert_eq!(status, VERBSS_OK, "{}", last_error());
+    let mut library = library_deformer(&p, &n, Robust::recommended());
+    let u = [0.3, 0.0];
+    assert_eq!(
+        unsafe { verbss_deformer_step(d, u.as_ptr(), 2) },
+        VERBSS_OK,
+        "{}",
+        last_error()
+    );
+    library
+        .set_motion(
+            0,
+            Motion::Positions(verbss::motion::PositionSource::Given(
+                [(12, vec![0.8, 0.5])].into_iter().collect(),
+            )),
+        )
+        .unwrap();
+    let r = library.advance().unwrap();
+    assert_eq!(info(d).iterations, r.iterations);
+    assert_eq!(points(d), library.current().coords);
+    assert_eq!(unsafe { verbss_deformer_free(d) }, VERBSS_OK);
 }

@@ -187,12 +187,15 @@ pub fn prepare(
             .collect(),
     };
     let mut stiffness = Vec::new();
-    if p > 0.0 && !fields.is_empty() {
+    // A body of no extent (a single moving node) has no thickness: it
+    // stiffens nothing.
+    if p > 0.0 && thickness.iter().any(|&t| t > 0.0) {
         stiffness = (0..n)
             .map(|i| {
                 fields
                     .iter()
                     .zip(&thickness)
+                    .filter(|(_, &t)| t > 0.0)
                     .map(|((dist, _), t)| (t / dist[i].max(*t)).powf(p))
                     .fold(f64::MIN_POSITIVE, f64::max)
             })
