@@ -245,10 +245,10 @@ def later(x):
 
 
 def table(results):
-    print("| tets | nodes | who | threads | s/step (wall) | s/step (CPU, steps 2–) | iterations/step "
+    print("| tets | nodes | who | threads | s/step (wall) | s/step (CPU, steps 2–) | solve s/step | iterations/step "
           "| s/sweep | bytes/node | peak MB | error step 1 | error last step | min quality "
           "| inverted | OpenFOAM / this (wall) |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for m in results:
         foam = m.get("openfoam", {}).get("moveDynamicMesh")
         rows = []
@@ -259,9 +259,10 @@ def table(results):
             err = dict((s, e) for s, e in r["true_error"])
             rows.append([f"verbss {r['accel']}", r["threads"], f"{per:.3f}" if ok else
                          f"failed at step {len(r['seconds']) + 1}",
-                         f"{later(r['cpu_seconds']):.3f}", f"{sweeps:.1f}",
+                         f"{later(r['cpu_seconds']):.3f}",
+                         f"{mean(r['solve_seconds']):.3f}", f"{sweeps:.1f}",
                          f"{mean(r['solve_seconds']) / sweeps:.2e}",
-                         f"{r['bytes_per_node']:.0f}", f"{r['peak_rss_time_v'] / 1e6:.0f}",
+                         f"{r['bytes_per_node']:.0f}", f"{r['peak_rss_bytes'] / 1e6:.0f}",
                          f"{err.get(1, float('nan')):.1e}" if err else "",
                          f"{err.get(r['steps_total'], float('nan')):.1e}" if err else "",
                          f"{r['final_min_quality']:.4f}" if "final_min_quality" in r else "",
@@ -269,7 +270,7 @@ def table(results):
                          f"{mean(foam['seconds']) / per:.1f}x" if foam and ok else ""])
         for app, f in m.get("openfoam", {}).items():
             rows.append([f"OpenFOAM {app}", 1, f"{mean(f['seconds']):.3f}",
-                         f"{later(f['cpu_seconds']):.3f}",
+                         f"{later(f['cpu_seconds']):.3f}", "",
                          f"{mean(f['gamg_iterations']):.1f} (GAMG)", "", "",
                          f"{f['peak_rss_time_v'] / 1e6:.0f}", "", "",
                          f"{f['final_min_quality']:.4f}" if "final_min_quality" in f else "",

@@ -10,9 +10,11 @@
 //!
 //! Prints one JSON object: per step the whole step's wall seconds (motion,
 //! springs, solve, quality check) and the CPU seconds of the process over
-//! it (all threads; a loaded machine shows as wall > CPU with one thread), the solve's seconds and sweeps (GMRES iterations
-//! with `--accel amg`); the peak resident memory of the run (`VmHWM`, read
-//! before anything else is computed); the sweep's bytes per unknown node;
+//! it (all threads; a loaded machine shows as wall > CPU with one thread),
+//! the seconds forming the system (springs, factors, multigrid setup), the
+//! solve's seconds and sweeps (GMRES iterations with `--accel amg`); the
+//! peak resident memory of the run (`VmHWM`, read before anything else is
+//! computed); the sweep's bytes per unknown node;
 //! the final minimum quality and inverted count; and, for each step of
 //! `--error-steps`, the true error of that step's increment
 //! `‖Δu − Δu_ref‖ / ‖Δu_ref‖`, where `Δu_ref` solves the same step (same
@@ -199,7 +201,7 @@ fn main() {
     println!(
         "{{\"mesh\": {:?}, \"nodes\": {}, \"cells\": {}, \"unknown_nodes\": {unknown}, \
          \"threads\": {}, \"accel\": {:?}, \"tolerance\": {:e}, \"steps_done\": {}, \
-         \"failure\": {}, \"seconds\": [{}], \"cpu_seconds\": [{}], \"solve_seconds\": [{}], \"iterations\": [{}], \
+         \"failure\": {}, \"seconds\": [{}], \"cpu_seconds\": [{}], \"solve_seconds\": [{}], \"form_seconds\": [{}], \"iterations\": [{}], \
          \"peak_rss_bytes\": {peak}, \"bytes_per_node\": {:.1}, \"min_quality\": {}, \
          \"inverted\": {}, \"true_error\": [{}]}}",
         o.mesh.display().to_string(),
@@ -217,6 +219,7 @@ fn main() {
             .collect::<Vec<_>>()
             .join(", "),
         list(&|r| format!("{:.6}", r.solve_seconds)),
+        list(&|r| format!("{:.6}", r.form_seconds)),
         list(&|r| r.iterations.to_string()),
         plain.bytes_per_node(),
         last.map_or(0.0, |r| r.min_quality),
