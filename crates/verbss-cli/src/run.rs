@@ -14,7 +14,7 @@ use std::time::Instant;
 use anyhow::Context;
 use clap::Args;
 use verbss::case::Case;
-use verbss::deform::{Deformer, Settings, Snapshot};
+use verbss::deform::{Deformer, Reference, Settings, Snapshot};
 use verbss::io::{self, vtu, WriteOptions};
 use verbss::mesh::Mesh;
 use verbss::motion::Attachment;
@@ -138,6 +138,13 @@ impl Summary {
             None => ExitCode::SUCCESS,
             Some((e, last, failed)) => {
                 eprintln!("error: {e}");
+                let k = job.settings.robust.substeps;
+                if k > 0 && job.settings.reference == Reference::Updated {
+                    eprintln!(
+                        "the step was also tried in increments down to 1/{} of it (--substeps {k})",
+                        1u64 << k
+                    );
+                }
                 eprintln!(
                     "the last valid mesh (step {}) is in {}; the failed state in {}",
                     self.steps,
