@@ -41,14 +41,17 @@
 //! # Order and parallelism
 //!
 //! The unknowns are ordered by breadth-first layers from the moving boundary
-//! (the prescribed nodes with a nonzero prescribed displacement; all
-//! prescribed nodes when none moves), coloured greedily in that order so that
-//! no two coupled nodes share a colour, and renumbered colour by colour (by
-//! layer within a colour) so that each colour is one contiguous block of
-//! memory. A sweep visits the colours in turn and updates all nodes of one
-//! colour in parallel; as nodes of one colour do not couple, this is exactly
-//! a Gauss–Seidel (SOR) sweep in colour order — the colour order, not the
-//! layer order, is the Gauss–Seidel order. Each colour is cut into fixed
+//! (the prescribed nodes with a nonzero prescribed displacement; all prescribed
+//! nodes when none moves), coloured greedily in that order so that no two
+//! coupled nodes share a colour, and renumbered colour by colour so that each
+//! colour is one contiguous block of memory; within a colour the nodes follow a
+//! Z-order (Morton) curve of the input mesh's coordinates, so that the
+//! neighbours a node reads lie close together in every other colour's block
+//! (nodes of one colour do not couple, so this order does not change a sweep's
+//! displacements). A sweep visits the colours in turn and updates all nodes of
+//! one colour in parallel; as nodes of one colour do not couple, this is
+//! exactly a Gauss–Seidel (SOR) sweep in colour order — the colour order, not
+//! the layer order, is the Gauss–Seidel order. Each colour is cut into fixed
 //! chunks of nodes whose changes are summed on their own and then added in
 //! chunk order, so the results, eq.-8 value included, are bit-identical for
 //! every thread count.
@@ -242,6 +245,10 @@ pub struct Engine {
     built: Option<Built>,
     pool: Option<(usize, rayon::ThreadPool)>,
     accel: accel::AccelState,
+    /// Z-order keys of the input mesh's nodes ([`morton_keys`]): the sweep
+    /// order within a colour, fixed per mesh so that the order (and a kept
+    /// multigrid hierarchy) does not change as the nodes move.
+    locality: Vec<u64>,
 }
 
 /// What one reference configuration and method need: the system and scratch.
@@ -410,6 +417,10 @@ impl Engine {
             built: None,
             pool: None,
             accel,
+            locality: match dim {
+                2 => morton_keys::<2>(&mesh.coords),
+                _ => morton_keys::<3>(&mesh.coords),
+            },
         })
     }
 
@@ -456,6 +467,7 @@ impl Engine {
             built,
             pool,
             accel,
+            ..
         } = self;
         let built = built.as_mut().expect("built above");
         let pool = &pool.as_ref().expect("started above").1;
@@ -664,7 +676,9 @@ impl Engine {
     }
 
     /// Orders the unknowns by breadth-first layers from the moving boundary,
-    /// colours them greedily in that order and numbers them colour by colour.
+    /// colours them greedily in that order and numbers them colour by colour,
+    /// along the Z-order curve of the input mesh ([`morton_keys`]) within a
+    /// colour.
     fn layout<const D: usize>(&self, displacement: &[f64]) -> Layout {
         let n = self.roles.len();
         let moving = |i: usize| match self.roles[i] {
@@ -685,7 +699,7 @@ impl Engine {
         by_layer.sort_by_key(|&i| (layer[i], i));
         let (colour, colours) = topology::colour(&self.conn.graph, &by_layer);
         let mut order = by_layer;
-        order.sort_by_key(|&i| colour[i]);
+        order.sort_by_key(|&i| (colour[i], self.locality[i]));
         let mut colour_starts = vec![0usize; colours as usize + 1];
         for &i in &order {
             colour_starts[colour[i] as usize + 1] += 1;
@@ -726,6 +740,44 @@ impl Engine {
         let u = point::<D>(displacement, i);
         (0..D).map(|c| self.normals[k][c] * u[c]).sum()
     }
+}
+
+/// Each node's position on a Z-order (Morton) curve through the bounding box
+/// of `coords`: the coordinates scaled to `⌊2²¹ (x − x_min) / (x_max − x_min)⌋`
+/// per axis, their bits interleaved (axis 0 lowest). Nearby keys are nearby
+/// points.
+fn morton_keys<const D: usize>(coords: &[f64]) -> Vec<u64> {
+    const BITS: u32 = 21;
+    let mut lo = [f64::INFINITY; D];
+    let mut hi = [f64::NEG_INFINITY; D];
+    for p in coords.chunks_exact(D) {
+        for k in 0..D {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let cells = f64::from(1u32 << BITS);
+    let scale: [f64; D] = std::array::from_fn(|k| {
+        let span = hi[k] - lo[k];
+        if span > 0.0 {
+            (cells - 1.0) / span
+        } else {
+            0.0
+        }
+    });
+    coords
+        .chunks_exact(D)
+        .map(|p| {
+            let mut key = 0u64;
+            for k in 0..D {
+                let c = ((p[k] - lo[k]) * scale[k]) as u64;
+                for b in 0..BITS {
+                    key |= ((c >> b) & 1) << (D as u32 * b + k as u32);
+                }
+            }
+            key
+        })
+        .collect()
 }
 
 /// The largest prescribed displacement: `|u_i|` of fixed nodes, `|n·u_i|` of
