@@ -282,8 +282,7 @@ def table(results):
 def fits(results):
     """Log-log slopes against unknown nodes of the one-thread runs: seconds
     per step, sweeps (iterations) per step and seconds per sweep."""
-    print("\n| run | slope of s/step | slope of iterations/step | slope of s/sweep | meshes |")
-    print("|---|---|---|---|---|")
+    rows = []
     for accel in ("none", "amg"):
         pts = []
         for m in results:
@@ -301,8 +300,12 @@ def fits(results):
             xm, ym = mean(x), mean(y)
             slope.append(sum((a - xm) * (b - ym) for a, b in zip(x, y))
                          / sum((a - xm) ** 2 for a in x))
-        print(f"| verbss {accel}, 1 thread | {slope[0]:.2f} | {slope[1]:.2f} | {slope[2]:.2f} "
-              f"| {len(pts)} |")
+        rows.append(f"| verbss {accel}, 1 thread | {slope[0]:.2f} | {slope[1]:.2f} | "
+                    f"{slope[2]:.2f} | {len(pts)} |")
+    if rows:
+        print("\n| run | slope of s/step | slope of iterations/step | slope of s/sweep | meshes |")
+        print("|---|---|---|---|---|")
+        print("\n".join(rows))
 
 
 def plot(results, path):
