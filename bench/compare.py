@@ -57,7 +57,7 @@ def timed(cmd, **kw):
     return r.stdout, int(peak.group(1)) * 1024 if peak else None
 
 
-def mesh_for(work, h, smoke):
+def mesh_for(work, h):
     path = work / f"sphere_h{h}.msh"
     if not path.exists():
         run([sys.executable, str(ROOT / "bench" / "sphere_cube.py"), str(path),
@@ -370,7 +370,7 @@ def main():
     print(f"load average at start: {os.getloadavg()}", file=sys.stderr)
     results = []
     for h in sizes:
-        mesh = mesh_for(work, h, a.smoke)
+        mesh = mesh_for(work, h)
         print(f"{mesh}:", file=sys.stderr)
         runs = verbss_runs(bins, mesh, work, [int(t) for t in a.threads.split(",")],
                            a.accel.split(","), steps)
