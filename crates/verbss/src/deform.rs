@@ -87,7 +87,7 @@ pub struct StepReport {
     pub step: usize,
     /// The increments the step was taken in (1 unless sub-steps were needed).
     pub substeps: usize,
-    /// Solver sweeps (of all increments).
+    /// Solver sweeps (of all increments, the rejected ones too).
     pub iterations: usize,
     /// The final eq.-8 value (mean absolute change in the last sweep).
     pub residual: f64,
@@ -325,7 +325,6 @@ impl Deformer {
             } = self.attempt(&coords, &at, end - done)?;
             report.iterations += info.iterations;
             report.residual = info.residual;
-            report.converged &= info.converged;
             report.form_seconds += info.form_seconds;
             report.solve_seconds += info.solve_seconds;
             report.history = info.history;
@@ -337,6 +336,7 @@ impl Deformer {
                     h *= 0.5;
                     continue;
                 }
+                report.converged &= info.converged;
                 report.substeps += 1;
                 let err = Error::Inverted {
                     step: n,
@@ -348,6 +348,7 @@ impl Deformer {
                 self.failed = Some(self.snapshot(trial, &inversions, report, start));
                 return Err(err);
             }
+            report.converged &= info.converged;
             report.substeps += 1;
             let fraction = end - done;
             self.guess = u.iter().map(|v| v / fraction).collect();
