@@ -25,9 +25,9 @@ use std::time::Instant;
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
 use verbss::geometry::{
-    ldlt_factor, ldlt_solve, norm, normal_frame, packed_index, packed_len, packed_mul, point,
+    ldlt_factor, norm, normal_frame, packed_index, packed_len, packed_mul, point,
 };
-use verbss::solve::{Accel, Method, NodeRole, SolveInfo, SolveParams};
+use verbss::solve::{coupled, relax, Accel, Method, NodeRole, SolveInfo, SolveParams};
 use verbss::springs::{self, Connectivity, NodeBlocks, Springs};
 use verbss::topology;
 use verbss::{Error, Result};
@@ -538,48 +538,13 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
         p: usize,
         work: &[f64],
     ) -> ([f64; D], f64) {
-        let blocks = &b.blocks;
-        let s = packed_len(D);
-        let mut r = point::<D>(constant, p);
-        for e in blocks.offsets[p]..blocks.offsets[p + 1] {
-            let v = packed_mul::<D>(
-                &blocks.blocks[s * e..],
-                &point(work, blocks.neighbours[e] as usize),
-            );
-            for k in 0..D {
-                r[k] += v[k];
-            }
-        }
-        let old = point::<D>(work, p);
-        let factor = &blocks.diag[s * p..];
-        match frame::<D>(&b.slide_of, &b.frames, p) {
-            None => {
-                let x = ldlt_solve::<D>(factor, &r);
-                let delta: [f64; D] = std::array::from_fn(|k| omega * (x[k] - old[k]));
-                (
-                    std::array::from_fn(|k| old[k] + delta[k]),
-                    delta.iter().map(|v| v.abs()).sum(),
-                )
-            }
-            Some(frame) => {
-                let mut rhs = rotate(&frame, &r);
-                rhs[D - 1] = 0.0;
-                let x = ldlt_solve::<D>(factor, &rhs);
-                let a = rotate(&frame, &old);
-                let delta: [f64; D] = std::array::from_fn(|k| {
-                    if k < D - 1 {
-                        omega * (x[k] - a[k])
-                    } else {
-                        0.0
-                    }
-                });
-                let step = unrotate(&frame, &delta);
-                (
-                    std::array::from_fn(|k| old[k] + step[k]),
-                    delta.iter().map(|v| v.abs()).sum(),
-                )
-            }
-        }
+        relax::<D>(
+            &b.blocks.diag[packed_len(D) * p..],
+            &coupled::<D>(&b.blocks, constant, p, work),
+            &point::<D>(work, p),
+            frame::<D>(&b.slide_of, &b.frames, p),
+            omega,
+        )
     }
 }
 
@@ -591,16 +556,4 @@ fn frame<const D: usize>(slide_of: &[u32], frames: &[f64], p: usize) -> Option<[
         let f = &frames[D * D * s as usize..D * D * (s as usize + 1)];
         std::array::from_fn(|r| std::array::from_fn(|c| f[D * r + c]))
     })
-}
-
-/// `R v` for a frame with rows `R`.
-#[inline]
-fn rotate<const D: usize>(r: &[[f64; D]; D], v: &[f64; D]) -> [f64; D] {
-    std::array::from_fn(|k| (0..D).map(|l| r[k][l] * v[l]).sum())
-}
-
-/// `Rᵀ a` for a frame with rows `R`.
-#[inline]
-fn unrotate<const D: usize>(r: &[[f64; D]; D], a: &[f64; D]) -> [f64; D] {
-    std::array::from_fn(|l| (0..D).map(|k| r[k][l] * a[k]).sum())
 }

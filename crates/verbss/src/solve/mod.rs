@@ -76,6 +76,7 @@ mod gmres;
 mod laplacian;
 mod sor;
 mod verbss;
+pub use self::verbss::relax;
 
 use std::time::Instant;
 
@@ -334,9 +335,10 @@ pub(crate) fn unrotate<const D: usize>(r: &[[f64; D]; D], a: &[f64; D]) -> [f64;
     std::array::from_fn(|l| (0..D).map(|k| r[k][l] * a[k]).sum())
 }
 
-/// `c_p + Σ_j B_pj u_j` over the unknown neighbours of position `p`.
+/// `c_p + Σ_j B_pj u_j` over the unknown neighbours of position `p`
+/// (`constant` and `work` hold `D` numbers per position).
 #[inline]
-pub(crate) fn coupled<const D: usize>(
+pub fn coupled<const D: usize>(
     blocks: &NodeBlocks,
     constant: &[f64],
     p: usize,

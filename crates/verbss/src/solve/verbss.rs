@@ -20,12 +20,31 @@ pub(crate) fn update<const D: usize>(
     p: usize,
     work: &[f64],
 ) -> ([f64; D], f64) {
-    let r = coupled::<D>(blocks, constant, p, work);
-    let old = point::<D>(work, p);
-    let factor = &blocks.diag[packed_len(D) * p..];
-    match layout.frame::<D>(p) {
+    relax::<D>(
+        &blocks.diag[packed_len(D) * p..],
+        &coupled::<D>(blocks, constant, p, work),
+        &point::<D>(work, p),
+        layout.frame::<D>(p),
+        omega,
+    )
+}
+
+/// One node's update (paper eq. 13) from its LDLᵀ factor `factor`, its
+/// right-hand side `r = c_i + Σ_j B_ij u_j` ([`coupled`]) and its old value:
+/// `u_i ← old + ω (K_ii⁻¹ r − old)`, in the tangent frame `frame` (rows
+/// `t₁ … t_{D−1}, n`) for a sliding node, whose normal component stays.
+/// Returns the new value and the sum of the absolute changes.
+#[inline]
+pub fn relax<const D: usize>(
+    factor: &[f64],
+    r: &[f64; D],
+    old: &[f64; D],
+    frame: Option<[[f64; D]; D]>,
+    omega: f64,
+) -> ([f64; D], f64) {
+    match frame {
         None => {
-            let x = ldlt_solve::<D>(factor, &r);
+            let x = ldlt_solve::<D>(factor, r);
             let delta: [f64; D] = std::array::from_fn(|k| omega * (x[k] - old[k]));
             (
                 std::array::from_fn(|k| old[k] + delta[k]),
@@ -33,10 +52,10 @@ pub(crate) fn update<const D: usize>(
             )
         }
         Some(frame) => {
-            let mut b = rotate(&frame, &r);
+            let mut b = rotate(&frame, r);
             b[D - 1] = 0.0;
             let x = ldlt_solve::<D>(factor, &b);
-            let a = rotate(&frame, &old);
+            let a = rotate(&frame, old);
             let delta: [f64; D] = std::array::from_fn(|k| {
                 if k < D - 1 {
                     omega * (x[k] - a[k])
