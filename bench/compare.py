@@ -2,7 +2,9 @@
 """verbss against OpenFOAM's moveDynamicMesh on the sphere-in-a-cube series.
 
     python3 bench/compare.py [--sizes 1.0,0.5,0.35,0.25,0.18] [--work DIR]
-                             [--threads 1,2] [--accel none,amg] [--json OUT]
+                             [--threads 1,2] [--variants REF:ACCEL:PREDICTOR,…]
+                             [--json OUT]
+    python3 bench/compare.py --series-2d  # the paper's 2D rectangles instead
     python3 bench/compare.py --smoke      # seconds: a tiny mesh, 2 steps
 
 Per mesh (bench/sphere_cube.py: a sphere of radius 5 in the cube
@@ -10,8 +12,12 @@ Per mesh (bench/sphere_cube.py: a sphere of radius 5 in the cube
 12 x that at distance 45), the sphere moves 16 units along x in 16 steps:
 
 * verbss (crates/verbss/examples/motion_bench.rs, the stepper of
-  `verbss deform`, updated reference, eq.-8 tolerance 1e-6 relative): per
-  thread count and acceleration, wall and CPU seconds per step, sweeps (or
+  `verbss deform`, the paper's method, eq.-8 tolerance 1e-6 relative), per
+  variant — reference `updated` (paper option 1, the default) or `fixed`
+  (option 2, `--reference initial`), acceleration `none` or `amg`, and the
+  initial guess `previous` (the previous step's solution, the default) or
+  `linear` (extrapolated from the two previous steps, `--predictor linear`)
+  — and thread count: wall and CPU seconds per step, sweeps (or
   GMRES iterations) per step, seconds per sweep, bytes per node, peak memory
   (/usr/bin/time -v), the true error of steps 1 and 16 against a reference
   solved to 1e-13 (one-thread runs; results do not depend on the threads),
@@ -66,19 +72,56 @@ def mesh_for(work, h):
     return path
 
 
+# The paper's §4.1 series (its Table 2 node counts; cases/meshes/rectangle.py)
+# and the body's upward travel over the 16 steps: 0.1 a step, the paper's
+# step, for 1.6 units (the paper's full 4 units invert the finer meshes'
+# body-adjacent triangles, see cases/rectangle-*.toml).
+RECTANGLES = (298, 1035, 3055, 8081, 21376)
+RECTANGLE_TRAVEL = 1.6
+
+
+def rectangle_mesh(n):
+    path = ROOT / "cases" / "meshes" / f"rectangle-{n}.msh"
+    if not path.exists():
+        run([sys.executable, str(ROOT / "cases" / "meshes" / "rectangle.py"), str(n),
+             str(path)])
+    return path
+
+
 def quality(verbss, path):
     q = json.loads(run([verbss, "quality", str(path), "--json"]).stdout)
     return q["quality"]["min"], q["inverted"], q["elements"]
 
 
-def verbss_runs(bins, mesh, work, threads, accels, steps):
+def variants(spec):
+    """`REFERENCE:ACCEL:PREDICTOR,…` (reference updated|fixed, accel
+    none|amg, predictor previous|linear) as a list of triples."""
     out = []
-    for accel in accels:
+    for v in spec.split(","):
+        reference, accel, predictor = v.split(":")
+        assert reference in ("updated", "fixed") and accel in ("none", "amg") \
+            and predictor in ("previous", "linear"), v
+        out.append((reference, accel, predictor))
+    return out
+
+
+def label(r):
+    return (f"verbss {r.get('reference', 'updated')} {r['accel']} "
+            f"{r.get('predictor', 'previous')}")
+
+
+def verbss_runs(bins, mesh, work, threads, runs, steps, motion=None):
+    """motion: (group, displacement) — default the sphere's 16 units along x."""
+    group, move = motion or ("sphere", f"{TRAVEL * steps / STEPS},0,0")
+    out = []
+    for reference, accel, predictor in runs:
         for t in threads:
-            final = work / f"{mesh.stem}_{accel}_final.vtu"
-            cmd = [bins["motion_bench"], str(mesh), "--moving", "sphere",
-                   "--translate", f"{TRAVEL * steps / STEPS},0,0", "--steps", str(steps),
-                   "--threads", str(t), "--accel", accel]
+            final = work / f"{mesh.stem}_{reference}_{accel}_{predictor}_final.vtu"
+            cmd = [bins["motion_bench"], str(mesh), "--moving", group,
+                   "--translate", move, "--steps", str(steps),
+                   "--threads", str(t), "--accel", accel, "--predictor", predictor]
+            if reference == "fixed":
+                cmd.append("--fixed-reference")
             if t == threads[0]:
                 cmd += ["--error-steps", f"1,{steps}", "--output", str(final)]
             stdout, peak = timed(cmd)
@@ -87,7 +130,7 @@ def verbss_runs(bins, mesh, work, threads, accels, steps):
             if r["failure"] is None and t == threads[0]:
                 r["final_min_quality"], r["final_inverted"], _ = quality(bins["verbss"], final)
             out.append(r)
-            print(f"  verbss {accel} {t} thread(s): {summary(r)}", file=sys.stderr)
+            print(f"  {label(r)} {t} thread(s): {summary(r)}", file=sys.stderr)
     return out
 
 
@@ -245,36 +288,39 @@ def later(x):
 
 
 def table(results):
-    print("| tets | nodes | who | threads | s/step (wall) | s/step (CPU, steps 2–) | solve s/step | iterations/step "
-          "| s/sweep | bytes/node | peak MB | error step 1 | error last step | min quality "
-          "| inverted | OpenFOAM / this (wall) |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| tets | nodes | who | threads | s/step (wall) | s/step (CPU, steps 2–) | solve s/step "
+          "| iterations/step | s/sweep | bytes/node | peak MB | error step 1 | error last step "
+          "| min quality | inverted | moveDynamicMesh / this (wall) | (CPU, steps 2–) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for m in results:
         foam = m.get("openfoam", {}).get("moveDynamicMesh")
         rows = []
         for r in m["verbss"]:
             ok = len(r["seconds"]) == r["steps_total"]
             per = mean(r["seconds"])
+            cpu = later(r["cpu_seconds"])
             sweeps = mean(r["iterations"])
             err = dict((s, e) for s, e in r["true_error"])
-            rows.append([f"verbss {r['accel']}", r["threads"], f"{per:.3f}" if ok else
+            rows.append([label(r), r["threads"], f"{per:.3f}" if ok else
                          f"failed at step {len(r['seconds']) + 1}",
-                         f"{later(r['cpu_seconds']):.3f}",
+                         f"{cpu:.3f}",
                          f"{mean(r['solve_seconds']):.3f}", f"{sweeps:.1f}",
-                         f"{mean(r['solve_seconds']) / sweeps:.2e}",
+                         f"{mean(r['solve_seconds']) / sweeps:.2e}" if sweeps else "",
                          f"{r['bytes_per_node']:.0f}", f"{r['peak_rss_bytes'] / 1e6:.0f}",
                          f"{err.get(1, float('nan')):.1e}" if err else "",
                          f"{err.get(r['steps_total'], float('nan')):.1e}" if err else "",
                          f"{r['final_min_quality']:.4f}" if "final_min_quality" in r else "",
                          r.get("final_inverted", ""),
-                         f"{mean(foam['seconds']) / per:.1f}x" if foam and ok else ""])
+                         f"{mean(foam['seconds']) / per:.1f}x" if foam and ok else "",
+                         f"{later(foam['cpu_seconds']) / cpu:.1f}x" if foam and ok and cpu > 0
+                         else ""])
         for app, f in m.get("openfoam", {}).items():
             rows.append([f"OpenFOAM {app}", 1, f"{mean(f['seconds']):.3f}",
                          f"{later(f['cpu_seconds']):.3f}", "",
                          f"{mean(f['gamg_iterations']):.1f} (GAMG)", "", "",
                          f"{f['peak_rss_time_v'] / 1e6:.0f}", "", "",
                          f"{f['final_min_quality']:.4f}" if "final_min_quality" in f else "",
-                         f.get("final_inverted", ""), ""])
+                         f.get("final_inverted", ""), "", ""])
         for row in rows:
             print(f"| {m['cells']:,} | {m['nodes']:,} | " + " | ".join(map(str, row)) + " |")
 
@@ -283,11 +329,12 @@ def fits(results):
     """Log-log slopes against unknown nodes of the one-thread runs: seconds
     per step, sweeps (iterations) per step and seconds per sweep."""
     rows = []
-    for accel in ("none", "amg"):
+    for key in sorted({label(r) for m in results for r in m["verbss"]}):
         pts = []
         for m in results:
             for r in m["verbss"]:
-                if r["accel"] == accel and r["threads"] == 1 and len(r["seconds"]) == r["steps_total"]:
+                if label(r) == key and r["threads"] == 1 \
+                        and len(r["seconds"]) == r["steps_total"] and mean(r["iterations"]) > 0:
                     sweeps = mean(r["iterations"])
                     pts.append((r["unknown_nodes"], mean(r["seconds"]), sweeps,
                                 mean(r["solve_seconds"]) / sweeps))
@@ -300,7 +347,7 @@ def fits(results):
             xm, ym = mean(x), mean(y)
             slope.append(sum((a - xm) * (b - ym) for a, b in zip(x, y))
                          / sum((a - xm) ** 2 for a in x))
-        rows.append(f"| verbss {accel}, 1 thread | {slope[0]:.2f} | {slope[1]:.2f} | "
+        rows.append(f"| {key}, 1 thread | {slope[0]:.2f} | {slope[1]:.2f} | "
                     f"{slope[2]:.2f} | {len(pts)} |")
     if rows:
         print("\n| run | slope of s/step | slope of iterations/step | slope of s/sweep | meshes |")
@@ -318,7 +365,7 @@ def plot(results, path):
     for m in results:
         for r in m["verbss"]:
             if len(r["seconds"]) == r["steps_total"]:
-                key = f"verbss {r['accel']}, {r['threads']} thread(s)"
+                key = f"{label(r)}, {r['threads']} thread(s)"
                 lines.setdefault(key, []).append((r["unknown_nodes"], mean(r["seconds"])))
         for app, f in m.get("openfoam", {}).items():
             lines.setdefault(f"OpenFOAM {app}", []).append(
@@ -339,7 +386,13 @@ def main():
     ap.add_argument("--sizes", default="1.0,0.5,0.35,0.25,0.18")
     ap.add_argument("--work", default="/tmp/verbss-bench")
     ap.add_argument("--threads", default="1,2")
-    ap.add_argument("--accel", default="none,amg")
+    ap.add_argument("--variants",
+                    default="updated:none:previous,updated:none:linear,updated:amg:linear,"
+                            "fixed:none:linear",
+                    help="verbss runs REFERENCE:ACCEL:PREDICTOR,… (updated|fixed, "
+                         "none|amg, previous|linear)")
+    ap.add_argument("--series-2d", action="store_true",
+                    help="instead: the paper's 2D rectangles (no OpenFOAM)")
     ap.add_argument("--json", default=None)
     ap.add_argument("--no-openfoam", action="store_true")
     ap.add_argument("--foam-apps", default="moveDynamicMesh,moveMesh",
@@ -363,17 +416,23 @@ def main():
     sizes = [2.5] if a.smoke else [float(h) for h in a.sizes.split(",")]
     steps = 2 if a.smoke else STEPS
     bins = build(a.smoke)
-    have_foam = shutil.which("moveDynamicMesh") is not None and not a.no_openfoam
+    if a.series_2d:
+        meshes = [(rectangle_mesh(n), None) for n in RECTANGLES]
+        motion = ("body", f"0,{RECTANGLE_TRAVEL * steps / STEPS}")
+    else:
+        meshes = [(mesh_for(work, h), h) for h in sizes]
+        motion = None
+    have_foam = shutil.which("moveDynamicMesh") is not None and not a.no_openfoam \
+        and not a.series_2d
     if not have_foam:
         print("OpenFOAM: skipped (moveDynamicMesh not installed or --no-openfoam)",
               file=sys.stderr)
     print(f"load average at start: {os.getloadavg()}", file=sys.stderr)
     results = []
-    for h in sizes:
-        mesh = mesh_for(work, h)
+    for mesh, h in meshes:
         print(f"{mesh}:", file=sys.stderr)
         runs = verbss_runs(bins, mesh, work, [int(t) for t in a.threads.split(",")],
-                           a.accel.split(","), steps)
+                           variants(a.variants), steps, motion)
         for r in runs:
             r["steps_total"] = steps
         m = {"h_sphere": h, "mesh": str(mesh), "nodes": runs[0]["nodes"],

@@ -11,7 +11,7 @@ use std::process::ExitCode;
 
 use anyhow::bail;
 use clap::{ArgGroup, Args, ValueEnum};
-use verbss::deform::{Reference, Settings};
+use verbss::deform::{Predictor, Reference, Settings};
 use verbss::io::{self, Format};
 use verbss::motion::{Attachment, Motion, PositionSource};
 use verbss::robust::{Layer, Robust};
@@ -86,6 +86,10 @@ pub struct DeformArgs {
     /// Springs on the current mesh each step (updated) or on the input mesh (initial).
     #[arg(long, value_enum, default_value = "updated")]
     reference: ReferenceArg,
+    /// Each step's initial guess: the previous step's solution, or extrapolated
+    /// linearly from the two previous steps (fewer sweeps for smooth motions).
+    #[arg(long, value_enum, default_value = "previous")]
+    predictor: PredictorArg,
     /// Eq.-8 stop, relative to the step's largest prescribed displacement.
     #[arg(long, default_value_t = 1e-6)]
     tolerance: f64,
@@ -131,6 +135,12 @@ enum AccelArg {
 enum SolverArg {
     Sor,
     Direct,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum PredictorArg {
+    Previous,
+    Linear,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -211,6 +221,10 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
     settings.reference = match args.reference {
         ReferenceArg::Updated => Reference::Updated,
         ReferenceArg::Initial => Reference::Fixed,
+    };
+    settings.predictor = match args.predictor {
+        PredictorArg::Previous => Predictor::Previous,
+        PredictorArg::Linear => Predictor::Linear,
     };
     let mut robust = match args.method {
         MethodArg::Robust => Robust::recommended(),

@@ -25,7 +25,7 @@ use std::time::Instant;
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
 use verbss::geometry::{
-    ldlt_factor, norm, normal_frame, packed_index, packed_len, packed_mul, point,
+    ldlt_factor, morton_keys, norm, normal_frame, packed_index, packed_len, packed_mul, point,
 };
 use verbss::solve::{coupled, relax, Accel, Method, NodeRole, SolveInfo, SolveParams};
 use verbss::springs::{self, Connectivity, NodeBlocks, Springs};
@@ -131,6 +131,10 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
             node_tags: part.node_tags.clone(),
             cell_tags: part.cell_tags.clone(),
             stiffness: Vec::new(),
+            locality: match dim {
+                2 => morton_keys::<2>(&part.coords),
+                _ => morton_keys::<3>(&part.coords),
+            },
         };
         let halo = Halo::new(comm, &part.global, &part.owner);
         Ok(Sweeper {

@@ -5,8 +5,13 @@
 //! ```sh
 //! cargo run --release -p verbss --example motion_bench -- MESH \
 //!     --moving sphere --translate 16,0,0 --steps 16 [--threads 1] [--accel none|amg] \
-//!     [--tolerance 1e-6] [--error-steps 1,16] [--reference amg|direct] [--output FINAL.vtu]
+//!     [--robust] [--fixed-reference] [--predictor previous|linear] [--tolerance 1e-6] [--error-steps 1,16] [--reference amg|direct] \
+//!     [--output FINAL.vtu]
 //! ```
+//!
+//! The paper's method (the library's [`Settings::new`]); `--robust` adds the
+//! near-wall treatments of `verbss deform --method robust`. Every part of the
+//! step, the mesh check included, runs on `--threads` threads.
 //!
 //! Prints one JSON object: per step the whole step's wall seconds (motion,
 //! springs, solve, quality check) and the CPU seconds of the process over
@@ -25,8 +30,9 @@
 
 use std::path::PathBuf;
 
-use verbss::deform::{Deformer, Settings};
+use verbss::deform::{Deformer, Predictor, Reference, Settings};
 use verbss::motion::{Attachment, Motion};
+use verbss::robust::Robust;
 use verbss::solve::{Accel, Engine, Method, NodeRole, SolveParams, Solver};
 
 struct Options {
@@ -39,6 +45,9 @@ struct Options {
     tolerance: f64,
     error_steps: Vec<usize>,
     direct: bool,
+    robust: bool,
+    reference: Reference,
+    predictor: Predictor,
     output: Option<PathBuf>,
 }
 
@@ -53,6 +62,9 @@ fn options() -> Options {
         tolerance: 1e-6,
         error_steps: Vec::new(),
         direct: false,
+        robust: false,
+        reference: Reference::Updated,
+        predictor: Predictor::Previous,
         output: None,
     };
     let mut args = std::env::args().skip(1);
@@ -82,6 +94,15 @@ fn options() -> Options {
                     .collect()
             }
             "--reference" => o.direct = value() == "direct",
+            "--robust" => o.robust = true,
+            "--fixed-reference" => o.reference = Reference::Fixed,
+            "--predictor" => {
+                o.predictor = match value().as_str() {
+                    "previous" => Predictor::Previous,
+                    "linear" => Predictor::Linear,
+                    other => panic!("--predictor {other}: expected previous or linear"),
+                }
+            }
             "--output" => o.output = Some(PathBuf::from(value())),
             _ => o.mesh = PathBuf::from(a),
         }
@@ -115,12 +136,21 @@ fn cpu_seconds() -> f64 {
 
 fn main() {
     let o = options();
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(o.threads)
+        .build_global()
+        .expect("thread pool");
     let mesh = verbss::io::read(&o.mesh).expect("mesh");
     let dim = mesh.dim;
     let mut settings = Settings::new(o.steps);
     settings.solve.tolerance = o.tolerance;
     settings.solve.threads = o.threads;
     settings.solve.accel = o.accel;
+    settings.reference = o.reference;
+    settings.predictor = o.predictor;
+    if o.robust {
+        settings.robust = Robust::recommended();
+    }
     let attachment = Attachment {
         groups: vec![o.moving.clone()],
         motion: Motion::Translation {
@@ -159,9 +189,14 @@ fn main() {
     }
     let roles = deformer.roles().to_vec();
     let mut engine = Engine::new(&mesh, &roles, &[]).expect("engine");
+    engine.set_stiffness(deformer.stiffness().to_vec());
     let mut errors = Vec::new();
     for (n, before, after) in &saved {
-        let increment: Vec<f64> = after.iter().zip(before).map(|(a, b)| a - b).collect();
+        let origin = match o.reference {
+            Reference::Updated => before,
+            Reference::Fixed => &mesh.coords,
+        };
+        let increment: Vec<f64> = after.iter().zip(origin).map(|(a, b)| a - b).collect();
         let mut reference = vec![0.0; increment.len()];
         for (i, role) in roles.iter().enumerate() {
             if *role != NodeRole::Free {
@@ -179,7 +214,7 @@ fn main() {
             p.accel = Accel::Amg;
             p.tolerance = 1e-13;
         }
-        engine.solve(before, &mut reference, &p).expect("reference");
+        engine.solve(origin, &mut reference, &p).expect("reference");
         let diff: f64 = increment
             .iter()
             .zip(&reference)
@@ -200,7 +235,7 @@ fn main() {
     let last = steps.last();
     println!(
         "{{\"mesh\": {:?}, \"nodes\": {}, \"cells\": {}, \"unknown_nodes\": {unknown}, \
-         \"threads\": {}, \"accel\": {:?}, \"tolerance\": {:e}, \"steps_done\": {}, \
+         \"threads\": {}, \"accel\": {:?}, \"robust\": {}, \"reference\": {:?}, \"predictor\": {:?}, \"tolerance\": {:e}, \"steps_done\": {}, \
          \"failure\": {}, \"seconds\": [{}], \"cpu_seconds\": [{}], \"solve_seconds\": [{}], \"form_seconds\": [{}], \"iterations\": [{}], \
          \"peak_rss_bytes\": {peak}, \"bytes_per_node\": {:.1}, \"min_quality\": {}, \
          \"inverted\": {}, \"true_error\": [{}]}}",
@@ -209,6 +244,9 @@ fn main() {
         mesh.cell_count(),
         o.threads,
         format!("{:?}", o.accel).to_lowercase(),
+        o.robust,
+        format!("{:?}", o.reference).to_lowercase(),
+        format!("{:?}", o.predictor).to_lowercase(),
         o.tolerance,
         steps.len(),
         failure.map_or("null".into(), |f| format!("{f:?}")),

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use crate::deform::{Reference, Settings};
+use crate::deform::{Predictor, Reference, Settings};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Motion, PositionSource};
@@ -104,6 +104,14 @@ enum AccelName {
 
 #[derive(Deserialize, Default, Clone, Copy)]
 #[serde(rename_all = "kebab-case")]
+enum PredictorName {
+    #[default]
+    Previous,
+    Linear,
+}
+
+#[derive(Deserialize, Default, Clone, Copy)]
+#[serde(rename_all = "kebab-case")]
 enum SolverName {
     #[default]
     Sor,
@@ -127,6 +135,8 @@ struct SolverTable {
     rigid_layer: Option<LayerSpec>,
     substeps: Option<u32>,
     stiffening: Option<f64>,
+    #[serde(default)]
+    predictor: PredictorName,
 }
 
 /// `rigid_layer = "off" | "auto" | THICKNESS`.
@@ -403,6 +413,10 @@ impl Case {
                 },
                 solve,
                 robust,
+                predictor: match file.solver.predictor {
+                    PredictorName::Previous => Predictor::Previous,
+                    PredictorName::Linear => Predictor::Linear,
+                },
             },
             output: Output {
                 dir: file.output.dir.map(|d| base.join(d)),

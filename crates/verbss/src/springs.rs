@@ -22,9 +22,11 @@
 //! right-hand side, once per solve.
 
 use crate::error::{Error, Result};
+use rayon::prelude::*;
+
 use crate::geometry::{
-    add_outer, nearest_on_quad, nearest_on_segment, nearest_on_triangle, norm, packed_len, point,
-    sub,
+    add_outer, morton_keys, nearest_on_quad, nearest_on_segment, nearest_on_triangle, norm,
+    packed_len, point, sub,
 };
 use crate::mesh::{Cells, Mesh};
 use crate::topology::{self, Csr};
@@ -59,10 +61,19 @@ pub struct Connectivity {
     /// scaled by `(φ_i + φ_j)/2`, the ball-vertex springs of a cell by the
     /// mean `φ` of its nodes. Scaling keeps `Σ_j B_ij = K_ii`.
     pub stiffness: Vec<f64>,
+    /// Each node's Z-order key ([`crate::geometry::morton_keys`] of the
+    /// input coordinates): rows are assembled in this order, so the cells
+    /// and coordinates they read stay in cache (empty: in the given order).
+    pub locality: Vec<u64>,
 }
 
 impl Connectivity {
     /// Derives the incidence, coupling graph and edge graph of `mesh`.
+    ///
+    /// The cells are stored along a Z-order curve of their centroids
+    /// ([`crate::geometry::morton_keys`]), so that the cells of nearby nodes
+    /// lie close together in memory; each node's incident cells keep the
+    /// file's order, so sums over them are the same as in the file's order.
     pub fn new(mesh: &Mesh) -> Connectivity {
         let n = mesh.node_count();
         let edges = topology::edges(&mesh.cells);
@@ -72,17 +83,52 @@ impl Connectivity {
                 .iter()
                 .flat_map(|&[a, b]| [(a, b), (b, a)].into_iter()),
         );
+        let by_curve = curve_order(mesh);
+        let mut rank = vec![0; by_curve.len()];
+        let mut cells = Cells::new();
+        for (r, &c) in by_curve.iter().enumerate() {
+            rank[c] = r;
+            cells.push(mesh.cells.kinds[c], mesh.cells.cell(c));
+        }
+        let mut node_cells = topology::node_cells(&mesh.cells, n);
+        for c in &mut node_cells.targets {
+            *c = rank[*c];
+        }
         Connectivity {
             dim: mesh.dim,
-            node_cells: topology::node_cells(&mesh.cells, n),
+            node_cells,
             graph: topology::node_graph(&mesh.cells, n),
             edge_graph,
-            cells: mesh.cells.clone(),
+            cells,
             node_tags: mesh.node_tags.clone(),
-            cell_tags: mesh.cell_tags.clone(),
+            cell_tags: by_curve.iter().map(|&c| mesh.cell_tags[c]).collect(),
             stiffness: Vec::new(),
+            locality: match mesh.dim {
+                2 => morton_keys::<2>(&mesh.coords),
+                _ => morton_keys::<3>(&mesh.coords),
+            },
         }
     }
+}
+
+/// The cells of `mesh` sorted by the Z-order key of their centroids.
+fn curve_order(mesh: &Mesh) -> Vec<usize> {
+    let d = mesh.dim;
+    let mut centroids = Vec::with_capacity(d * mesh.cell_count());
+    for c in 0..mesh.cell_count() {
+        let nodes = mesh.cells.cell(c);
+        for k in 0..d {
+            let sum: f64 = nodes.iter().map(|&v| mesh.coords[d * v + k]).sum();
+            centroids.push(sum / nodes.len() as f64);
+        }
+    }
+    let keys = match d {
+        2 => morton_keys::<2>(&centroids),
+        _ => morton_keys::<3>(&centroids),
+    };
+    let mut order: Vec<usize> = (0..mesh.cell_count()).collect();
+    order.sort_by_key(|&c| (keys[c], c));
+    order
 }
 
 /// The node-block system of the unknown nodes, one row per position.
@@ -110,7 +156,9 @@ pub struct NodeBlocks {
 
 /// Assembles the rows of the nodes `order` (position → node) at coordinates
 /// `coords`; `position[j]` is node `j`'s position, or `u32::MAX` for a
-/// prescribed node. Blocks that are exactly zero are left out.
+/// prescribed node. Blocks that are exactly zero are left out. The rows are
+/// assembled in parallel on the calling rayon pool; the result does not
+/// depend on the number of threads.
 ///
 /// Fails with [`Error::InvalidMesh`] naming the node (by its file number) when
 /// an edge has zero length or a node lies on a facet of its ball (a spring of
@@ -131,10 +179,64 @@ pub fn assemble(
     }
 }
 
+/// Rows are assembled in parallel chunks of this many on the calling rayon
+/// pool; each row's sums do not depend on the chunks.
+const ROWS: usize = 2048;
+
 fn assemble_d<const D: usize>(
     conn: &Connectivity,
     coords: &[f64],
     order: &[usize],
+    position: &[u32],
+    springs: Springs,
+) -> Result<NodeBlocks> {
+    let mut visit: Vec<usize> = order.to_vec();
+    if !conn.locality.is_empty() {
+        visit.sort_by_key(|&i| (conn.locality[i], i));
+    }
+    let pieces = visit
+        .par_chunks(ROWS)
+        .map(|rows| assemble_rows::<D>(conn, coords, rows, position, springs))
+        .collect::<Result<Vec<NodeBlocks>>>()?;
+    let s = packed_len(D);
+    let mut at = vec![(0, 0); order.len()];
+    for (k, piece) in pieces.iter().enumerate() {
+        for r in 0..piece.offsets.len() - 1 {
+            at[position[visit[ROWS * k + r]] as usize] = (k, r);
+        }
+    }
+    let mut out = NodeBlocks {
+        diag: Vec::with_capacity(s * order.len()),
+        offsets: Vec::with_capacity(order.len() + 1),
+        neighbours: Vec::with_capacity(pieces.iter().map(|p| p.neighbours.len()).sum()),
+        blocks: Vec::with_capacity(pieces.iter().map(|p| p.blocks.len()).sum()),
+        fixed_offsets: Vec::with_capacity(order.len() + 1),
+        fixed_nodes: Vec::with_capacity(pieces.iter().map(|p| p.fixed_nodes.len()).sum()),
+        fixed_blocks: Vec::with_capacity(pieces.iter().map(|p| p.fixed_blocks.len()).sum()),
+    };
+    out.offsets.push(0);
+    out.fixed_offsets.push(0);
+    for &(k, r) in &at {
+        let p = &pieces[k];
+        let (a, b) = (p.offsets[r], p.offsets[r + 1]);
+        let (fa, fb) = (p.fixed_offsets[r], p.fixed_offsets[r + 1]);
+        out.diag.extend_from_slice(&p.diag[s * r..s * (r + 1)]);
+        out.neighbours.extend_from_slice(&p.neighbours[a..b]);
+        out.blocks.extend_from_slice(&p.blocks[s * a..s * b]);
+        out.offsets.push(out.neighbours.len());
+        out.fixed_nodes.extend_from_slice(&p.fixed_nodes[fa..fb]);
+        out.fixed_blocks
+            .extend_from_slice(&p.fixed_blocks[s * fa..s * fb]);
+        out.fixed_offsets.push(out.fixed_nodes.len());
+    }
+    Ok(out)
+}
+
+/// Assembles the rows of the nodes `rows` (see [`assemble`]).
+fn assemble_rows<const D: usize>(
+    conn: &Connectivity,
+    coords: &[f64],
+    rows: &[usize],
     position: &[u32],
     springs: Springs,
 ) -> Result<NodeBlocks> {
@@ -144,14 +246,15 @@ fn assemble_d<const D: usize>(
         fixed_offsets: vec![0],
         ..NodeBlocks::default()
     };
-    out.diag.reserve(s * order.len());
-    let widest = (0..conn.graph.rows())
-        .map(|i| conn.graph.row(i).len())
+    out.diag.reserve(s * rows.len());
+    let widest = rows
+        .iter()
+        .map(|&i| conn.graph.row(i).len())
         .max()
         .unwrap_or(0);
     let mut acc = vec![0.0; s * widest];
     let phi = |j: usize| conn.stiffness.get(j).copied().unwrap_or(1.0);
-    for &i in order {
+    for &i in rows {
         let row = conn.graph.row(i);
         let acc = &mut acc[..s * row.len()];
         acc.fill(0.0);

@@ -343,6 +343,35 @@ pub fn inversions(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<Inversio
         .collect()
 }
 
+/// [`qualities`] and [`inversions`] together, in one pass over the cells.
+///
+/// # Panics
+/// As [`qualities`].
+pub fn qualities_and_inversions(
+    mesh: &Mesh,
+    coords: &[f64],
+    reference: &[i8],
+) -> (Vec<f64>, Vec<Inversion>) {
+    check(mesh, coords, Some(reference));
+    let cells: Vec<(f64, Corner)> = by_dim!(mesh.dim, D => per_cell(mesh, |c, kind, nodes| {
+        let p = gather::<D>(coords, nodes);
+        let s = f64::from(reference[c]);
+        let w = worst(kind.table(), &p, s);
+        (measure(kind, &p, s, &w), w)
+    }));
+    let inverted = cells
+        .iter()
+        .enumerate()
+        .filter(|(_, (_, w))| w.inverted())
+        .map(|(cell, (_, w))| Inversion {
+            cell,
+            centroid: centroid(mesh, coords, cell),
+            volume: w.volume,
+        })
+        .collect();
+    (cells.into_iter().map(|(q, _)| q).collect(), inverted)
+}
+
 /// The mean of cell `cell`'s nodes on `coords` (`mesh.dim` numbers).
 pub fn centroid(mesh: &Mesh, coords: &[f64], cell: usize) -> Vec<f64> {
     let nodes = mesh.cells.cell(cell);

@@ -246,10 +246,9 @@ pub struct Engine {
     built: Option<Built>,
     pool: Option<(usize, rayon::ThreadPool)>,
     accel: accel::AccelState,
-    /// Z-order keys of the input mesh's nodes ([`morton_keys`]): the sweep
-    /// order within a colour, fixed per mesh so that the order (and a kept
-    /// multigrid hierarchy) does not change as the nodes move.
-    locality: Vec<u64>,
+    /// The last layout and the moving nodes it was ordered from: a rebuild
+    /// with the same moving nodes (every step of a run) reuses it.
+    layout: Option<(Vec<usize>, Layout)>,
 }
 
 /// What one reference configuration and method need: the system and scratch.
@@ -289,6 +288,7 @@ struct Scratch {
 }
 
 /// The numbering of the unknowns for the sweeps.
+#[derive(Clone)]
 pub(crate) struct Layout {
     /// Position → node.
     pub(crate) order: Vec<usize>,
@@ -419,10 +419,7 @@ impl Engine {
             built: None,
             pool: None,
             accel,
-            locality: match dim {
-                2 => morton_keys::<2>(&mesh.coords),
-                _ => morton_keys::<3>(&mesh.coords),
-            },
+            layout: None,
         })
     }
 
@@ -457,10 +454,13 @@ impl Engine {
             .is_some_and(|b| b.method == params.method && b.coords == coords);
         if !reuse {
             self.built = None;
-            self.built = Some(match self.conn.dim {
-                2 => self.build::<2>(coords, displacement, params.method)?,
-                _ => self.build::<3>(coords, displacement, params.method)?,
+            let (_, pool) = self.pool.take().expect("started above");
+            let built = pool.install(|| match self.conn.dim {
+                2 => self.build::<2>(coords, displacement, params.method),
+                _ => self.build::<3>(coords, displacement, params.method),
             });
+            self.pool = Some((threads, pool));
+            self.built = Some(built?);
         }
         let Engine {
             conn,
@@ -590,12 +590,20 @@ impl Engine {
 
     /// Orders the unknowns, assembles the springs and prepares the diagonal.
     fn build<const D: usize>(
-        &self,
+        &mut self,
         coords: &[f64],
         displacement: &[f64],
         method: Method,
     ) -> Result<Built> {
-        let layout = self.layout::<D>(displacement);
+        let seeds = self.moving::<D>(displacement);
+        let layout = match &self.layout {
+            Some((kept, layout)) if *kept == seeds => layout.clone(),
+            _ => {
+                let layout = self.layout::<D>(&seeds);
+                self.layout = Some((seeds, layout.clone()));
+                layout
+            }
+        };
         let system = match method {
             Method::Laplacian => {
                 System::Laplacian(laplacian::Weights::new::<D>(&self.conn, coords, &layout)?)
@@ -677,31 +685,39 @@ impl Engine {
         Ok(kn)
     }
 
-    /// Orders the unknowns by breadth-first layers from the moving boundary,
-    /// colours them greedily in that order and numbers them colour by colour,
-    /// along the Z-order curve of the input mesh ([`morton_keys`]) within a
-    /// colour.
-    fn layout<const D: usize>(&self, displacement: &[f64]) -> Layout {
+    /// The seeds of the breadth-first order: the prescribed nodes with a
+    /// nonzero prescribed displacement (all prescribed nodes when none moves).
+    fn moving<const D: usize>(&self, displacement: &[f64]) -> Vec<usize> {
         let n = self.roles.len();
         let moving = |i: usize| match self.roles[i] {
             NodeRole::Free => false,
             NodeRole::Fixed => point::<D>(displacement, i).iter().any(|&v| v != 0.0),
             NodeRole::Slide(k) => self.normal_component::<D>(displacement, i, k) != 0.0,
         };
-        let mut seeds: Vec<usize> = (0..n).filter(|&i| moving(i)).collect();
+        let seeds: Vec<usize> = (0..n).filter(|&i| moving(i)).collect();
         if seeds.is_empty() {
-            seeds = (0..n)
+            (0..n)
                 .filter(|&i| self.roles[i] != NodeRole::Free)
-                .collect();
+                .collect()
+        } else {
+            seeds
         }
-        let layer = topology::bfs_layers(&self.conn.graph, &seeds);
+    }
+
+    /// Orders the unknowns by breadth-first layers from the moving boundary,
+    /// colours them greedily in that order and numbers them colour by colour,
+    /// along the Z-order curve of the input mesh (`Connectivity::locality`) within a
+    /// colour.
+    fn layout<const D: usize>(&self, seeds: &[usize]) -> Layout {
+        let n = self.roles.len();
+        let layer = topology::bfs_layers(&self.conn.graph, seeds);
         let mut by_layer: Vec<usize> = (0..n)
             .filter(|&i| self.roles[i] != NodeRole::Fixed)
             .collect();
         by_layer.sort_by_key(|&i| (layer[i], i));
         let (colour, colours) = topology::colour(&self.conn.graph, &by_layer);
         let mut order = by_layer;
-        order.sort_by_key(|&i| (colour[i], self.locality[i]));
+        order.sort_by_key(|&i| (colour[i], self.conn.locality[i]));
         let mut colour_starts = vec![0usize; colours as usize + 1];
         for &i in &order {
             colour_starts[colour[i] as usize + 1] += 1;
@@ -742,44 +758,6 @@ impl Engine {
         let u = point::<D>(displacement, i);
         (0..D).map(|c| self.normals[k][c] * u[c]).sum()
     }
-}
-
-/// Each node's position on a Z-order (Morton) curve through the bounding box
-/// of `coords`: the coordinates scaled to `⌊2²¹ (x − x_min) / (x_max − x_min)⌋`
-/// per axis, their bits interleaved (axis 0 lowest). Nearby keys are nearby
-/// points.
-fn morton_keys<const D: usize>(coords: &[f64]) -> Vec<u64> {
-    const BITS: u32 = 21;
-    let mut lo = [f64::INFINITY; D];
-    let mut hi = [f64::NEG_INFINITY; D];
-    for p in coords.chunks_exact(D) {
-        for k in 0..D {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let cells = f64::from(1u32 << BITS);
-    let scale: [f64; D] = std::array::from_fn(|k| {
-        let span = hi[k] - lo[k];
-        if span > 0.0 {
-            (cells - 1.0) / span
-        } else {
-            0.0
-        }
-    });
-    coords
-        .chunks_exact(D)
-        .map(|p| {
-            let mut key = 0u64;
-            for k in 0..D {
-                let c = ((p[k] - lo[k]) * scale[k]) as u64;
-                for b in 0..BITS {
-                    key |= ((c >> b) & 1) << (D as u32 * b + k as u32);
-                }
-            }
-            key
-        })
-        .collect()
 }
 
 /// The largest prescribed displacement: `|u_i|` of fixed nodes, `|n·u_i|` of
