@@ -1,15 +1,16 @@
 #!/usr/bin/env python3
 """verbss against OpenFOAM's moveDynamicMesh on the sphere-in-a-cube series.
 
-    python3 bench/compare.py [--sizes 1.0,0.5,0.35,0.25,0.18] [--work DIR]
+    python3 bench/compare.py [--sizes 1.4,0.7,0.45,0.32,0.22] [--work DIR]
                              [--threads 1,2] [--variants REF:ACCEL:PREDICTOR,…]
                              [--json OUT]
     python3 bench/compare.py --series-2d  # the paper's 2D rectangles instead
     python3 bench/compare.py --smoke      # seconds: a tiny mesh, 2 steps
 
 Per mesh (bench/sphere_cube.py: a sphere of radius 5 in the cube
-[-50, 50]^3, element size growing from --h-sphere on the sphere to
-12 x that at distance 45), the sphere moves 16 units along x in 16 steps:
+[-70, 70]^3, element size growing from --h-sphere on the sphere to
+12 x that at distance 65, the walls), the sphere moves 16 units along x in
+16 steps:
 
 * verbss (crates/verbss/examples/motion_bench.rs, the stepper of
   `verbss deform`, the paper's method, eq.-8 tolerance 1e-6 relative), per
@@ -34,7 +35,9 @@ Per mesh (bench/sphere_cube.py: a sphere of radius 5 in the cube
 Prints a Markdown table and writes every number to --json. The 16 units
 are the VerBSS paper's §5.1 motion; in the paper's cube of half width 25
 the finer meshes' elements between the sphere and the wall (compressed
-from 20 to 4 units) invert, hence the cube of half width 50.
+from 20 to 4 units) invert, and in a cube of half width 50 (45 → 29 units)
+the large elements next to the wall ahead of the sphere of the 2.1M-tet
+mesh invert at step 13 (updated reference) or 15 (fixed), hence 70.
 """
 import argparse
 import json
@@ -50,6 +53,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 STEPS = 16
 TRAVEL = 16.0
+# The cube's half width: the sphere (radius 5) moves 16 units towards the
+# wall at x = BOX; the element size grows from h on the sphere to 12 h at
+# the walls.
+BOX = 70
 
 
 def run(cmd, **kw):
@@ -67,8 +74,8 @@ def mesh_for(work, h):
     path = work / f"sphere_h{h}.msh"
     if not path.exists():
         run([sys.executable, str(ROOT / "bench" / "sphere_cube.py"), str(path),
-             "--h-sphere", str(h), "--h-far", str(12 * h), "--box", "50",
-             "--dist-max", "45"])
+             "--h-sphere", str(h), "--h-far", str(12 * h), "--box", str(BOX),
+             "--dist-max", str(BOX - 5)])
     return path
 
 
@@ -270,7 +277,7 @@ def openfoam_run(bins, mesh, work, steps, apps):
 
 def build(debug):
     profile = [] if debug else ["--release"]
-    subprocess.run(["cargo", "build", "-q"] + profile + ["-p", "verbss", "--example",
+    subprocess.run([os.environ.get("CARGO", "cargo"), "build", "-q"] + profile + ["-p", "verbss", "--example",
                     "motion_bench", "-p", "verbss-cli"], check=True, cwd=ROOT)
     target = ROOT / "target" / ("debug" if debug else "release")
     return {"motion_bench": str(target / "examples" / "motion_bench"),
@@ -383,7 +390,7 @@ def plot(results, path):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--sizes", default="1.0,0.5,0.35,0.25,0.18")
+    ap.add_argument("--sizes", default="1.4,0.7,0.45,0.32,0.22")
     ap.add_argument("--work", default="/tmp/verbss-bench")
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--variants",
@@ -417,7 +424,7 @@ def main():
     steps = 2 if a.smoke else STEPS
     bins = build(a.smoke)
     if a.series_2d:
-        meshes = [(rectangle_mesh(n), None) for n in RECTANGLES]
+        meshes = [(rectangle_mesh(n), None) for n in RECTANGLES[:1 if a.smoke else None]]
         motion = ("body", f"0,{RECTANGLE_TRAVEL * steps / STEPS}")
     else:
         meshes = [(mesh_for(work, h), h) for h in sizes]

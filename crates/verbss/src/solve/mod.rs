@@ -345,12 +345,13 @@ pub fn coupled<const D: usize>(
     work: &[f64],
 ) -> [f64; D] {
     let s = packed_len(D);
+    let (a, b) = (blocks.offsets[p], blocks.offsets[p + 1]);
     let mut r = point::<D>(constant, p);
-    for e in blocks.offsets[p]..blocks.offsets[p + 1] {
-        let v = packed_mul::<D>(
-            &blocks.blocks[s * e..],
-            &point(work, blocks.neighbours[e] as usize),
-        );
+    for (&j, block) in blocks.neighbours[a..b]
+        .iter()
+        .zip(blocks.blocks[s * a..s * b].chunks_exact(s))
+    {
+        let v = packed_mul::<D>(block, &point(work, j as usize));
         for k in 0..D {
             r[k] += v[k];
         }
