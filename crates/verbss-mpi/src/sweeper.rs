@@ -131,10 +131,7 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
             node_tags: part.node_tags.clone(),
             cell_tags: part.cell_tags.clone(),
             stiffness: Vec::new(),
-            locality: match dim {
-                2 => morton_keys::<2>(&part.coords),
-                _ => morton_keys::<3>(&part.coords),
-            },
+            locality: morton_keys(dim, &part.coords),
         };
         let halo = Halo::new(comm, &part.global, &part.owner);
         Ok(Sweeper {

@@ -167,11 +167,13 @@ pub struct Deformer {
     /// The last solution per unit step fraction (increment, or total
     /// displacement with the fixed reference): the next step's guess.
     guess: Vec<f64>,
-    /// The solution before [`Deformer::guess`], once there is one
-    /// (for [`Predictor::Linear`]).
+    /// The solution before [`Deformer::guess`], kept for
+    /// [`Predictor::Linear`] once there is one.
     earlier: Option<Vec<f64>>,
-    /// Whether [`Deformer::guess`] is a solved step (and not the start's zeros).
-    has_solved: bool,
+    /// Whether [`Deformer::guess`] is a solution: always with the fixed
+    /// reference (the input mesh's `u = 0`), after the first step with the
+    /// updated one (whose start has no increment).
+    guess_is_solution: bool,
     current: Snapshot,
     failed: Option<Snapshot>,
 }
@@ -230,7 +232,7 @@ impl Deformer {
         Ok(Deformer {
             guess: vec![0.0; mesh.coords.len()],
             earlier: None,
-            has_solved: false,
+            guess_is_solution: settings.reference == Reference::Fixed,
             current: Snapshot {
                 coords: mesh.coords.clone(),
                 inverted: vec![false; quality.len()],
@@ -384,10 +386,10 @@ impl Deformer {
             let fraction = end - done;
             let solved = u.iter().map(|v| v / fraction).collect();
             let kept = std::mem::replace(&mut self.guess, solved);
-            if self.settings.reference == Reference::Fixed || self.has_solved {
+            if self.settings.predictor == Predictor::Linear && self.guess_is_solution {
                 self.earlier = Some(kept);
             }
-            self.has_solved = true;
+            self.guess_is_solution = true;
             coords = trial;
             done = end;
             if done >= 1.0 {
@@ -460,14 +462,14 @@ impl Deformer {
             Reference::Updated => coords,
             Reference::Fixed => &self.mesh.coords,
         };
-        let mut u: Vec<f64> = match (&self.earlier, self.settings.predictor) {
-            (Some(earlier), Predictor::Linear) => self
+        let mut u: Vec<f64> = match &self.earlier {
+            Some(earlier) => self
                 .guess
                 .iter()
                 .zip(earlier)
                 .map(|(a, b)| (2.0 * a - b) * fraction)
                 .collect(),
-            _ => self.guess.iter().map(|v| v * fraction).collect(),
+            None => self.guess.iter().map(|v| v * fraction).collect(),
         };
         for (i, role) in self.roles.iter().enumerate() {
             let ui = &mut u[dim * i..dim * (i + 1)];

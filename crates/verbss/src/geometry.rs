@@ -337,21 +337,21 @@ pub fn normal_frame<const D: usize>(n: &[f64; D]) -> [[f64; D]; D] {
 }
 
 /// Each node's position on a Z-order (Morton) curve through the bounding box
-/// of `coords`: the coordinates scaled to `⌊2²¹ (x − x_min) / (x_max − x_min)⌋`
-/// per axis, their bits interleaved (axis 0 lowest). Nearby keys are nearby
-/// points.
-pub fn morton_keys<const D: usize>(coords: &[f64]) -> Vec<u64> {
+/// of `coords` (`dim` ≤ 3 numbers per point): the coordinates scaled to
+/// `⌊2²¹ (x − x_min) / (x_max − x_min)⌋` per axis, their bits interleaved
+/// (axis 0 lowest). Nearby keys are nearby points.
+pub fn morton_keys(dim: usize, coords: &[f64]) -> Vec<u64> {
     const BITS: u32 = 21;
-    let mut lo = [f64::INFINITY; D];
-    let mut hi = [f64::NEG_INFINITY; D];
-    for p in coords.chunks_exact(D) {
-        for k in 0..D {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in coords.chunks_exact(dim) {
+        for k in 0..dim {
             lo[k] = lo[k].min(p[k]);
             hi[k] = hi[k].max(p[k]);
         }
     }
     let cells = f64::from(1u32 << BITS);
-    let scale: [f64; D] = std::array::from_fn(|k| {
+    let scale: [f64; 3] = std::array::from_fn(|k| {
         let span = hi[k] - lo[k];
         if span > 0.0 {
             (cells - 1.0) / span
@@ -360,13 +360,13 @@ pub fn morton_keys<const D: usize>(coords: &[f64]) -> Vec<u64> {
         }
     });
     coords
-        .chunks_exact(D)
+        .chunks_exact(dim)
         .map(|p| {
             let mut key = 0u64;
-            for k in 0..D {
+            for k in 0..dim {
                 let c = ((p[k] - lo[k]) * scale[k]) as u64;
                 for b in 0..BITS {
-                    key |= ((c >> b) & 1) << (D as u32 * b + k as u32);
+                    key |= ((c >> b) & 1) << (dim as u32 * b + k as u32);
                 }
             }
             key

@@ -103,10 +103,7 @@ impl Connectivity {
             node_tags: mesh.node_tags.clone(),
             cell_tags: by_curve.iter().map(|&c| mesh.cell_tags[c]).collect(),
             stiffness: Vec::new(),
-            locality: match mesh.dim {
-                2 => morton_keys::<2>(&mesh.coords),
-                _ => morton_keys::<3>(&mesh.coords),
-            },
+            locality: morton_keys(mesh.dim, &mesh.coords),
         }
     }
 }
@@ -122,10 +119,7 @@ fn curve_order(mesh: &Mesh) -> Vec<usize> {
             centroids.push(sum / nodes.len() as f64);
         }
     }
-    let keys = match d {
-        2 => morton_keys::<2>(&centroids),
-        _ => morton_keys::<3>(&centroids),
-    };
+    let keys = morton_keys(d, &centroids);
     let mut order: Vec<usize> = (0..mesh.cell_count()).collect();
     order.sort_by_key(|&c| (keys[c], c));
     order

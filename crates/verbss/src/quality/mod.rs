@@ -331,6 +331,12 @@ pub fn inversions(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<Inversio
     let worst = by_dim!(mesh.dim, D => per_cell(mesh, |c, kind, nodes| {
         worst_corner::<D>(kind, nodes, coords, reference[c])
     }));
+    inverted_of(mesh, coords, &worst)
+}
+
+/// The inverted cells among those whose worst corners are `worst` (one per
+/// cell, in cell order), with their centroids on `coords`.
+fn inverted_of(mesh: &Mesh, coords: &[f64], worst: &[Corner]) -> Vec<Inversion> {
     worst
         .iter()
         .enumerate()
@@ -359,17 +365,9 @@ pub fn qualities_and_inversions(
         let w = worst(kind.table(), &p, s);
         (measure(kind, &p, s, &w), w)
     }));
-    let inverted = cells
-        .iter()
-        .enumerate()
-        .filter(|(_, (_, w))| w.inverted())
-        .map(|(cell, (_, w))| Inversion {
-            cell,
-            centroid: centroid(mesh, coords, cell),
-            volume: w.volume,
-        })
-        .collect();
-    (cells.into_iter().map(|(q, _)| q).collect(), inverted)
+    let (quality, worst): (Vec<f64>, Vec<Corner>) = cells.into_iter().unzip();
+    let inverted = inverted_of(mesh, coords, &worst);
+    (quality, inverted)
 }
 
 /// The mean of cell `cell`'s nodes on `coords` (`mesh.dim` numbers).
