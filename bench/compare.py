@@ -275,13 +275,21 @@ def openfoam_run(bins, mesh, work, steps, apps):
     return out
 
 
-def build(debug):
-    profile = [] if debug else ["--release"]
-    subprocess.run([os.environ.get("CARGO", "cargo"), "build", "-q"] + profile + ["-p", "verbss", "--example",
-                    "motion_bench", "-p", "verbss-cli"], check=True, cwd=ROOT)
-    target = ROOT / "target" / ("debug" if debug else "release")
-    return {"motion_bench": str(target / "examples" / "motion_bench"),
-            "verbss": str(target / "verbss")}
+def build(debug, bin_dir=None):
+    """The binaries: built here (release, or debug for --smoke), or those
+    already in `bin_dir` (a cargo profile folder such as target/debug)."""
+    if bin_dir is None:
+        profile = [] if debug else ["--release"]
+        subprocess.run([os.environ.get("CARGO", "cargo"), "build", "-q"] + profile
+                       + ["-p", "verbss", "--example", "motion_bench", "-p", "verbss-cli"],
+                       check=True, cwd=ROOT)
+        bin_dir = ROOT / "target" / ("debug" if debug else "release")
+    bins = {"motion_bench": Path(bin_dir) / "examples" / "motion_bench",
+            "verbss": Path(bin_dir) / "verbss"}
+    for name, path in bins.items():
+        if not path.is_file():
+            sys.exit(f"compare.py: {name} not found at {path} (build it, or leave out --bin-dir)")
+    return {name: str(path) for name, path in bins.items()}
 
 
 def mean(x):
@@ -392,6 +400,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--sizes", default="1.4,0.7,0.45,0.32,0.22")
     ap.add_argument("--work", default="/tmp/verbss-bench")
+    ap.add_argument("--bin-dir", default=None,
+                    help="use the verbss and examples/motion_bench binaries in this cargo "
+                         "profile folder (e.g. target/debug) instead of building them")
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--variants",
                     default="updated:none:previous,updated:none:linear,updated:amg:linear,"
@@ -422,7 +433,7 @@ def main():
     work.mkdir(parents=True, exist_ok=True)
     sizes = [2.5] if a.smoke else [float(h) for h in a.sizes.split(",")]
     steps = 2 if a.smoke else STEPS
-    bins = build(a.smoke)
+    bins = build(a.smoke, a.bin_dir)
     if a.series_2d:
         meshes = [(rectangle_mesh(n), None) for n in RECTANGLES[:1 if a.smoke else None]]
         motion = ("body", f"0,{RECTANGLE_TRAVEL * steps / STEPS}")

@@ -1,8 +1,12 @@
 //! The benchmark scripts still work: `bench/compare.py --smoke` (a tiny
 //! sphere-in-a-cube mesh and the smallest of the paper's 2D rectangles, two
-//! steps of every verbss variant on 1 and 2 threads, debug build, without
-//! OpenFOAM). Needs python3 with gmsh (CI installs it); elsewhere, without
-//! them, the test says so and checks nothing.
+//! steps of every verbss variant on 1 and 2 threads, without OpenFOAM).
+//! It runs the binaries this `cargo test` built (`--bin-dir`: the
+//! `motion_bench` example of this crate and the `verbss` binary, which
+//! `cargo test --workspace` builds for the CLI's tests), so it compiles
+//! nothing itself. Needs python3 with gmsh (CI installs it); elsewhere,
+//! without them or without the `verbss` binary, the test says so and checks
+//! nothing.
 
 use std::path::Path;
 use std::process::Command;
@@ -25,12 +29,30 @@ fn compare_script_runs_in_smoke_mode() {
         return;
     }
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let exe = std::env::current_exe().expect("the test's own path");
+    let bin_dir = exe
+        .parent()
+        .and_then(Path::parent)
+        .expect("the test runs from <target>/<profile>/deps");
+    if !bin_dir.join("verbss").is_file() {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "CI runs cargo test --workspace, which builds the verbss binary"
+        );
+        eprintln!(
+            "skipped: no verbss binary in {} (cargo test --workspace builds it)",
+            bin_dir.display()
+        );
+        return;
+    }
     let work = std::env::temp_dir().join(format!("verbss-bench-smoke-{}", std::process::id()));
     for extra in [&[][..], &["--series-2d"][..]] {
         let out = Command::new("python3")
             .arg(root.join("bench/compare.py"))
             .args(["--smoke", "--no-openfoam", "--work"])
             .arg(&work)
+            .arg("--bin-dir")
+            .arg(bin_dir)
             .args(extra)
             .current_dir(&root)
             .output()
