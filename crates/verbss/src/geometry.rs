@@ -29,7 +29,7 @@ pub fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
 }
 
 /// The point `p` of a flat coordinate array with dimension `D`.
-#[inline]
+#[inline(always)]
 pub fn point<const D: usize>(coords: &[f64], i: usize) -> [f64; D] {
     std::array::from_fn(|k| coords[D * i + k])
 }
@@ -64,14 +64,14 @@ pub fn corner_jacobian<const D: usize>(
 }
 
 /// Number of stored entries of a packed symmetric `D×D` matrix: `D(D+1)/2`.
-#[inline]
+#[inline(always)]
 pub const fn packed_len(d: usize) -> usize {
     d * (d + 1) / 2
 }
 
 /// Position of entry `(r, c)` in a packed symmetric matrix: the lower triangle
 /// row by row, `[a00, a10, a11]` in 2D, `[a00, a10, a11, a20, a21, a22]` in 3D.
-#[inline]
+#[inline(always)]
 pub const fn packed_index(r: usize, c: usize) -> usize {
     if r >= c {
         r * (r + 1) / 2 + c
@@ -91,7 +91,7 @@ pub fn add_outer<const D: usize>(a: &mut [f64], s: f64, n: &[f64; D]) {
 }
 
 /// `A x` for a packed symmetric `A`.
-#[inline]
+#[inline(always)]
 pub fn packed_mul<const D: usize>(a: &[f64], x: &[f64; D]) -> [f64; D] {
     let a = &a[..packed_len(D)];
     std::array::from_fn(|r| (0..D).map(|c| a[packed_index(r, c)] * x[c]).sum())
@@ -130,7 +130,7 @@ pub fn ldlt_factor<const D: usize>(a: &[f64], f: &mut [f64]) -> bool {
 
 /// Solves `A x = b` with the packed LDLᵀ factor of [`ldlt_factor`]:
 /// `L y = b` forward, `z = D⁻¹ y`, `Lᵀ x = z` backward (paper eq. 13).
-#[inline]
+#[inline(always)]
 pub fn ldlt_solve<const D: usize>(f: &[f64], b: &[f64; D]) -> [f64; D] {
     let f = &f[..packed_len(D)];
     let mut x = *b;

@@ -74,6 +74,7 @@ mod bsr;
 mod direct;
 mod gmres;
 mod laplacian;
+mod prefetch;
 mod sor;
 mod verbss;
 pub use self::verbss::relax;
@@ -308,7 +309,7 @@ pub(crate) struct Layout {
 
 impl Layout {
     /// The frame of position `p`, if it slides.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn frame<const D: usize>(&self, p: usize) -> Option<[[f64; D]; D]> {
         let s = self.slide_of[p];
         (s != u32::MAX).then(|| {
@@ -324,20 +325,20 @@ impl Layout {
 }
 
 /// `R v` for a frame with rows `R`.
-#[inline]
+#[inline(always)]
 pub(crate) fn rotate<const D: usize>(r: &[[f64; D]; D], v: &[f64; D]) -> [f64; D] {
     std::array::from_fn(|k| (0..D).map(|l| r[k][l] * v[l]).sum())
 }
 
 /// `Rᵀ a` for a frame with rows `R`.
-#[inline]
+#[inline(always)]
 pub(crate) fn unrotate<const D: usize>(r: &[[f64; D]; D], a: &[f64; D]) -> [f64; D] {
     std::array::from_fn(|l| (0..D).map(|k| r[k][l] * a[k]).sum())
 }
 
 /// `c_p + Σ_j B_pj u_j` over the unknown neighbours of position `p`
 /// (`constant` and `work` hold `D` numbers per position).
-#[inline]
+#[inline(always)]
 pub fn coupled<const D: usize>(
     blocks: &NodeBlocks,
     constant: &[f64],
@@ -347,10 +348,9 @@ pub fn coupled<const D: usize>(
     let s = packed_len(D);
     let (a, b) = (blocks.offsets[p], blocks.offsets[p + 1]);
     let mut r = point::<D>(constant, p);
-    for (&j, block) in blocks.neighbours[a..b]
-        .iter()
-        .zip(blocks.blocks[s * a..s * b].chunks_exact(s))
-    {
+    for (e, block) in (a..b).zip(blocks.blocks[s * a..s * b].chunks_exact(s)) {
+        prefetch::neighbour::<D>(work, &blocks.neighbours, e);
+        let j = blocks.neighbours[e];
         let v = packed_mul::<D>(block, &point(work, j as usize));
         for k in 0..D {
             r[k] += v[k];

@@ -11,7 +11,7 @@ use crate::springs::NodeBlocks;
 
 /// Position `p`'s relaxed block solution and the sum of the absolute changes
 /// of its unknown components. `blocks.diag` holds the LDLᵀ factors.
-#[inline]
+#[inline(always)]
 pub(crate) fn update<const D: usize>(
     blocks: &NodeBlocks,
     layout: &Layout,
@@ -34,7 +34,7 @@ pub(crate) fn update<const D: usize>(
 /// `u_i ← old + ω (K_ii⁻¹ r − old)`, in the tangent frame `frame` (rows
 /// `t₁ … t_{D−1}, n`) for a sliding node, whose normal component stays.
 /// Returns the new value and the sum of the absolute changes.
-#[inline]
+#[inline(always)]
 pub fn relax<const D: usize>(
     factor: &[f64],
     r: &[f64; D],
