@@ -111,7 +111,7 @@ impl Weights {
     ) -> ([f64; D], f64) {
         let mut r = point::<D>(constant, p);
         for e in self.offsets[p]..self.offsets[p + 1] {
-            super::prefetch::neighbour::<D>(work, &self.neighbours, e);
+            super::prefetch::ahead::<D>(work, &self.neighbours, e);
             let u = point::<D>(work, self.neighbours[e] as usize);
             for k in 0..D {
                 r[k] += self.weights[e] * u[k];

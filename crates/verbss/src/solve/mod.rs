@@ -349,9 +349,8 @@ pub fn coupled<const D: usize>(
     let (a, b) = (blocks.offsets[p], blocks.offsets[p + 1]);
     let mut r = point::<D>(constant, p);
     for (e, block) in (a..b).zip(blocks.blocks[s * a..s * b].chunks_exact(s)) {
-        prefetch::neighbour::<D>(work, &blocks.neighbours, e);
-        let j = blocks.neighbours[e];
-        let v = packed_mul::<D>(block, &point(work, j as usize));
+        prefetch::ahead::<D>(work, &blocks.neighbours, e);
+        let v = packed_mul::<D>(block, &point(work, blocks.neighbours[e] as usize));
         for k in 0..D {
             r[k] += v[k];
         }

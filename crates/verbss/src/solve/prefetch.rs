@@ -10,7 +10,8 @@
 // The one `unsafe` of the library: `_mm_prefetch` takes a raw pointer and is
 // declared unsafe, but a prefetch never reads memory as far as the program
 // can observe, cannot fault and is dropped by the processor for an invalid
-// address; the pointer passed is moreover inside `values`.
+// address (the one asked for lies inside the displacements' array whenever
+// the neighbour index is valid, which the read that follows checks).
 #![allow(unsafe_code)]
 
 /// How many couplings ahead of the one being added (in the sweep's order,
@@ -21,22 +22,23 @@ const AHEAD: usize = 40;
 /// Asks for the displacement (`D` numbers per position in `work`) of the
 /// neighbour [`AHEAD`] couplings after coupling `e` of `neighbours`.
 #[inline(always)]
-pub(crate) fn neighbour<const D: usize>(work: &[f64], neighbours: &[u32], e: usize) {
+pub(crate) fn ahead<const D: usize>(work: &[f64], neighbours: &[u32], e: usize) {
     if let Some(&j) = neighbours.get(e + AHEAD) {
         prefetch(work, D * j as usize);
     }
 }
 
-/// Asks the processor to bring `values[index]` into the cache (no-op when
-/// `index` is out of range, and on targets other than x86-64).
+/// Asks the processor to bring the cache line of `values[index]` in (no-op on
+/// targets other than x86-64).
 #[inline(always)]
 fn prefetch(values: &[f64], index: usize) {
     #[cfg(all(target_arch = "x86_64", not(miri)))]
-    if let Some(v) = values.get(index) {
+    {
         use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        // SAFETY: a prefetch is a hint without architectural effect; `v` is
-        // a valid reference (see the module note).
-        unsafe { _mm_prefetch::<_MM_HINT_T0>((v as *const f64).cast::<i8>()) }
+        let at = values.as_ptr().wrapping_add(index);
+        // SAFETY: a prefetch is a hint without architectural effect (see the
+        // module note); the address is not dereferenced.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(at.cast::<i8>()) }
     }
     #[cfg(not(all(target_arch = "x86_64", not(miri))))]
     let _ = (values, index);
