@@ -350,6 +350,7 @@ pub fn coupled<const D: usize>(
     let mut r = point::<D>(constant, p);
     for (e, block) in (a..b).zip(blocks.blocks[s * a..s * b].chunks_exact(s)) {
         prefetch::ahead::<D>(work, &blocks.neighbours, e);
+        prefetch::block(&blocks.blocks, s * e);
         let v = packed_mul::<D>(block, &point(work, blocks.neighbours[e] as usize));
         for k in 0..D {
             r[k] += v[k];

@@ -1,12 +1,13 @@
-//! A cache hint for the sweep's neighbour reads.
+//! Cache hints for the sweep's reads.
 //!
 //! A sweep reads each node's neighbours' displacements from all over the
 //! unknowns' array (nodes of one colour couple only to other colours, each
 //! stored in its own block). Past the caches, these scattered reads wait on
 //! memory one window of the processor's reorder buffer at a time; asking for
 //! the displacement of a neighbour a few nodes ahead lets those waits
-//! overlap. The hint changes no value: results are bit-identical with and
-//! without it.
+//! overlap. The coupling blocks, read in order, are asked for a little ahead
+//! too. The hints change no value: results are bit-identical with and
+//! without them.
 // The one `unsafe` of the library: `_mm_prefetch` takes a raw pointer and is
 // declared unsafe, but a prefetch never reads memory as far as the program
 // can observe, cannot fault and is dropped by the processor for an invalid
@@ -26,6 +27,15 @@ pub(crate) fn ahead<const D: usize>(work: &[f64], neighbours: &[u32], e: usize) 
     if let Some(&j) = neighbours.get(e + AHEAD) {
         prefetch(work, D * j as usize);
     }
+}
+
+/// Asks for the coupling blocks 1.5 KB (192 numbers: 32 couplings in 3D, 64
+/// in 2D) after `blocks[at]`. The blocks are read in order, but the
+/// processor's own look-ahead comes too late for the sweep (3–11 % faster
+/// sweeps on 48,581–418,879 unknowns with it, BENCHMARKS.md).
+#[inline(always)]
+pub(crate) fn block(blocks: &[f64], at: usize) {
+    prefetch(blocks, at + 192);
 }
 
 /// Asks the processor to bring the cache line of `values[index]` in (no-op on
