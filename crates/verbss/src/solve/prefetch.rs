@@ -11,8 +11,8 @@
 // The one `unsafe` of the library: `_mm_prefetch` takes a raw pointer and is
 // declared unsafe, but a prefetch never reads memory as far as the program
 // can observe, cannot fault and is dropped by the processor for an invalid
-// address (the one asked for lies inside the displacements' array whenever
-// the neighbour index is valid, which the read that follows checks).
+// address. The addresses are formed with `wrapping_add` and never
+// dereferenced; the last blocks' look-ahead points past the array's end.
 #![allow(unsafe_code)]
 
 /// How many couplings ahead of the one being added (in the sweep's order,
