@@ -100,6 +100,8 @@ impl Weights {
 
     /// Position `p`'s relaxed value and the sum of the absolute changes of
     /// its unknown components.
+    // The counter `e`: as in [`super::coupled`].
+    #[allow(clippy::explicit_counter_loop)]
     #[inline]
     pub(crate) fn update<const D: usize>(
         &self,
@@ -109,12 +111,16 @@ impl Weights {
         p: usize,
         work: &[f64],
     ) -> ([f64; D], f64) {
+        let (a, b) = (self.offsets[p], self.offsets[p + 1]);
+        let points = work.as_chunks::<D>().0;
         let mut r = point::<D>(constant, p);
-        for e in self.offsets[p]..self.offsets[p + 1] {
+        let mut e = a;
+        for (&w, &j) in self.weights[a..b].iter().zip(&self.neighbours[a..b]) {
             super::prefetch::ahead::<D>(work, &self.neighbours, e);
-            let u = point::<D>(work, self.neighbours[e] as usize);
+            e += 1;
+            let u = &points[j as usize];
             for k in 0..D {
-                r[k] += self.weights[e] * u[k];
+                r[k] += w * u[k];
             }
         }
         let old = point::<D>(work, p);

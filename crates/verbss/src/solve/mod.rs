@@ -338,6 +338,10 @@ pub(crate) fn unrotate<const D: usize>(r: &[[f64; D]; D], a: &[f64; D]) -> [f64;
 
 /// `c_p + Σ_j B_pj u_j` over the unknown neighbours of position `p`
 /// (`constant` and `work` hold `D` numbers per position).
+// The counter `e` beside the zip: zipping `a..` in as clippy suggests
+// compiles to a loop that keeps its state in memory: 15-28 % slower sweeps
+// (12,931 unknown nodes, 3D).
+#[allow(clippy::explicit_counter_loop)]
 #[inline(always)]
 pub fn coupled<const D: usize>(
     blocks: &NodeBlocks,
@@ -347,11 +351,15 @@ pub fn coupled<const D: usize>(
 ) -> [f64; D] {
     let s = packed_len(D);
     let (a, b) = (blocks.offsets[p], blocks.offsets[p + 1]);
+    let points = work.as_chunks::<D>().0;
     let mut r = point::<D>(constant, p);
-    for (e, block) in (a..b).zip(blocks.blocks[s * a..s * b].chunks_exact(s)) {
+    let mut e = a;
+    let couplings = blocks.blocks[s * a..s * b].chunks_exact(s);
+    for (block, &j) in couplings.zip(&blocks.neighbours[a..b]) {
         prefetch::ahead::<D>(work, &blocks.neighbours, e);
-        prefetch::block(&blocks.blocks, s * e);
-        let v = packed_mul::<D>(block, &point(work, blocks.neighbours[e] as usize));
+        prefetch::block(block);
+        e += 1;
+        let v = packed_mul::<D>(block, &points[j as usize]);
         for k in 0..D {
             r[k] += v[k];
         }

@@ -30,12 +30,13 @@ pub(crate) fn ahead<const D: usize>(work: &[f64], neighbours: &[u32], e: usize) 
 }
 
 /// Asks for the coupling blocks 1.5 KB (192 numbers: 32 couplings in 3D, 64
-/// in 2D) after `blocks[at]`. The blocks are read in order, but the
-/// processor's own look-ahead comes too late for the sweep (3–11 % faster
-/// sweeps on 48,581–418,879 unknowns with it, BENCHMARKS.md).
+/// in 2D) after the start of `block`, the one being added. The blocks are
+/// read in order, but the processor's own look-ahead comes too late for the
+/// sweep (3–11 % faster sweeps on 48,581–418,879 unknowns with it,
+/// BENCHMARKS.md).
 #[inline(always)]
-pub(crate) fn block(blocks: &[f64], at: usize) {
-    prefetch(blocks, at + 192);
+pub(crate) fn block(block: &[f64]) {
+    prefetch(block, 192);
 }
 
 /// Asks the processor to bring the cache line of `values[index]` in (no-op on
