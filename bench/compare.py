@@ -342,17 +342,20 @@ def table(results):
 
 def fits(results):
     """Log-log slopes against unknown nodes of the one-thread runs: seconds
-    per step, sweeps (iterations) per step and seconds per sweep."""
+    per step, sweeps (iterations) per step and seconds per sweep. One point
+    per mesh and run: where several --report files hold the same, the last
+    file given counts."""
     rows = []
     for key in sorted({label(r) for m in results for r in m["verbss"]}):
-        pts = []
+        by_mesh = {}
         for m in results:
             for r in m["verbss"]:
                 if label(r) == key and r["threads"] == 1 \
                         and len(r["seconds"]) == r["steps_total"] and mean(r["iterations"]) > 0:
                     sweeps = mean(r["iterations"])
-                    pts.append((r["unknown_nodes"], mean(r["seconds"]), sweeps,
-                                mean(r["solve_seconds"]) / sweeps))
+                    by_mesh[r["unknown_nodes"]] = (r["unknown_nodes"], mean(r["seconds"]), sweeps,
+                                                   mean(r["solve_seconds"]) / sweeps)
+        pts = list(by_mesh.values())
         if len(pts) < 2:
             continue
         x = [math.log(p[0]) for p in pts]
