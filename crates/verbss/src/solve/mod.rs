@@ -235,7 +235,14 @@ pub fn default_roles(mesh: &Mesh) -> Vec<NodeRole> {
 
 /// Nodes of one colour are updated in chunks of this many; each chunk sums its
 /// changes on its own and the chunks are added in order, whatever the threads.
-const CHUNK: usize = 256;
+/// Small enough that the colours of a small mesh still split evenly over the
+/// threads: with 256, a colour of 1,200 nodes made 5 chunks, 3 for one
+/// thread and 2 for the other (two-thread sweeps 15 % faster with 64 on
+/// 12,931 unknowns in 11 colours, no change on larger meshes; BENCHMARKS.md).
+const CHUNK: usize = 64;
+
+/// [`chunked_sum`] and [`chunked_dot`] add up fixed pieces of this many numbers.
+const SUM_CHUNK: usize = 1024;
 
 /// The mesh-motion engine: topology once per mesh, springs and factors once per
 /// reference configuration, one [`Engine::solve`] per step.
@@ -1052,7 +1059,7 @@ where
 /// `Σ f(x_i)`, summed in fixed chunks and then chunk by chunk in order, so
 /// that the result is the same for every number of threads.
 pub(crate) fn chunked_sum(x: &[f64], f: impl Fn(f64) -> f64 + Sync) -> f64 {
-    x.par_chunks(4 * CHUNK)
+    x.par_chunks(SUM_CHUNK)
         .map(|c| c.iter().map(|&v| f(v)).sum::<f64>())
         .collect::<Vec<_>>()
         .iter()
@@ -1061,8 +1068,8 @@ pub(crate) fn chunked_sum(x: &[f64], f: impl Fn(f64) -> f64 + Sync) -> f64 {
 
 /// `Σ a_i b_i`, summed like [`chunked_sum`].
 pub(crate) fn chunked_dot(a: &[f64], b: &[f64]) -> f64 {
-    a.par_chunks(4 * CHUNK)
-        .zip(b.par_chunks(4 * CHUNK))
+    a.par_chunks(SUM_CHUNK)
+        .zip(b.par_chunks(SUM_CHUNK))
         .map(|(x, y)| x.iter().zip(y).map(|(u, v)| u * v).sum::<f64>())
         .collect::<Vec<_>>()
         .iter()
