@@ -21,6 +21,14 @@
 //! per sweep / seconds per sweep. The two thread counts' displacements are
 //! compared bit by bit.
 //!
+//! The colour passes re-read the displacements: each pass reads its nodes'
+//! neighbours from every other colour's block. `pass reads` is
+//! `Engine::colour_pass_read_bytes`, the 64-byte lines of displacements the
+//! passes of one sweep read, per node, each counted once per pass; `with
+//! re-reads` is the one-thread bandwidth with those bytes in place of the
+//! one read of the displacements, the traffic of a sweep whose
+//! displacement lines do not stay cached from one colour pass to the next.
+//!
 //! Prints one Markdown table row per mesh and the triad's line.
 
 use std::path::PathBuf;
@@ -59,6 +67,18 @@ fn triad(threads: usize, len: usize) -> f64 {
     24.0 * len as f64 / best
 }
 
+/// What [`sweeps`] measured.
+struct Sweeps {
+    /// Best seconds per sweep.
+    seconds: f64,
+    /// `Engine::bytes_per_node`.
+    bytes: f64,
+    /// `Engine::colour_pass_read_bytes`.
+    pass_reads: f64,
+    /// The displacement after the last solve.
+    last: Vec<f64>,
+}
+
 /// Best seconds per sweep with `threads` threads, the bytes per unknown node
 /// and the displacement after one solve.
 fn sweeps(
@@ -68,7 +88,7 @@ fn sweeps(
     threads: usize,
     count: usize,
     repeat: usize,
-) -> (f64, f64, Vec<f64>) {
+) -> Sweeps {
     let mut engine = Engine::new(mesh, roles, &[]).expect("engine");
     let mut p = SolveParams::default();
     p.tolerance = 0.0;
@@ -85,7 +105,12 @@ fn sweeps(
         best = best.min(info.solve_seconds / info.iterations as f64);
         last = u;
     }
-    (best, engine.bytes_per_node(), last)
+    Sweeps {
+        seconds: best,
+        bytes: engine.bytes_per_node(),
+        pass_reads: engine.colour_pass_read_bytes(),
+        last,
+    }
 }
 
 fn main() {
@@ -120,9 +145,9 @@ fn main() {
         t2 / t1
     );
     println!(
-        "| mesh | unknown nodes | bytes/node | MB per sweep | s/sweep 1 thread | GB/s | of triad | s/sweep 2 threads | GB/s | of triad | speed-up | of triad's | identical |"
+        "| mesh | unknown nodes | bytes/node | MB per sweep | s/sweep 1 thread | GB/s | of triad | pass reads B/node | with re-reads: of triad | s/sweep 2 threads | GB/s | of triad | speed-up | of triad's | identical |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for path in &meshes {
         let mesh = verbss::io::read(path).expect("mesh");
         let d = mesh.dim;
@@ -132,21 +157,26 @@ fn main() {
             u0[d * i..d * (i + 1)].copy_from_slice(&translate[..d]);
         }
         let unknown = roles.iter().filter(|r| **r == NodeRole::Free).count();
-        let (s1, bytes, u1) = sweeps(&mesh, &roles, &u0, 1, count, repeat);
-        let (s2, _, u2) = sweeps(&mesh, &roles, &u0, 2, count, repeat);
-        let per_sweep = bytes * unknown as f64;
+        let one = sweeps(&mesh, &roles, &u0, 1, count, repeat);
+        let two = sweeps(&mesh, &roles, &u0, 2, count, repeat);
+        let (s1, s2) = (one.seconds, two.seconds);
+        let per_sweep = one.bytes * unknown as f64;
         let (b1, b2) = (per_sweep / s1, per_sweep / s2);
+        let reread = (one.bytes - (8 * d) as f64 + one.pass_reads) * unknown as f64 / s1;
         println!(
-            "| {} | {unknown} | {bytes:.0} | {:.1} | {s1:.3e} | {:.2} | {:.0}% | {s2:.3e} | {:.2} | {:.0}% | {:.2} | {:.0}% | {} |",
+            "| {} | {unknown} | {:.0} | {:.1} | {s1:.3e} | {:.2} | {:.0}% | {:.0} | {:.0}% | {s2:.3e} | {:.2} | {:.0}% | {:.2} | {:.0}% | {} |",
             path.file_name().unwrap().to_string_lossy(),
+            one.bytes,
             per_sweep / 1e6,
             b1 / 1e9,
             100.0 * b1 / t1,
+            one.pass_reads,
+            100.0 * reread / t1,
             b2 / 1e9,
             100.0 * b2 / t2,
             s1 / s2,
             100.0 * (s1 / s2) / (t2 / t1),
-            if u1 == u2 { "yes" } else { "NO" },
+            if one.last == two.last { "yes" } else { "NO" },
         );
     }
 }

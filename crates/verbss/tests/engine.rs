@@ -592,6 +592,31 @@ fn springs_are_rebuilt_only_when_the_reference_or_method_changes() {
 }
 
 #[test]
+fn colour_passes_read_whole_lines_once_per_pass() {
+    let read = |mesh: &Mesh, method: Method| {
+        let mut engine = Engine::new(mesh, &default_roles(mesh), &[]).unwrap();
+        assert_eq!(engine.colour_pass_read_bytes(), 0.0);
+        let mut u = wavy_boundary(mesh);
+        engine
+            .solve(&mesh.coords, &mut u, &params(method, Solver::Sor, 1e-8))
+            .unwrap();
+        engine.colour_pass_read_bytes()
+    };
+    for method in [Method::Verbss, Method::Laplacian] {
+        // One unknown node: one colour pass reads its own line.
+        assert_eq!(read(&grid(Layout::Tri, 2), method), 64.0);
+        // Four unknown nodes (2 × 8 bytes each) share one line, which each
+        // of the 2 to 4 colour passes reads once.
+        let four = read(&grid(Layout::Tri, 3), method);
+        assert!([32.0, 48.0, 64.0].contains(&four), "{method:?}: {four}");
+        // In 3D every pass reads lines of the other colours: more than the
+        // one read of 24 bytes per node, less than a line per coupling.
+        let tets = read(&grid(Layout::Tet, 6), method);
+        assert!(tets > 24.0 && tets < 64.0 * 30.0, "{method:?}: {tets}");
+    }
+}
+
+#[test]
 fn bad_input_is_reported() {
     let mesh = grid(Layout::Quad, 2);
     let roles = default_roles(&mesh);

@@ -139,6 +139,11 @@ impl Weights {
         )
     }
 
+    /// Row offsets and neighbour positions of the couplings to unknowns.
+    pub(crate) fn rows(&self) -> (&[usize], &[u32]) {
+        (&self.offsets, &self.neighbours)
+    }
+
     /// Bytes the sweep reads: sums, offsets, neighbour indices and weights.
     pub(crate) fn sweep_bytes(&self) -> usize {
         (self.sums.len() + self.weights.len()) * std::mem::size_of::<f64>()

@@ -558,6 +558,41 @@ impl Engine {
         (common + system) as f64 / l.len().max(1) as f64
     }
 
+    /// Bytes of the displacement array that the colour passes of one sweep
+    /// read, per unknown node (0 before the first solve): whole 64-byte
+    /// cache lines (the array taken to start on one), each counted once per
+    /// colour pass that reads it. A pass reads its own nodes and their
+    /// neighbours, which lie in every other colour's block; where no line
+    /// stays cached from one pass to the next, a sweep reads this much of the
+    /// displacements, against the `8 D` bytes per node that
+    /// [`Engine::bytes_per_node`] counts once.
+    pub fn colour_pass_read_bytes(&self) -> f64 {
+        const LINE: usize = 64;
+        let per_line = LINE / std::mem::size_of::<f64>();
+        let Some(b) = &self.built else { return 0.0 };
+        let (offsets, neighbours) = match &b.system {
+            System::Blocks { blocks, .. } => (&blocks.offsets[..], &blocks.neighbours[..]),
+            System::Laplacian(w) => w.rows(),
+        };
+        let (d, l) = (self.conn.dim, &b.layout);
+        let mut read_in = vec![usize::MAX; (d * l.len()).div_ceil(per_line)];
+        let mut lines = 0;
+        for c in 0..l.colour_starts.len() - 1 {
+            for p in l.colour_starts[c]..l.colour_starts[c + 1] {
+                let row = neighbours[offsets[p]..offsets[p + 1]].iter();
+                for j in std::iter::once(p).chain(row.map(|&j| j as usize)) {
+                    for line in d * j / per_line..=(d * j + d - 1) / per_line {
+                        if read_in[line] != c {
+                            read_in[line] = c;
+                            lines += 1;
+                        }
+                    }
+                }
+            }
+        }
+        (lines * LINE) as f64 / l.len().max(1) as f64
+    }
+
     /// Validates the arrays and settings of [`Engine::solve`].
     fn check(&self, coords: &[f64], displacement: &[f64], params: &SolveParams) -> Result<()> {
         let dim = self.conn.dim;
