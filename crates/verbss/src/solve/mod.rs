@@ -581,9 +581,11 @@ impl Engine {
             for p in l.colour_starts[c]..l.colour_starts[c + 1] {
                 let row = neighbours[offsets[p]..offsets[p + 1]].iter();
                 for j in std::iter::once(p).chain(row.map(|&j| j as usize)) {
-                    for line in d * j / per_line..=(d * j + d - 1) / per_line {
-                        if read_in[line] != c {
-                            read_in[line] = c;
+                    let first = d * j / per_line;
+                    let last = (d * j + d - 1) / per_line;
+                    for pass in &mut read_in[first..=last] {
+                        if *pass != c {
+                            *pass = c;
                             lines += 1;
                         }
                     }
