@@ -32,7 +32,7 @@
 
 use rayon::prelude::*;
 
-use super::bsr::{invert, madd_kernel, mul_kernel, Bsr, DenseLu};
+use super::bsr::{galerkin, invert, madd_kernel, mul_kernel, Bsr, DenseLu};
 use super::{chunked_sum, rotate, unrotate, Layout};
 use crate::error::{Error, Result};
 use crate::geometry::{ldlt_mul, packed_len, packed_mul};
@@ -105,13 +105,18 @@ impl Hierarchy {
         layout: &Layout,
         coords: &[f64],
     ) -> Result<Hierarchy> {
-        let fine = fine_matrix::<D>(blocks, layout);
+        // The fine matrix is needed to form the first coarse level only
+        // (the fine level's sweeps and residuals use `blocks`).
+        let mut fine = Some(fine_matrix::<D>(blocks, layout));
         let mut b = rigid_modes::<D>(layout, coords);
         let mut transfers = Vec::new();
         let mut mats: Vec<Bsr> = Vec::new();
         let mut theta = THETA;
         loop {
-            let a = mats.last().unwrap_or(&fine);
+            let a = mats
+                .last()
+                .or(fine.as_ref())
+                .expect("the fine or a coarse matrix");
             if a.rows * a.r <= COARSEST_UNKNOWNS || transfers.len() + 1 >= MAX_LEVELS {
                 break;
             }
@@ -124,7 +129,7 @@ impl Hierarchy {
             let (t, next_b, dropped) = tentative(&aggregate, count, &b, a.r, modes);
             let p = smooth_prolongator(a, &t)?;
             let r = p.transpose();
-            let mut ac = r.product(&a.product(&p));
+            let mut ac = galerkin(&r, a, &p);
             for &(node, k) in &dropped {
                 let e = ac.find(node, node).expect("diagonal block");
                 let m = ac.r;
@@ -132,10 +137,11 @@ impl Hierarchy {
             }
             transfers.push(Transfer { p, r });
             mats.push(ac);
+            fine = None;
             b = next_b;
             theta /= 2.0;
         }
-        let last = mats.pop().unwrap_or(fine);
+        let last = mats.pop().or(fine).expect("the fine or a coarse matrix");
         let coarsest = if last.rows * last.r <= DENSE_LIMIT {
             Coarsest::Exact(dense_lu(&last)?)
         } else {

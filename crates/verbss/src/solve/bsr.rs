@@ -9,6 +9,8 @@
 //! operation works block row by block row, so its result does not depend on
 //! how the rows are spread over threads.
 
+use std::ops::Range;
+
 use rayon::prelude::*;
 
 /// Block rows handled by one parallel task.
@@ -163,43 +165,34 @@ impl Bsr {
 
     /// `A B` (row by row, Gustavson): blocks `r × c` times `c × c'`.
     pub(crate) fn product(&self, other: &Bsr) -> Bsr {
+        self.product_rows(other, 0..self.rows)
+    }
+
+    /// Block rows `rows` of `A B`, as a matrix of `rows.len()` block rows.
+    fn product_rows(&self, other: &Bsr, rows: Range<usize>) -> Bsr {
         assert_eq!(self.c, other.r, "block sizes of a product");
-        let (r, c2) = (self.r, other.c);
-        let s2 = r * c2;
+        let s2 = self.r * other.c;
         let kernel = madd_kernel(self.r, self.c, other.c);
         Bsr::from_rows(
-            self.rows,
+            rows.len(),
             other.cols,
-            (r, c2),
-            || {
-                (
-                    vec![u32::MAX; other.cols],
-                    Vec::<u32>::new(),
-                    Vec::<f64>::new(),
-                )
-            },
-            |(slot, cols, acc), i, columns, values| {
+            (self.r, other.c),
+            || (vec![u32::MAX; other.cols], Vec::<u32>::new()),
+            |(slot, cols), i, columns, values| {
                 cols.clear();
-                acc.clear();
-                for e in self.offsets[i]..self.offsets[i + 1] {
-                    let a = self.block(e);
+                let start = values.len();
+                for e in self.offsets[rows.start + i]..self.offsets[rows.start + i + 1] {
                     let k = self.columns[e] as usize;
                     for f in other.offsets[k]..other.offsets[k + 1] {
-                        let j = other.columns[f] as usize;
-                        if slot[j] == u32::MAX {
-                            slot[j] = cols.len() as u32;
-                            cols.push(j as u32);
-                            acc.extend(std::iter::repeat_n(0.0, s2));
-                        }
-                        let out = &mut acc[s2 * slot[j] as usize..s2 * (slot[j] as usize + 1)];
-                        kernel(a, other.block(f), out);
+                        let slot = claim(slot, cols, values, other.columns[f], s2);
+                        let at = start + s2 * slot;
+                        kernel(self.block(e), other.block(f), &mut values[at..at + s2]);
                     }
                 }
                 for &j in cols.iter() {
                     slot[j as usize] = u32::MAX;
                 }
                 columns.extend_from_slice(cols);
-                values.extend_from_slice(acc);
             },
         )
     }
@@ -208,6 +201,96 @@ impl Bsr {
     pub(crate) fn find(&self, i: usize, j: usize) -> Option<usize> {
         (self.offsets[i]..self.offsets[i + 1]).find(|&e| self.columns[e] as usize == j)
     }
+}
+
+/// The slot of block column `j` in the row being formed (`cols`, with its
+/// blocks of `s2` numbers at the end of `values`): found through `slot`, or
+/// appended as a zero block.
+fn claim(slot: &mut [u32], cols: &mut Vec<u32>, values: &mut Vec<f64>, j: u32, s2: usize) -> usize {
+    let j = j as usize;
+    if slot[j] == u32::MAX {
+        slot[j] = cols.len() as u32;
+        cols.push(j as u32);
+        values.extend(std::iter::repeat_n(0.0, s2));
+    }
+    slot[j] as usize
+}
+
+/// Fine block rows of `A P` formed at a time by [`galerkin`].
+const GALERKIN_ROWS: usize = 8192;
+
+/// The coarse matrix `R (A P)`, for an `R` whose block rows list their
+/// columns in increasing order (as [`Bsr::transpose`] makes them). `A P`,
+/// the largest matrix of a multigrid setup, is never held whole: it is
+/// formed [`GALERKIN_ROWS`] block rows at a time, and each slice's terms
+/// `R_ik (A P)_kj` are added into the coarse rows before the next slice is
+/// formed. Every block sums its terms in the order of
+/// `r.product(&a.product(p))` and so equals it bit for bit.
+pub(crate) fn galerkin(r: &Bsr, a: &Bsr, p: &Bsr) -> Bsr {
+    galerkin_in_slices(r, a, p, GALERKIN_ROWS)
+}
+
+/// [`galerkin`] with slices of `slice` fine block rows.
+fn galerkin_in_slices(r: &Bsr, a: &Bsr, p: &Bsr, slice: usize) -> Bsr {
+    assert!(
+        r.cols == a.rows && a.cols == p.rows && r.c == a.r,
+        "shapes of R A P"
+    );
+    let s2 = r.r * p.c;
+    let kernel = madd_kernel(r.r, r.c, p.c);
+    // Per coarse row: its block columns, their blocks, and the next entry of `R`'s row.
+    let mut rows: Vec<(Vec<u32>, Vec<f64>, usize)> = (0..r.rows)
+        .map(|i| (Vec::new(), Vec::new(), r.offsets[i]))
+        .collect();
+    for lo in (0..a.rows).step_by(slice) {
+        let hi = (lo + slice).min(a.rows);
+        let ap = a.product_rows(p, lo..hi);
+        rows.par_iter_mut().enumerate().for_each_init(
+            || vec![u32::MAX; p.cols],
+            |slot, (i, (cols, values, next))| {
+                let end = r.offsets[i + 1];
+                let in_slice = |e: usize| e < end && (r.columns[e] as usize) < hi;
+                if !in_slice(*next) {
+                    return;
+                }
+                for (n, &j) in cols.iter().enumerate() {
+                    slot[j as usize] = n as u32;
+                }
+                while in_slice(*next) {
+                    let k = r.columns[*next] as usize - lo;
+                    for f in ap.offsets[k]..ap.offsets[k + 1] {
+                        let at = s2 * claim(slot, cols, values, ap.columns[f], s2);
+                        kernel(r.block(*next), ap.block(f), &mut values[at..at + s2]);
+                    }
+                    *next += 1;
+                }
+                for &j in cols.iter() {
+                    slot[j as usize] = u32::MAX;
+                }
+            },
+        );
+    }
+    rows.par_iter_mut().for_each(|(cols, values, _)| {
+        cols.shrink_to_fit();
+        values.shrink_to_fit();
+    });
+    let total: usize = rows.iter().map(|row| row.0.len()).sum();
+    let mut m = Bsr {
+        rows: r.rows,
+        cols: p.cols,
+        r: r.r,
+        c: p.c,
+        offsets: Vec::with_capacity(r.rows + 1),
+        columns: Vec::with_capacity(total),
+        values: Vec::with_capacity(total * s2),
+    };
+    m.offsets.push(0);
+    for (cols, values, _) in rows {
+        m.columns.extend(cols);
+        m.values.extend(values);
+        m.offsets.push(m.columns.len());
+    }
+    m
 }
 
 /// `y += A x` for one block.
@@ -431,6 +514,55 @@ mod tests {
             assert_eq!(y[i], (0..4).map(|k| a[i][k] * x[k]).sum::<f64>());
         }
         assert_eq!(am.find(1, 0), Some(am.offsets[1]));
+    }
+
+    /// A `rows × cols` matrix of `r × c` blocks with up to `per_row`
+    /// pseudo-random blocks per row (columns in no particular order).
+    fn scattered(
+        rows: usize,
+        cols: usize,
+        (r, c): (usize, usize),
+        per_row: usize,
+        seed: u64,
+    ) -> Bsr {
+        let hash = |i: usize, k: usize| {
+            let mut h = (seed ^ (i as u64) << 20 ^ k as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+            h ^= h >> 31;
+            h.wrapping_mul(0xbf58_476d_1ce4_e5b9) >> 33
+        };
+        Bsr::from_rows(
+            rows,
+            cols,
+            (r, c),
+            || (),
+            |_, i, columns, values| {
+                for k in 0..1 + hash(i, 0) as usize % per_row {
+                    let j = (hash(i, 1000 + k) as usize % cols) as u32;
+                    if !columns.contains(&j) {
+                        columns.push(j);
+                        values.extend(
+                            (0..r * c).map(|l| hash(i, 2000 + 100 * k + l) as f64 / 1e9 - 2.0),
+                        );
+                    }
+                }
+            },
+        )
+    }
+
+    #[test]
+    fn galerkin_in_slices_equals_the_whole_product_bit_for_bit() {
+        let a = scattered(40, 40, (3, 3), 6, 7);
+        let p = scattered(40, 9, (3, 6), 3, 11);
+        let r = p.transpose();
+        let whole = r.product(&a.product(&p));
+        for slice in [1, 3, 7, 40, 100] {
+            let sliced = galerkin_in_slices(&r, &a, &p, slice);
+            assert_eq!(sliced.offsets, whole.offsets, "slice {slice}");
+            assert_eq!(sliced.columns, whole.columns, "slice {slice}");
+            let bits = |m: &Bsr| m.values.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&sliced), bits(&whole), "slice {slice}");
+        }
+        assert_eq!((whole.rows, whole.cols, whole.r, whole.c), (9, 9, 6, 6));
     }
 
     #[test]
