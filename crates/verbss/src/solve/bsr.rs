@@ -165,28 +165,32 @@ impl Bsr {
 
     /// `A B` (row by row, Gustavson): blocks `r × c` times `c × c'`.
     pub(crate) fn product(&self, other: &Bsr) -> Bsr {
-        self.product_rows(other, 0..self.rows)
+        self.product_rows(other, 0..self.rows, true)
     }
 
-    /// Block rows `rows` of `A B`, as a matrix of `rows.len()` block rows.
-    fn product_rows(&self, other: &Bsr, rows: Range<usize>) -> Bsr {
+    /// Block rows `rows` of `A B`, as a matrix of `rows.len()` block rows;
+    /// with `values` false only its pattern (blocks of 0 × 0 numbers), with
+    /// the block columns of each row in the same order.
+    fn product_rows(&self, other: &Bsr, rows: Range<usize>, values: bool) -> Bsr {
         assert_eq!(self.c, other.r, "block sizes of a product");
-        let s2 = self.r * other.c;
+        let shape = if values { (self.r, other.c) } else { (0, 0) };
+        let s2 = shape.0 * shape.1;
         let kernel = madd_kernel(self.r, self.c, other.c);
         Bsr::from_rows(
             rows.len(),
             other.cols,
-            (self.r, other.c),
+            shape,
             || (vec![u32::MAX; other.cols], Vec::<u32>::new()),
-            |(slot, cols), i, columns, values| {
+            |(slot, cols), i, columns, out| {
                 cols.clear();
-                let start = values.len();
+                let start = out.len();
                 for e in self.offsets[rows.start + i]..self.offsets[rows.start + i + 1] {
                     let k = self.columns[e] as usize;
                     for f in other.offsets[k]..other.offsets[k + 1] {
-                        let slot = claim(slot, cols, values, other.columns[f], s2);
-                        let at = start + s2 * slot;
-                        kernel(self.block(e), other.block(f), &mut values[at..at + s2]);
+                        let at = start + s2 * claim(slot, cols, out, other.columns[f], s2);
+                        if values {
+                            kernel(self.block(e), other.block(f), &mut out[at..at + s2]);
+                        }
                     }
                 }
                 for &j in cols.iter() {
@@ -195,6 +199,15 @@ impl Bsr {
                 columns.extend_from_slice(cols);
             },
         )
+    }
+
+    /// The entries of block row `i` with block columns in `columns`, for a
+    /// matrix whose rows list their columns in increasing order.
+    fn entries_between(&self, i: usize, columns: &Range<usize>) -> Range<usize> {
+        let row = &self.columns[self.offsets[i]..self.offsets[i + 1]];
+        let first = row.partition_point(|&j| (j as usize) < columns.start);
+        let last = row.partition_point(|&j| (j as usize) < columns.end);
+        self.offsets[i] + first..self.offsets[i] + last
     }
 
     /// The entry of block `(i, j)`, if stored.
@@ -222,10 +235,11 @@ const GALERKIN_ROWS: usize = 8192;
 /// The coarse matrix `R (A P)`, for an `R` whose block rows list their
 /// columns in increasing order (as [`Bsr::transpose`] makes them). `A P`,
 /// the largest matrix of a multigrid setup, is never held whole: it is
-/// formed [`GALERKIN_ROWS`] block rows at a time, and each slice's terms
-/// `R_ik (A P)_kj` are added into the coarse rows before the next slice is
-/// formed. Every block sums its terms in the order of
-/// `r.product(&a.product(p))` and so equals it bit for bit.
+/// formed [`GALERKIN_ROWS`] block rows at a time, first as a pattern to
+/// find each coarse row's block columns, then with its values, whose terms
+/// `R_ik (A P)_kj` are added in place before the next slice is formed.
+/// Every block sums its terms in the order of `r.product(&a.product(p))`
+/// and so equals it bit for bit.
 pub(crate) fn galerkin(r: &Bsr, a: &Bsr, p: &Bsr) -> Bsr {
     galerkin_in_slices(r, a, p, GALERKIN_ROWS)
 }
@@ -236,61 +250,89 @@ fn galerkin_in_slices(r: &Bsr, a: &Bsr, p: &Bsr, slice: usize) -> Bsr {
         r.cols == a.rows && a.cols == p.rows && r.c == a.r,
         "shapes of R A P"
     );
-    let s2 = r.r * p.c;
-    let kernel = madd_kernel(r.r, r.c, p.c);
-    // Per coarse row: its block columns, their blocks, and the next entry of `R`'s row.
-    let mut rows: Vec<(Vec<u32>, Vec<f64>, usize)> = (0..r.rows)
-        .map(|i| (Vec::new(), Vec::new(), r.offsets[i]))
-        .collect();
-    for lo in (0..a.rows).step_by(slice) {
-        let hi = (lo + slice).min(a.rows);
-        let ap = a.product_rows(p, lo..hi);
-        rows.par_iter_mut().enumerate().for_each_init(
-            || vec![u32::MAX; p.cols],
-            |slot, (i, (cols, values, next))| {
-                let end = r.offsets[i + 1];
-                let in_slice = |e: usize| e < end && (r.columns[e] as usize) < hi;
-                if !in_slice(*next) {
+    let slices = || {
+        (0..a.rows)
+            .step_by(slice)
+            .map(|lo| lo..(lo + slice).min(a.rows))
+    };
+    let marks = || vec![u32::MAX; p.cols];
+    // Each coarse row's block columns, in the order the whole product meets them.
+    let mut patterns: Vec<Vec<u32>> = vec![Vec::new(); r.rows];
+    for fine in slices() {
+        let ap = a.product_rows(p, fine.clone(), false);
+        patterns
+            .par_iter_mut()
+            .enumerate()
+            .for_each_init(marks, |slot, (i, cols)| {
+                let entries = r.entries_between(i, &fine);
+                if entries.is_empty() {
                     return;
                 }
                 for (n, &j) in cols.iter().enumerate() {
                     slot[j as usize] = n as u32;
                 }
-                while in_slice(*next) {
-                    let k = r.columns[*next] as usize - lo;
+                for e in entries {
+                    let k = r.columns[e] as usize - fine.start;
                     for f in ap.offsets[k]..ap.offsets[k + 1] {
-                        let at = s2 * claim(slot, cols, values, ap.columns[f], s2);
-                        kernel(r.block(*next), ap.block(f), &mut values[at..at + s2]);
+                        claim(slot, cols, &mut Vec::new(), ap.columns[f], 0);
                     }
-                    *next += 1;
                 }
                 for &j in cols.iter() {
                     slot[j as usize] = u32::MAX;
                 }
-            },
-        );
+            });
     }
-    rows.par_iter_mut().for_each(|(cols, values, _)| {
-        cols.shrink_to_fit();
-        values.shrink_to_fit();
-    });
-    let total: usize = rows.iter().map(|row| row.0.len()).sum();
-    let mut m = Bsr {
+    let s2 = r.r * p.c;
+    let mut offsets = Vec::with_capacity(r.rows + 1);
+    offsets.push(0);
+    for cols in &patterns {
+        offsets.push(offsets[offsets.len() - 1] + cols.len());
+    }
+    let columns: Vec<u32> = patterns.into_iter().flatten().collect();
+    let mut values = vec![0.0; s2 * columns.len()];
+    let mut rows: Vec<&mut [f64]> = Vec::with_capacity(r.rows);
+    let mut rest = &mut values[..];
+    for i in 0..r.rows {
+        let (row, tail) = rest.split_at_mut(s2 * (offsets[i + 1] - offsets[i]));
+        rows.push(row);
+        rest = tail;
+    }
+    let kernel = madd_kernel(r.r, r.c, p.c);
+    for fine in slices() {
+        let ap = a.product_rows(p, fine.clone(), true);
+        rows.par_iter_mut()
+            .enumerate()
+            .for_each_init(marks, |slot, (i, out)| {
+                let entries = r.entries_between(i, &fine);
+                if entries.is_empty() {
+                    return;
+                }
+                let cols = &columns[offsets[i]..offsets[i + 1]];
+                for (n, &j) in cols.iter().enumerate() {
+                    slot[j as usize] = n as u32;
+                }
+                for e in entries {
+                    let k = r.columns[e] as usize - fine.start;
+                    for f in ap.offsets[k]..ap.offsets[k + 1] {
+                        let at = s2 * slot[ap.columns[f] as usize] as usize;
+                        kernel(r.block(e), ap.block(f), &mut out[at..at + s2]);
+                    }
+                }
+                for &j in cols {
+                    slot[j as usize] = u32::MAX;
+                }
+            });
+    }
+    drop(rows);
+    Bsr {
         rows: r.rows,
         cols: p.cols,
         r: r.r,
         c: p.c,
-        offsets: Vec::with_capacity(r.rows + 1),
-        columns: Vec::with_capacity(total),
-        values: Vec::with_capacity(total * s2),
-    };
-    m.offsets.push(0);
-    for (cols, values, _) in rows {
-        m.columns.extend(cols);
-        m.values.extend(values);
-        m.offsets.push(m.columns.len());
+        offsets,
+        columns,
+        values,
     }
-    m
 }
 
 /// `y += A x` for one block.
