@@ -577,8 +577,8 @@ impl Engine {
         let (d, l) = (self.conn.dim, &b.layout);
         let mut read_in = vec![usize::MAX; (d * l.len()).div_ceil(per_line)];
         let mut lines = 0;
-        for c in 0..l.colour_starts.len() - 1 {
-            for p in l.colour_starts[c]..l.colour_starts[c + 1] {
+        for (c, colour) in l.colour_starts.windows(2).enumerate() {
+            for p in colour[0]..colour[1] {
                 let row = neighbours[offsets[p]..offsets[p + 1]].iter();
                 for j in std::iter::once(p).chain(row.map(|&j| j as usize)) {
                     let first = d * j / per_line;
