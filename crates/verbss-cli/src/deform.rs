@@ -73,13 +73,16 @@ pub struct DeformArgs {
     /// verbss is the paper's method exactly.
     #[arg(long, value_enum, default_value = "robust")]
     method: MethodArg,
-    /// The global solver of `--method ball-vertex`.
-    #[arg(long, value_enum, default_value = "sor")]
-    solver: SolverArg,
+    /// The global solver of `--method ball-vertex` [default: sor]. Given
+    /// explicitly (as --accel and --omega), it is the only solver used: no
+    /// escalation when it stalls or diverges.
+    #[arg(long, value_enum)]
+    solver: Option<SolverArg>,
     /// Plain VerBSS sweeps (none), the multigrid-accelerated solve (amg), or
-    /// amg on large meshes of mostly triangles/tetrahedra (auto).
-    #[arg(long, value_enum, default_value = "none")]
-    accel: AccelArg,
+    /// amg on large meshes of mostly triangles/tetrahedra (auto) [default:
+    /// none, escalating to the multigrid and the direct solve when needed].
+    #[arg(long, value_enum)]
+    accel: Option<AccelArg>,
     /// Number of equal increments.
     #[arg(long, default_value_t = 1)]
     steps: usize,
@@ -99,9 +102,9 @@ pub struct DeformArgs {
     /// Maximum sweeps per step.
     #[arg(long, default_value_t = 2000)]
     max_iterations: usize,
-    /// Over-relaxation factor ω.
-    #[arg(long, default_value_t = 1.6)]
-    omega: f64,
+    /// Over-relaxation factor ω [default: 1.6].
+    #[arg(long)]
+    omega: Option<f64>,
     /// Worker threads (results do not depend on it).
     #[arg(long, default_value_t = 1)]
     threads: usize,
@@ -242,18 +245,19 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
         MethodArg::Laplacian => Method::Laplacian,
     };
     s.solver = match args.solver {
-        SolverArg::Sor => Solver::Sor,
-        SolverArg::Direct => Solver::Direct,
+        None | Some(SolverArg::Sor) => Solver::Sor,
+        Some(SolverArg::Direct) => Solver::Direct,
     };
     s.accel = match args.accel {
-        AccelArg::None => Accel::None,
-        AccelArg::Amg => Accel::Amg,
-        AccelArg::Auto => Accel::Auto,
+        None | Some(AccelArg::None) => Accel::None,
+        Some(AccelArg::Amg) => Accel::Amg,
+        Some(AccelArg::Auto) => Accel::Auto,
     };
+    s.escalate = args.solver.is_none() && args.accel.is_none() && args.omega.is_none();
     s.tolerance = args.tolerance;
     s.absolute_tolerance = args.absolute_tolerance;
     s.max_iterations = args.max_iterations;
-    s.omega = args.omega;
+    s.omega = args.omega.unwrap_or(s.omega);
     s.threads = args.threads;
     let dir = match args.output.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),

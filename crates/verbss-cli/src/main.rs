@@ -2,7 +2,7 @@
 //! over the `verbss` library.
 //!
 //! Exit codes: 0 success, 2 bad input (file, argument, setting), 3 a step
-//! inverted an element.
+//! inverted an element, 4 a step no solver could solve to a trusted result.
 
 #![forbid(unsafe_code)]
 

@@ -4,8 +4,9 @@
 //! input as step 0 and the last step always; point data `displacement`, cell
 //! data `quality` and `inverted`) with `NAME.pvd` for ParaView, the final
 //! mesh `NAME.EXT` in the input's format and `report.json`. When a step
-//! inverts an element the run stops with exit code 3: `NAME.EXT` holds the
-//! last valid mesh and `NAME.failed.vtu` the failed state.
+//! inverts an element the run stops with exit code 3 (4 when no solver
+//! converged): `NAME.EXT` holds the last valid mesh and `NAME.failed.vtu`
+//! the failed state.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -115,13 +116,14 @@ pub struct Summary {
     pub min_quality: (f64, usize),
     /// Total solver sweeps.
     pub iterations: usize,
-    /// The inversion that stopped the run, with the paths written for it.
+    /// The inversion or unconverged solve that stopped the run, with the
+    /// paths written for it.
     pub failure: Option<(Error, PathBuf, PathBuf)>,
 }
 
 impl Summary {
-    /// Prints the summary (or the failure) and gives the exit code: 0, or 3
-    /// when a step inverted an element.
+    /// Prints the summary (or the failure) and gives the exit code: 0, 3
+    /// when a step inverted an element, 4 when no solver converged.
     pub fn print(&self, job: &Job) -> ExitCode {
         let per_step = self.seconds / self.steps.max(1) as f64;
         println!(
@@ -151,7 +153,10 @@ impl Summary {
                     last.display(),
                     failed.display()
                 );
-                ExitCode::from(3)
+                match e {
+                    Error::NotConverged { .. } => ExitCode::from(4),
+                    _ => ExitCode::from(3),
+                }
             }
         }
     }
@@ -199,7 +204,7 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
                     write_step(job, deformer.current(), &mut series)?;
                 }
             }
-            Err(e @ Error::Inverted { .. }) => {
+            Err(e @ (Error::Inverted { .. } | Error::NotConverged { .. })) => {
                 progress.finish();
                 let failed = deformer.failed().expect("a failed step keeps its state");
                 report.steps.push(failed.report.clone());

@@ -123,10 +123,8 @@ enum SolverName {
 struct SolverTable {
     #[serde(default)]
     method: MethodName,
-    #[serde(default)]
-    solver: SolverName,
-    #[serde(default)]
-    accel: AccelName,
+    solver: Option<SolverName>,
+    accel: Option<AccelName>,
     omega: Option<f64>,
     tolerance: Option<f64>,
     absolute_tolerance: Option<bool>,
@@ -297,15 +295,17 @@ impl Case {
                 MethodName::Spring => Method::Spring,
                 MethodName::Laplacian => Method::Laplacian,
             },
-            solver: match s.solver {
+            solver: match s.solver.unwrap_or_default() {
                 SolverName::Sor => Solver::Sor,
                 SolverName::Direct => Solver::Direct,
             },
-            accel: match s.accel {
+            accel: match s.accel.unwrap_or_default() {
                 AccelName::None => Accel::None,
                 AccelName::Amg => Accel::Amg,
                 AccelName::Auto => Accel::Auto,
             },
+            // A solver, accel or omega given explicitly means exactly that.
+            escalate: s.solver.is_none() && s.accel.is_none() && s.omega.is_none(),
             ..SolveParams::default()
         };
         if let Some(omega) = s.omega {

@@ -32,13 +32,13 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::error::{format_point, Error, Result};
+use crate::error::{format_point, Error, Result, Unconverged};
 use crate::geometry::{cross, norm};
 use crate::mesh::{CellKind, Mesh};
 use crate::motion::{Attachment, Clock, Motion};
 use crate::quality::{self, Inversion, Summary};
 use crate::robust::{self, Robust};
-use crate::solve::{Engine, NodeRole, SolveInfo, SolveParams};
+use crate::solve::{Engine, NodeRole, SolveInfo, SolveParams, Stage};
 use crate::topology;
 
 /// Which configuration the springs are built on (the paper's options 1 and 2).
@@ -129,9 +129,42 @@ pub struct StepReport {
     pub bins: [usize; 5],
     /// The mean element quality.
     pub mean_quality: f64,
+    /// The solvers the step used, in order of first use (`sweeps`,
+    /// `multigrid`, `safe-sweeps`, `direct`).
+    pub stages: Vec<Stage>,
+    /// Root-mean-square true residual of the accepted solve.
+    pub true_residual: f64,
+    /// The worst node's estimated error relative to its local cell height
+    /// in the accepted solve (docs/method.md, "Accepting a step").
+    pub error_ratio: f64,
     /// The eq.-8 value of every sweep, when [`SolveParams::record_history`] is set.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub history: Vec<f64>,
+}
+
+impl StepReport {
+    /// Adds one solve's account: sweeps, seconds, stages; the residuals and
+    /// the error ratio are the last solve's.
+    fn add(&mut self, info: &SolveInfo) {
+        self.iterations += info.iterations;
+        self.residual = info.residual;
+        self.true_residual = info.true_residual;
+        self.error_ratio = info.error_ratio;
+        self.form_seconds += info.form_seconds;
+        self.solve_seconds += info.solve_seconds;
+        self.history.clone_from(&info.history);
+        for stage in &info.stages {
+            if !self.stages.contains(stage) {
+                self.stages.push(*stage);
+            }
+        }
+    }
+}
+
+/// The names of `stages`, comma separated.
+fn stage_names(stages: &[Stage]) -> String {
+    let names: Vec<&str> = stages.iter().map(|s| s.name()).collect();
+    names.join(", ")
 }
 
 /// A configuration of the mesh with its check.
@@ -349,39 +382,59 @@ impl Deformer {
                     (*i, q)
                 })
                 .collect();
+            let mut attempt = self.attempt(&coords, &at, end - done, false)?;
+            let escalate = self.settings.solve.escalate;
+            if escalate
+                && attempt.info.converged
+                && !attempt.inversions.is_empty()
+                && !attempt.info.stages.contains(&Stage::Direct)
+            {
+                // An inversion is never the solver's fault: the step solved
+                // exactly is what the guard judges.
+                let exact = self.attempt(&coords, &at, end - done, true)?;
+                report.add(&attempt.info);
+                attempt = exact;
+            }
             let Attempt {
                 coords: trial,
                 u,
                 info,
                 quality,
                 inversions,
-            } = self.attempt(&coords, &at, end - done)?;
-            report.iterations += info.iterations;
-            report.residual = info.residual;
-            report.form_seconds += info.form_seconds;
-            report.solve_seconds += info.solve_seconds;
-            report.history = info.history;
-            if let Some(worst) = inversions
-                .iter()
-                .min_by(|a, b| a.volume.total_cmp(&b.volume))
-            {
+            } = attempt;
+            report.add(&info);
+            if !info.converged || !inversions.is_empty() {
                 if h * 0.5 >= floor {
                     h *= 0.5;
                     continue;
                 }
-                report.converged &= info.converged;
+                report.converged = info.converged;
                 report.substeps += 1;
-                let err = Error::Inverted {
-                    step: n,
-                    count: inversions.len(),
-                    element: self.mesh.cell_tags[worst.cell],
-                    centroid: worst.centroid.clone(),
-                    volume: worst.volume,
+                let err = match inversions
+                    .iter()
+                    .min_by(|a, b| a.volume.total_cmp(&b.volume))
+                {
+                    Some(worst) if info.converged => Error::Inverted {
+                        step: n,
+                        count: inversions.len(),
+                        element: self.mesh.cell_tags[worst.cell],
+                        centroid: worst.centroid.clone(),
+                        volume: worst.volume,
+                    },
+                    _ => Error::NotConverged {
+                        step: n,
+                        what: Box::new(Unconverged {
+                            stages: stage_names(&info.stages),
+                            true_residual: info.true_residual,
+                            error_ratio: info.error_ratio,
+                            node: self.mesh.node_tags[info.worst_node],
+                            diverged: info.diverged,
+                        }),
+                    },
                 };
                 self.failed = Some(self.snapshot(trial, quality, &inversions, report, start));
                 return Err(err);
             }
-            report.converged &= info.converged;
             report.substeps += 1;
             let fraction = end - done;
             let solved = u.iter().map(|v| v / fraction).collect();
@@ -450,12 +503,14 @@ impl Deformer {
     }
 
     /// One solve from `coords` with the prescribed nodes at `targets`, an
-    /// increment of `fraction` of a step.
+    /// increment of `fraction` of a step; to round-off when `exact`
+    /// ([`Engine::solve_exact`]).
     fn attempt(
         &mut self,
         coords: &[f64],
         targets: &[(usize, Vec<f64>)],
         fraction: f64,
+        exact: bool,
     ) -> Result<Attempt> {
         let dim = self.mesh.dim;
         let base = match self.settings.reference {
@@ -490,7 +545,12 @@ impl Deformer {
                 u[dim * node + d] = p[d] - base[dim * node + d];
             }
         }
-        let info = self.engine.solve(base, &mut u, &self.settings.solve)?;
+        let info = if exact {
+            self.engine
+                .solve_exact(base, &mut u, &self.settings.solve)?
+        } else {
+            self.engine.solve(base, &mut u, &self.settings.solve)?
+        };
         let mut next: Vec<f64> = base.iter().zip(&u).map(|(x, d)| x + d).collect();
         for (node, p) in targets {
             next[dim * node..dim * (node + 1)].copy_from_slice(p);

@@ -77,6 +77,34 @@ pub enum Error {
         /// input orientation (≤ 0).
         volume: f64,
     },
+    /// No solver reached a solution that could be trusted.
+    #[error(
+        "step {step}: the solve did not converge (stages tried: {}; true residual {:.3e}; \
+         node {} estimated error {:.3e} of its cell height{})",
+        .what.stages, .what.true_residual, .what.node, .what.error_ratio,
+        if .what.diverged { "; the sweeps diverged: omega too large for this mesh" } else { "" }
+    )]
+    NotConverged {
+        /// The step.
+        step: usize,
+        /// The last solve's account.
+        what: Box<Unconverged>,
+    },
+}
+
+/// What [`Error::NotConverged`] reports of the last solve tried.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Unconverged {
+    /// The solvers tried, in order (`sweeps, multigrid, direct`).
+    pub stages: String,
+    /// Root-mean-square true residual of the last solve.
+    pub true_residual: f64,
+    /// The worst node's estimated error relative to its local cell height.
+    pub error_ratio: f64,
+    /// That node's number in the file.
+    pub node: u64,
+    /// Whether the configured sweeps diverged.
+    pub diverged: bool,
 }
 
 /// A point as `(x, y[, z])` with six decimals, as messages print it.

@@ -16,15 +16,17 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use crate::deform::{Reference, Settings, StepReport};
+use crate::deform::{Predictor, Reference, Settings, StepReport};
 use crate::error::Result;
 use crate::io::write_atomic;
 use crate::mesh::Mesh;
-use crate::solve::{Method, Solver};
+use crate::robust::{Layer, Robust};
+use crate::solve::{Accel, Method, Solver};
 
 /// The settings header of a report.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Header {
+    /// `robust` (VerBSS with the recommended near-wall treatments),
     /// `verbss`, `ball-vertex`, `spring` or `laplacian`.
     pub method: &'static str,
     /// The global solver of `ball-vertex`: `sor` or `direct`.
@@ -45,14 +47,34 @@ pub struct Header {
     pub max_iterations: usize,
     /// Worker threads.
     pub threads: usize,
+    /// Plain sweeps (`none`), the multigrid (`amg`) or chosen per mesh (`auto`).
+    pub accel: &'static str,
+    /// Whether a stalled, diverging or untrusted solve escalates to the
+    /// multigrid and the direct solve (off when a solver, accel or ω was
+    /// given explicitly).
+    pub escalate: bool,
+    /// Each step's initial guess: `previous` or `linear`.
+    pub predictor: Predictor,
+    /// The rigid layer: `off`, `auto` or its thickness.
+    pub rigid_layer: String,
+    /// The wall-distance stiffening exponent (0: off).
+    pub stiffening: f64,
+    /// Sub-steps: down to `1/2^substeps` of a step (0: off).
+    pub substeps: u32,
 }
 
 impl Header {
     /// The header of a run with `settings`.
     pub fn new(settings: &Settings) -> Header {
         let s = &settings.solve;
+        let robust = &settings.robust;
+        let method = if s.method == Method::Verbss && *robust == Robust::recommended() {
+            "robust"
+        } else {
+            method_name(s.method)
+        };
         Header {
-            method: method_name(s.method),
+            method,
             solver: solver_name(s.solver),
             reference: settings.reference,
             steps: settings.steps,
@@ -62,6 +84,20 @@ impl Header {
             absolute_tolerance: s.absolute_tolerance,
             max_iterations: s.max_iterations,
             threads: s.threads,
+            accel: match s.accel {
+                Accel::None => "none",
+                Accel::Amg => "amg",
+                Accel::Auto => "auto",
+            },
+            escalate: s.escalate,
+            predictor: settings.predictor,
+            rigid_layer: match robust.layer {
+                Layer::Off => "off".into(),
+                Layer::Auto => "auto".into(),
+                Layer::Thickness(t) => t.to_string(),
+            },
+            stiffening: robust.stiffening,
+            substeps: robust.substeps,
         }
     }
 }

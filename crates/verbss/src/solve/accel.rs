@@ -169,7 +169,7 @@ impl Accelerator {
         max_iterations: usize,
         threshold: f64,
         record_history: bool,
-    ) -> Result<SolveInfo> {
+    ) -> SolveInfo {
         let started = Instant::now();
         let mut history = Vec::new();
         let Accelerator {
@@ -210,20 +210,21 @@ impl Accelerator {
                 );
             },
             record_history.then_some(&mut history),
-        )?;
+        );
         match self.baseline {
             None => self.baseline = Some(outcome.iterations),
             Some(b) => self.stale = outcome.iterations > b + b / 2 + 2,
         }
-        Ok(SolveInfo {
+        SolveInfo {
             iterations: outcome.iterations,
             residual: outcome.estimate,
             converged: outcome.converged,
+            diverged: outcome.diverged,
             solve_seconds: started.elapsed().as_secs_f64(),
             history,
             levels: self.hierarchy.levels(),
             ..SolveInfo::default()
-        })
+        }
     }
 }
 

@@ -23,12 +23,14 @@ use faer::sparse::{SparseColMat, Triplet};
 
 use super::{coupled, rotate, unrotate, Layout};
 use crate::error::{Error, Result};
-use crate::geometry::{packed_index, packed_len, packed_mul, point};
+use crate::geometry::{ldlt_mul, packed_index, packed_len, packed_mul, point};
 use crate::springs::NodeBlocks;
 
 /// The LU factors of the global matrix and the first unknown of each node.
 pub(crate) struct Lu {
     lu: solvers::Lu<usize, f64>,
+    /// `K_ii` per position, packed (projected for a sliding node).
+    diag: Vec<f64>,
     start: Vec<usize>,
     /// The one-thread pool faer runs on.
     serial: rayon::ThreadPool,
@@ -43,10 +45,20 @@ fn frame<const D: usize>(layout: &Layout, p: usize) -> [[f64; D]; D] {
 
 impl Lu {
     /// Assembles and factors the global matrix. `blocks.diag` holds `K_ii`
-    /// (projected on the tangent frame for sliding nodes).
-    pub(crate) fn new<const D: usize>(layout: &Layout, blocks: &NodeBlocks) -> Result<Lu> {
+    /// (projected on the tangent frame for sliding nodes), as its LDLᵀ
+    /// factor when `factored`.
+    pub(crate) fn new<const D: usize>(
+        layout: &Layout,
+        blocks: &NodeBlocks,
+        factored: bool,
+    ) -> Result<Lu> {
         let s = packed_len(D);
         let m = layout.order.len();
+        let diag = if factored {
+            unfactor::<D>(&blocks.diag)
+        } else {
+            blocks.diag.clone()
+        };
         let mut start = Vec::with_capacity(m + 1);
         start.push(0);
         for p in 0..m {
@@ -61,7 +73,7 @@ impl Lu {
         let mut entries = Vec::new();
         for p in 0..m {
             let rows = start[p + 1] - start[p];
-            let k = &blocks.diag[s * p..s * (p + 1)];
+            let k = &diag[s * p..s * (p + 1)];
             for a in 0..rows {
                 for b in 0..rows {
                     entries.push(Triplet::new(
@@ -107,7 +119,12 @@ impl Lu {
                 )
             })?
             .map_err(|e| Error::InvalidMesh(format!("the ball-vertex system is singular ({e})")))?;
-        Ok(Lu { lu, start, serial })
+        Ok(Lu {
+            lu,
+            diag,
+            start,
+            serial,
+        })
     }
 
     /// Replaces the initial guess `work` by the exact solution.
@@ -125,7 +142,7 @@ impl Lu {
             let r = frame::<D>(layout, p);
             let b = rotate(&r, &coupled::<D>(blocks, constant, p, work));
             let a0 = rotate(&r, &point::<D>(work, p));
-            let ka = packed_mul::<D>(&blocks.diag[s * p..], &a0);
+            let ka = packed_mul::<D>(&self.diag[s * p..], &a0);
             for k in 0..self.start[p + 1] - self.start[p] {
                 rhs[self.start[p] + k] = b[k] - ka[k];
             }
@@ -155,4 +172,20 @@ impl Lu {
         }
         Ok(())
     }
+}
+
+/// The packed blocks `K = L D Lᵀ` of packed LDLᵀ factors ([`ldlt_mul`] on
+/// the unit vectors).
+fn unfactor<const D: usize>(factors: &[f64]) -> Vec<f64> {
+    let s = packed_len(D);
+    let mut diag = vec![0.0; factors.len()];
+    for (k, f) in diag.chunks_exact_mut(s).zip(factors.chunks_exact(s)) {
+        for c in 0..D {
+            let column = ldlt_mul::<D>(f, &std::array::from_fn(|r| f64::from(u8::from(r == c))));
+            for r in c..D {
+                k[packed_index(r, c)] = column[r];
+            }
+        }
+    }
+    diag
 }

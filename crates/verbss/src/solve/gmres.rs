@@ -11,7 +11,6 @@
 use rayon::prelude::*;
 
 use super::chunked_dot;
-use crate::error::{Error, Result};
 
 /// What a GMRES solve did.
 pub(crate) struct Outcome {
@@ -21,6 +20,9 @@ pub(crate) struct Outcome {
     pub(crate) estimate: f64,
     /// Whether it fell below the threshold.
     pub(crate) converged: bool,
+    /// Whether the estimate became non-finite or grew 10⁶-fold (`x` keeps
+    /// the last iterate of a completed restart).
+    pub(crate) diverged: bool,
 }
 
 /// The Krylov basis and Hessenberg storage, kept between solves.
@@ -55,7 +57,7 @@ pub(crate) fn solve<R, A, M>(
     operator: A,
     mut precondition: M,
     mut history: Option<&mut Vec<f64>>,
-) -> Result<Outcome>
+) -> Outcome
 where
     R: Fn(&[f64], &mut [f64]),
     A: Fn(&[f64], &mut [f64]),
@@ -67,6 +69,7 @@ where
         iterations: 0,
         estimate: f64::INFINITY,
         converged: false,
+        diverged: false,
     };
     let mut h = vec![vec![0.0; restart]; restart + 1];
     let mut rotations = vec![(0.0, 0.0); restart];
@@ -80,14 +83,15 @@ where
         outcome.estimate = beta * scale;
         let first = *first.get_or_insert(outcome.estimate);
         if !outcome.estimate.is_finite() || outcome.estimate > 1e6 * first.max(threshold) {
-            return Err(diverged(outcome.iterations, outcome.estimate));
+            outcome.diverged = true;
+            return outcome;
         }
         if outcome.estimate < threshold {
             outcome.converged = true;
-            return Ok(outcome);
+            return outcome;
         }
         if outcome.iterations >= max_iterations {
-            return Ok(outcome);
+            return outcome;
         }
         scale_in_place(&mut basis[0], 1.0 / beta);
         g.iter_mut().for_each(|v| *v = 0.0);
@@ -130,7 +134,8 @@ where
                 hist.push(outcome.estimate);
             }
             if !outcome.estimate.is_finite() {
-                return Err(diverged(outcome.iterations, outcome.estimate));
+                outcome.diverged = true;
+                return outcome;
             }
             if outcome.estimate < threshold || len == 0.0 {
                 break;
@@ -148,7 +153,7 @@ where
         }
         if outcome.estimate < threshold {
             outcome.converged = true;
-            return Ok(outcome);
+            return outcome;
         }
     }
 }
@@ -156,11 +161,4 @@ where
 /// `x ← s x`.
 fn scale_in_place(x: &mut [f64], s: f64) {
     x.par_iter_mut().for_each(|v| *v *= s);
-}
-
-fn diverged(iterations: usize, estimate: f64) -> Error {
-    Error::InvalidSetting(format!(
-        "the accelerated solve diverged (error estimate {estimate:.3e} after {iterations} \
-         iterations); use --accel none"
-    ))
 }

@@ -139,6 +139,11 @@ impl Weights {
         )
     }
 
+    /// `Σ_j k_pj`: position `p`'s diagonal.
+    pub(crate) fn sum(&self, p: usize) -> f64 {
+        self.sums[p]
+    }
+
     /// Row offsets and neighbour positions of the couplings to unknowns.
     pub(crate) fn rows(&self) -> (&[usize], &[u32]) {
         (&self.offsets, &self.neighbours)

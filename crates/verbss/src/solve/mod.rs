@@ -72,16 +72,17 @@ mod accel;
 mod amg;
 mod bsr;
 mod direct;
+mod escalate;
 mod gmres;
 mod laplacian;
 mod prefetch;
 mod sor;
+mod sweep;
 mod verbss;
+mod verify;
+pub use self::escalate::{DIRECT_NODES_2D, DIRECT_NODES_3D};
 pub use self::verbss::relax;
-
-use std::time::Instant;
-
-use rayon::prelude::*;
+pub(crate) use sweep::{chunked_dot, chunked_sum, sweep};
 
 use crate::error::{Error, Result};
 use crate::geometry::{
@@ -177,6 +178,42 @@ pub struct SolveParams {
     pub record_history: bool,
     /// Plain sweeps or the multigrid-accelerated solve.
     pub accel: Accel,
+    /// Watch the solve and escalate when it stalls, grows or leaves a node's
+    /// estimated error above [`ERROR_FRACTION`] of its local cell height
+    /// (sweeps → multigrid GMRES → sparse direct solve; `solve/escalate.rs`).
+    /// Off: the configured solver alone, stopped by the eq.-8 test.
+    pub escalate: bool,
+}
+
+/// A step is accepted (under [`SolveParams::escalate`]) only when every
+/// unknown node's estimated error `|K_ii⁻¹ r_i|` is below this fraction of
+/// its smallest adjacent cell height (docs/method.md, "Accepting a step").
+pub const ERROR_FRACTION: f64 = 0.01;
+
+/// One solver tried on a step, in the order tried.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Stage {
+    /// The configured sweeps (or the configured multigrid solve).
+    Sweeps,
+    /// GMRES preconditioned by the multigrid V-cycle.
+    Multigrid,
+    /// Sweeps with ω = 1 (where no multigrid applies).
+    SafeSweeps,
+    /// The sparse direct (LU) solve.
+    Direct,
+}
+
+impl Stage {
+    /// The name reports and messages use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Sweeps => "sweeps",
+            Stage::Multigrid => "multigrid",
+            Stage::SafeSweeps => "safe-sweeps",
+            Stage::Direct => "direct",
+        }
+    }
 }
 
 impl Default for SolveParams {
@@ -191,6 +228,7 @@ impl Default for SolveParams {
             threads: 1,
             record_history: false,
             accel: Accel::None,
+            escalate: true,
         }
     }
 }
@@ -221,6 +259,18 @@ pub struct SolveInfo {
     pub hierarchy_built: bool,
     /// Seconds building the multigrid hierarchy (part of `form_seconds`).
     pub hierarchy_seconds: f64,
+    /// Whether the configured solver's iterates grew (ω too large for the mesh).
+    pub diverged: bool,
+    /// The solvers tried, in order (the last one gave the result).
+    pub stages: Vec<Stage>,
+    /// Root-mean-square of the true residual `r_i = c_i + Σ_j B_ij u_j − K_ii u_i`
+    /// over the unknown nodes.
+    pub true_residual: f64,
+    /// The largest estimated error of a node relative to its local cell
+    /// height, `max_i |K_ii⁻¹ r_i| / h_i`.
+    pub error_ratio: f64,
+    /// The node (mesh index) where [`SolveInfo::error_ratio`] is largest.
+    pub worst_node: usize,
 }
 
 /// The default roles of a mesh: [`NodeRole::Fixed`] on every boundary node
@@ -239,10 +289,10 @@ pub fn default_roles(mesh: &Mesh) -> Vec<NodeRole> {
 /// threads: with 256, a colour of 1,200 nodes made 5 chunks, 3 for one
 /// thread and 2 for the other (two-thread sweeps 15 % faster with 64 on
 /// 12,931 unknowns in 11 colours, no change on larger meshes; BENCHMARKS.md).
-const CHUNK: usize = 64;
+pub(crate) const CHUNK: usize = 64;
 
 /// [`chunked_sum`] and [`chunked_dot`] add up fixed pieces of this many numbers.
-const SUM_CHUNK: usize = 1024;
+pub(crate) const SUM_CHUNK: usize = 1024;
 
 /// The mesh-motion engine: topology once per mesh, springs and factors once per
 /// reference configuration, one [`Engine::solve`] per step.
@@ -257,6 +307,9 @@ pub struct Engine {
     /// The last layout and the moving nodes it was ordered from: a rebuild
     /// with the same moving nodes (every step of a run) reuses it.
     layout: Option<(Vec<usize>, Layout)>,
+    /// The method of the last escalated solve and the index, in its chain
+    /// of stages, of the stage that solved it (`escalate.rs`).
+    escalation: Option<(Method, usize)>,
 }
 
 /// What one reference configuration and method need: the system and scratch.
@@ -267,6 +320,8 @@ struct Built {
     system: System,
     lu: Option<direct::Lu>,
     scratch: Scratch,
+    /// Each unknown position's local size ([`verify::heights`]).
+    heights: Vec<f64>,
 }
 
 /// The system swept or factored.
@@ -436,90 +491,8 @@ impl Engine {
             pool: None,
             accel,
             layout: None,
+            escalation: None,
         })
-    }
-
-    /// One step: solves for the unknowns of `displacement` (see the module
-    /// documentation) on reference coordinates `coords`, and says what it did.
-    ///
-    /// Fails with [`Error::InvalidSetting`] for arrays of the wrong length,
-    /// non-finite input or parameters out of range, and with
-    /// [`Error::InvalidMesh`] when `coords` collapse a cell (a spring of zero
-    /// length) or make a node's springs singular.
-    pub fn solve(
-        &mut self,
-        coords: &[f64],
-        displacement: &mut [f64],
-        params: &SolveParams,
-    ) -> Result<SolveInfo> {
-        let start = Instant::now();
-        self.check(coords, displacement, params)?;
-        let threads = params.threads;
-        if self.pool.as_ref().map(|p| p.0) != Some(threads) {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .map_err(|e| {
-                    Error::InvalidSetting(format!("cannot start {threads} threads: {e}"))
-                })?;
-            self.pool = Some((threads, pool));
-        }
-        let reuse = self
-            .built
-            .as_ref()
-            .is_some_and(|b| b.method == params.method && b.coords == coords);
-        if !reuse {
-            self.built = None;
-            let (_, pool) = self.pool.take().expect("started above");
-            let built = pool.install(|| match self.conn.dim {
-                2 => self.build::<2>(coords, displacement, params.method),
-                _ => self.build::<3>(coords, displacement, params.method),
-            });
-            self.pool = Some((threads, pool));
-            self.built = Some(built?);
-        }
-        let Engine {
-            conn,
-            roles,
-            normals,
-            built,
-            pool,
-            accel,
-            ..
-        } = self;
-        let built = built.as_mut().expect("built above");
-        let pool = &pool.as_ref().expect("started above").1;
-        if params.method == Method::BallVertex
-            && params.solver == Solver::Direct
-            && built.lu.is_none()
-            && built.layout.len() > 0
-        {
-            let blocks = system_blocks(&built.system);
-            built.lu = Some(match conn.dim {
-                2 => direct::Lu::new::<2>(&built.layout, blocks)?,
-                _ => direct::Lu::new::<3>(&built.layout, blocks)?,
-            });
-        }
-        let (accelerator, hierarchy_seconds) = accel.prepare(built, pool, params, conn.dim)?;
-        let form_seconds = start.elapsed().as_secs_f64();
-        let solving = Instant::now();
-        let scale = prescribed_scale(conn.dim, roles, normals, displacement);
-        let threshold = if params.absolute_tolerance || scale == 0.0 {
-            params.tolerance
-        } else {
-            params.tolerance * scale
-        };
-        let mut info = match conn.dim {
-            2 => run::<2>(built, pool, accelerator, displacement, params, threshold)?,
-            _ => run::<3>(built, pool, accelerator, displacement, params, threshold)?,
-        };
-        info.form_seconds = form_seconds;
-        info.solve_seconds = solving.elapsed().as_secs_f64();
-        info.seconds = start.elapsed().as_secs_f64();
-        info.rebuilt = !reuse;
-        info.hierarchy_built = hierarchy_seconds.is_some();
-        info.hierarchy_seconds = hierarchy_seconds.unwrap_or(0.0);
-        Ok(info)
     }
 
     /// Sets per-node spring stiffness factors (see
@@ -680,7 +653,9 @@ impl Engine {
         };
         let m = layout.len();
         let chunks = *layout.chunk_starts.last().unwrap_or(&0);
+        let heights = verify::heights::<D>(&self.conn, coords, &layout);
         Ok(Built {
+            heights,
             coords: coords.to_vec(),
             method,
             layout,
@@ -834,7 +809,9 @@ fn prescribed_scale(dim: usize, roles: &[NodeRole], normals: &[[f64; 3]], u: &[f
     scale
 }
 
-/// Forms the right-hand side, runs the chosen solver and writes the unknowns back.
+/// Forms the right-hand side, runs `stage` (the multigrid when
+/// `accelerator` is given, for [`Stage::Sweeps`] and [`Stage::Multigrid`])
+/// and writes the unknowns back.
 fn run<const D: usize>(
     built: &mut Built,
     pool: &rayon::ThreadPool,
@@ -842,6 +819,7 @@ fn run<const D: usize>(
     displacement: &mut [f64],
     params: &SolveParams,
     threshold: f64,
+    stage: Stage,
 ) -> Result<SolveInfo> {
     let Built {
         layout,
@@ -871,26 +849,25 @@ fn run<const D: usize>(
             ..SolveInfo::default()
         }
     } else {
-        match (&*system, params.method, params.solver) {
-            (System::Blocks { blocks, .. }, Method::BallVertex, Solver::Direct) => {
+        match (&*system, stage) {
+            (System::Blocks { blocks, .. }, Stage::Direct) => {
                 let lu = lu.as_ref().expect("factored before the solve");
                 lu.solve::<D>(layout, blocks, constant, work)?;
-                Ok(SolveInfo {
+                SolveInfo {
                     iterations: 1,
                     converged: true,
                     ..SolveInfo::default()
-                })
+                }
             }
             (
                 System::Blocks {
                     blocks, factored, ..
                 },
                 _,
-                _,
             ) => {
                 let blocks: &NodeBlocks = blocks;
                 let accelerated = accelerator.and_then(|accelerator| {
-                    let result = pool.install(|| {
+                    let info = pool.install(|| {
                         accelerator.solve::<D>(
                             blocks,
                             layout,
@@ -905,17 +882,16 @@ fn run<const D: usize>(
                     });
                     // Under `auto`, a solve the multigrid could not finish is
                     // redone by plain sweeps from the same initial guess.
-                    let keep = params.accel != Accel::Auto
-                        || result.as_ref().is_ok_and(|info| info.converged);
+                    let keep = params.accel != Accel::Auto || info.converged;
                     if !keep {
                         gather::<D>(layout, displacement, work);
                     }
-                    keep.then_some(result)
+                    keep.then_some(info)
                 });
-                if let Some(result) = accelerated {
-                    result
+                if let Some(info) = accelerated {
+                    info
                 } else if *factored {
-                    iterate::<D, _>(
+                    sweep::iterate::<D, _>(
                         pool,
                         layout,
                         work,
@@ -926,7 +902,7 @@ fn run<const D: usize>(
                         |p, w| verbss::update::<D>(blocks, layout, constant, omega, p, w),
                     )
                 } else {
-                    iterate::<D, _>(
+                    sweep::iterate::<D, _>(
                         pool,
                         layout,
                         work,
@@ -938,9 +914,9 @@ fn run<const D: usize>(
                     )
                 }
             }
-            (System::Laplacian(weights), _, _) => {
+            (System::Laplacian(weights), _) => {
                 let weights: &laplacian::Weights = weights;
-                iterate::<D, _>(
+                sweep::iterate::<D, _>(
                     pool,
                     layout,
                     work,
@@ -951,10 +927,12 @@ fn run<const D: usize>(
                     |p, w| weights.update::<D>(layout, constant, omega, p, w),
                 )
             }
-        }?
+        }
     };
-    for (p, &i) in layout.order.iter().enumerate() {
-        displacement[D * i..D * (i + 1)].copy_from_slice(&work[D * p..D * (p + 1)]);
+    if !info.diverged {
+        for (p, &i) in layout.order.iter().enumerate() {
+            displacement[D * i..D * (i + 1)].copy_from_slice(&work[D * p..D * (p + 1)]);
+        }
     }
     Ok(info)
 }
@@ -963,14 +941,6 @@ fn run<const D: usize>(
 fn gather<const D: usize>(layout: &Layout, displacement: &[f64], work: &mut [f64]) {
     for (p, &i) in layout.order.iter().enumerate() {
         work[D * p..D * (p + 1)].copy_from_slice(&displacement[D * i..D * (i + 1)]);
-    }
-}
-
-/// The blocks of a [`System::Blocks`].
-fn system_blocks(system: &System) -> &NodeBlocks {
-    match system {
-        System::Blocks { blocks, .. } => blocks,
-        System::Laplacian(_) => unreachable!("the direct solver works on spring blocks"),
     }
 }
 
@@ -1004,111 +974,4 @@ fn block_constants<const D: usize>(
         }
         constant[D * p..D * (p + 1)].copy_from_slice(&c);
     }
-}
-
-/// Sweeps until the eq.-8 value is below `threshold` or `max_iterations` sweeps.
-/// `update(p, work)` returns position `p`'s new displacement and the sum of
-/// the absolute changes of its unknown components.
-///
-/// Fails when the sweeps diverge: an eq.-8 value that is not finite or more
-/// than 10⁶ times the first sweep's.
-#[allow(clippy::too_many_arguments)]
-fn iterate<const D: usize, F>(
-    pool: &rayon::ThreadPool,
-    layout: &Layout,
-    work: &mut [f64],
-    next: &mut [f64],
-    partials: &mut [f64],
-    params: &SolveParams,
-    threshold: f64,
-    update: F,
-) -> Result<SolveInfo>
-where
-    F: Fn(usize, &[f64]) -> ([f64; D], f64) + Sync,
-{
-    let mut info = SolveInfo::default();
-    let mut first = None;
-    pool.install(|| {
-        while info.iterations < params.max_iterations {
-            let value =
-                sweep::<D, F>(layout, work, next, partials, &update, false) / layout.dofs as f64;
-            info.iterations += 1;
-            info.residual = value;
-            if params.record_history {
-                info.history.push(value);
-            }
-            let first = *first.get_or_insert(value);
-            if !value.is_finite() || value > 1e6 * first {
-                return Err(Error::InvalidSetting(format!(
-                    "the sweeps diverged (eq.-8 value {value:.3e} at sweep {}, {first:.3e} at \
-                     the first); omega {} is too large for this mesh",
-                    info.iterations, params.omega
-                )));
-            }
-            if value < threshold {
-                info.converged = true;
-                break;
-            }
-        }
-        Ok(())
-    })?;
-    Ok(info)
-}
-
-/// One sweep, colour by colour (last colour first when `reverse`), each
-/// colour's nodes in parallel chunks. Returns the sum of absolute changes,
-/// added chunk by chunk in order.
-fn sweep<const D: usize, F>(
-    layout: &Layout,
-    work: &mut [f64],
-    next: &mut [f64],
-    partials: &mut [f64],
-    update: &F,
-    reverse: bool,
-) -> f64
-where
-    F: Fn(usize, &[f64]) -> ([f64; D], f64) + Sync,
-{
-    let colours = layout.colour_starts.len() - 1;
-    for k in 0..colours {
-        let c = if reverse { colours - 1 - k } else { k };
-        let (start, end) = (layout.colour_starts[c], layout.colour_starts[c + 1]);
-        let sums = &mut partials[layout.chunk_starts[c]..layout.chunk_starts[c + 1]];
-        let current: &[f64] = work;
-        next[D * start..D * end]
-            .par_chunks_mut(D * CHUNK)
-            .zip(sums.par_iter_mut())
-            .enumerate()
-            .for_each(|(k, (out, sum))| {
-                let first = start + k * CHUNK;
-                *sum = 0.0;
-                for (m, u) in out.chunks_exact_mut(D).enumerate() {
-                    let (value, change) = update(first + m, current);
-                    u.copy_from_slice(&value);
-                    *sum += change;
-                }
-            });
-        work[D * start..D * end].copy_from_slice(&next[D * start..D * end]);
-    }
-    partials.iter().sum()
-}
-
-/// `Σ f(x_i)`, summed in fixed chunks and then chunk by chunk in order, so
-/// that the result is the same for every number of threads.
-pub(crate) fn chunked_sum(x: &[f64], f: impl Fn(f64) -> f64 + Sync) -> f64 {
-    x.par_chunks(SUM_CHUNK)
-        .map(|c| c.iter().map(|&v| f(v)).sum::<f64>())
-        .collect::<Vec<_>>()
-        .iter()
-        .sum()
-}
-
-/// `Σ a_i b_i`, summed like [`chunked_sum`].
-pub(crate) fn chunked_dot(a: &[f64], b: &[f64]) -> f64 {
-    a.par_chunks(SUM_CHUNK)
-        .zip(b.par_chunks(SUM_CHUNK))
-        .map(|(x, y)| x.iter().zip(y).map(|(u, v)| u * v).sum::<f64>())
-        .collect::<Vec<_>>()
-        .iter()
-        .sum()
 }

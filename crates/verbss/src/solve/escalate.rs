@@ -1,0 +1,392 @@
+//! One step's solve, watched and escalated (docs/method.md, "Accepting a
+//! step").
+//!
+//! The configured solver runs first (the VerBSS sweeps, or the multigrid
+//! when [`Accel`] picks it). Under [`SolveParams::escalate`] its result is
+//! accepted only when the eq.-8 test held and every node's estimated error
+//! is below [`ERROR_FRACTION`] of its local cell height (`verify.rs`);
+//! otherwise the next stage starts from the best iterate so far (from the
+//! initial guess again when the sweeps diverged):
+//!
+//! * block systems (`verbss`, `spring`): GMRES around the multigrid V-cycle
+//!   ([`Stage::Multigrid`]), then the sparse direct solve ([`Stage::Direct`])
+//!   where it fits ([`DIRECT_NODES_2D`], [`DIRECT_NODES_3D`]);
+//! * `ball-vertex` with SOR: the direct solve;
+//! * `laplacian`: sweeps with ω = 1 ([`Stage::SafeSweeps`]), which converge
+//!   on its symmetric, diagonally dominant system whatever the mesh.
+//!
+//! A step no stage could solve comes back with `converged = false`; the
+//! stepper turns it into [`crate::Error::NotConverged`].
+
+use std::time::Instant;
+
+use super::{
+    prescribed_scale, run, verify, Accel, Engine, Method, SolveInfo, SolveParams, Solver, Stage,
+    System, ERROR_FRACTION,
+};
+use crate::error::{Error, Result};
+use crate::geometry::{ldlt_factor, ldlt_mul, packed_len, point};
+
+/// The direct solve is tried on 2D systems of at most this many unknown nodes.
+pub const DIRECT_NODES_2D: usize = 400_000;
+/// The same in 3D, where the factors fill in much more.
+pub const DIRECT_NODES_3D: usize = 60_000;
+/// GMRES iterations of the multigrid stage.
+const MULTIGRID_ITERATIONS: usize = 60;
+/// The multigrid stage's stop, as a fraction of the error it must reach:
+/// [`ERROR_FRACTION`] of the smallest local size.
+const MULTIGRID_MARGIN: f64 = 0.1;
+/// An exact solve's iterative stages stop at this fraction of the step's
+/// largest prescribed displacement.
+const ROUND_OFF: f64 = 1e-12;
+
+impl Engine {
+    /// One step: solves for the unknowns of `displacement` (see the module
+    /// documentation of [`crate::solve`]) on reference coordinates `coords`,
+    /// escalating as [`SolveParams::escalate`] says, and says what it did.
+    ///
+    /// Fails with [`Error::InvalidSetting`] for arrays of the wrong length,
+    /// non-finite input or parameters out of range, and with
+    /// [`Error::InvalidMesh`] when `coords` collapse a cell (a spring of zero
+    /// length) or make a node's springs singular. A solve that did not
+    /// converge is not an error: `converged` is false.
+    pub fn solve(
+        &mut self,
+        coords: &[f64],
+        displacement: &mut [f64],
+        params: &SolveParams,
+    ) -> Result<SolveInfo> {
+        let first = if params.method == Method::BallVertex && params.solver == Solver::Direct {
+            Stage::Direct
+        } else {
+            Stage::Sweeps
+        };
+        let then: &[Stage] = match (params.escalate, params.method, params.solver) {
+            (false, ..) | (_, Method::BallVertex, Solver::Direct) => &[],
+            (_, Method::Verbss | Method::Spring, _) => &[Stage::Multigrid, Stage::Direct],
+            (_, Method::BallVertex, Solver::Sor) => &[Stage::Direct],
+            (_, Method::Laplacian, _) => &[Stage::SafeSweeps],
+        };
+        let chain: Vec<Stage> = std::iter::once(first).chain(then.iter().copied()).collect();
+        // The stage that solved the last step is where the next one starts:
+        // a mesh on which the sweeps diverge does not pay for them every step.
+        let from = match self.escalation {
+            Some((method, k)) if method == params.method && params.escalate => k,
+            _ => 0,
+        };
+        let info = self.solve_in_stages(
+            coords,
+            displacement,
+            params,
+            &chain[from.min(chain.len() - 1)..],
+            false,
+        )?;
+        if params.escalate && info.converged {
+            let k = info
+                .stages
+                .last()
+                .and_then(|s| chain.iter().position(|c| c == s));
+            self.escalation = Some((params.method, k.unwrap_or(0)));
+        }
+        Ok(info)
+    }
+
+    /// The step solved to round-off: the direct solve where it fits, else
+    /// the multigrid (block systems) or ω = 1 sweeps (Laplacian) to
+    /// [`ROUND_OFF`]. What the stepper does before it rejects a step for an
+    /// inverted element: an inversion is never the solver's fault.
+    pub fn solve_exact(
+        &mut self,
+        coords: &[f64],
+        displacement: &mut [f64],
+        params: &SolveParams,
+    ) -> Result<SolveInfo> {
+        let dim = self.conn.dim;
+        let unknowns = self.roles.len();
+        let fits = unknowns
+            <= if dim == 2 {
+                DIRECT_NODES_2D
+            } else {
+                DIRECT_NODES_3D
+            };
+        let stages: &[Stage] = match params.method {
+            Method::Laplacian => &[Stage::SafeSweeps],
+            _ if fits => &[Stage::Direct, Stage::Multigrid],
+            Method::BallVertex => &[Stage::Direct],
+            _ => &[Stage::Multigrid, Stage::Direct],
+        };
+        self.solve_in_stages(coords, displacement, params, stages, true)
+    }
+
+    /// Runs each of `stages` in turn until one is accepted.
+    fn solve_in_stages(
+        &mut self,
+        coords: &[f64],
+        displacement: &mut [f64],
+        params: &SolveParams,
+        stages: &[Stage],
+        exact: bool,
+    ) -> Result<SolveInfo> {
+        let start = Instant::now();
+        self.check(coords, displacement, params)?;
+        let rebuilt = self.prepare(coords, displacement, params)?;
+        let form_seconds = start.elapsed().as_secs_f64();
+        let guess = (stages.len() > 1).then(|| displacement.to_vec());
+        let mut total = SolveInfo::default();
+        let mut hierarchy_seconds = 0.0;
+        for (k, &stage) in stages.iter().enumerate() {
+            let (info, seconds) = match self.stage(displacement, params, stage, exact) {
+                Ok(Some(done)) => done,
+                Ok(None) => continue,
+                Err(e) if k == 0 => return Err(e),
+                // A later stage that cannot run (a hierarchy or factorisation
+                // that fails) leaves the next one to try.
+                Err(_) => continue,
+            };
+            hierarchy_seconds += seconds.unwrap_or(0.0);
+            total.iterations += info.iterations;
+            total.residual = info.residual;
+            total.diverged |= info.diverged;
+            total.history.extend(info.history);
+            total.levels = total.levels.max(info.levels);
+            total.hierarchy_built |= seconds.is_some();
+            total.stages.push(stage);
+            if info.diverged {
+                if let Some(guess) = &guess {
+                    displacement.copy_from_slice(guess);
+                }
+                total.error_ratio = f64::INFINITY;
+                total.converged = false;
+                continue;
+            }
+            self.verify(displacement, &mut total);
+            total.converged = info.converged
+                && (stage == Stage::Direct
+                    || !params.escalate
+                    || total.error_ratio <= ERROR_FRACTION);
+            if total.converged {
+                break;
+            }
+        }
+        total.form_seconds = form_seconds + hierarchy_seconds;
+        total.seconds = start.elapsed().as_secs_f64();
+        total.solve_seconds = total.seconds - total.form_seconds;
+        total.rebuilt = rebuilt;
+        total.hierarchy_seconds = hierarchy_seconds;
+        Ok(total)
+    }
+
+    /// Starts the thread pool and (re)builds the system when `coords` or the
+    /// method changed. Returns whether it was rebuilt.
+    fn prepare(
+        &mut self,
+        coords: &[f64],
+        displacement: &[f64],
+        params: &SolveParams,
+    ) -> Result<bool> {
+        let threads = params.threads;
+        if self.pool.as_ref().map(|p| p.0) != Some(threads) {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .map_err(|e| {
+                    Error::InvalidSetting(format!("cannot start {threads} threads: {e}"))
+                })?;
+            self.pool = Some((threads, pool));
+        }
+        let reuse = self
+            .built
+            .as_ref()
+            .is_some_and(|b| b.method == params.method && b.coords == coords);
+        if !reuse {
+            self.built = None;
+            let (_, pool) = self.pool.take().expect("started above");
+            let built = pool.install(|| match self.conn.dim {
+                2 => self.build::<2>(coords, displacement, params.method),
+                _ => self.build::<3>(coords, displacement, params.method),
+            });
+            self.pool = Some((threads, pool));
+            self.built = Some(built?);
+        }
+        Ok(!reuse)
+    }
+
+    /// Runs one stage from `displacement`; `None` when the stage does not
+    /// apply (no multigrid for the system, or too large a direct solve).
+    /// Gives the solve and, when a multigrid was built, its seconds.
+    fn stage(
+        &mut self,
+        displacement: &mut [f64],
+        params: &SolveParams,
+        stage: Stage,
+        exact: bool,
+    ) -> Result<Option<(SolveInfo, Option<f64>)>> {
+        let dim = self.conn.dim;
+        let Engine {
+            conn,
+            roles,
+            normals,
+            built,
+            pool,
+            accel,
+            ..
+        } = self;
+        let built = built.as_mut().expect("prepared");
+        let pool = &pool.as_ref().expect("prepared").1;
+        let scale = prescribed_scale(dim, roles, normals, displacement);
+        let mut threshold = if params.absolute_tolerance || scale == 0.0 {
+            params.tolerance
+        } else {
+            params.tolerance * scale
+        };
+        if exact {
+            threshold = ROUND_OFF * if scale == 0.0 { 1.0 } else { scale };
+        }
+        let blocks = matches!(built.system, System::Blocks { .. });
+        let factored = matches!(built.system, System::Blocks { factored: true, .. });
+        let mut stage_params = params.clone();
+        let mut hierarchy = None;
+        let accelerator = match stage {
+            Stage::Sweeps => {
+                let (a, seconds) = accel.prepare(built, pool, params, dim)?;
+                hierarchy = seconds;
+                a
+            }
+            Stage::Multigrid => {
+                if !factored || built.layout.len() == 0 {
+                    return Ok(None);
+                }
+                stage_params.accel = Accel::Amg;
+                stage_params.max_iterations = MULTIGRID_ITERATIONS;
+                if !exact {
+                    let smallest = built.heights.iter().fold(f64::INFINITY, |a, &b| a.min(b));
+                    threshold = threshold.min(MULTIGRID_MARGIN * ERROR_FRACTION * smallest);
+                }
+                match accel.prepare(built, pool, &stage_params, dim) {
+                    Ok((a, seconds)) => {
+                        hierarchy = seconds;
+                        a
+                    }
+                    Err(_) => return Ok(None),
+                }
+            }
+            Stage::SafeSweeps => {
+                stage_params.omega = 1.0;
+                stage_params.accel = Accel::None;
+                stage_params.max_iterations = params.max_iterations.saturating_mul(4);
+                None
+            }
+            Stage::Direct => {
+                let limit = if dim == 2 {
+                    DIRECT_NODES_2D
+                } else {
+                    DIRECT_NODES_3D
+                };
+                if !blocks || built.layout.len() > limit {
+                    return Ok(None);
+                }
+                if built.lu.is_none() && built.layout.len() > 0 {
+                    let System::Blocks {
+                        blocks, factored, ..
+                    } = &built.system
+                    else {
+                        unreachable!("checked above")
+                    };
+                    built.lu = Some(match dim {
+                        2 => super::direct::Lu::new::<2>(&built.layout, blocks, *factored)?,
+                        _ => super::direct::Lu::new::<3>(&built.layout, blocks, *factored)?,
+                    });
+                }
+                None
+            }
+        };
+        let info = match conn.dim {
+            2 => run::<2>(
+                built,
+                pool,
+                accelerator,
+                displacement,
+                &stage_params,
+                threshold,
+                stage,
+            )?,
+            _ => run::<3>(
+                built,
+                pool,
+                accelerator,
+                displacement,
+                &stage_params,
+                threshold,
+                stage,
+            )?,
+        };
+        Ok(Some((info, hierarchy)))
+    }
+
+    /// Fills the true residual and the worst estimated error of `total`
+    /// from the solution in `displacement` (`verify.rs`).
+    fn verify(&mut self, displacement: &[f64], total: &mut SolveInfo) {
+        let Some(built) = self.built.as_mut() else {
+            return;
+        };
+        let pool = &self.pool.as_ref().expect("prepared").1;
+        let check = pool.install(|| match self.conn.dim {
+            2 => check::<2>(built, displacement),
+            _ => check::<3>(built, displacement),
+        });
+        total.true_residual = check.true_residual;
+        total.error_ratio = check.error_ratio;
+        total.worst_node = built.layout.order.get(check.worst).copied().unwrap_or(0);
+    }
+}
+
+/// [`verify::check`] of the system of `built` at `displacement`.
+fn check<const D: usize>(built: &mut super::Built, displacement: &[f64]) -> verify::Check {
+    let super::Built {
+        layout,
+        system,
+        scratch,
+        heights,
+        ..
+    } = built;
+    let super::Scratch { constant, work, .. } = scratch;
+    super::gather::<D>(layout, displacement, work);
+    let (constant, work): (&[f64], &[f64]) = (constant, work);
+    let layout: &super::Layout = layout;
+    let s = packed_len(D);
+    match system {
+        System::Blocks {
+            blocks, factored, ..
+        } => {
+            let factored = *factored;
+            verify::check::<D, _>(work, heights, |p, w| {
+                let rhs = super::coupled::<D>(blocks, constant, p, w);
+                let mut factor = [0.0; 6];
+                let f = &blocks.diag[s * p..s * (p + 1)];
+                if factored {
+                    factor[..s].copy_from_slice(f);
+                } else if !ldlt_factor::<D>(f, &mut factor[..s]) {
+                    return ([f64::INFINITY; D], f64::INFINITY);
+                }
+                let old = point::<D>(w, p);
+                let (new, _) =
+                    super::verbss::relax::<D>(&factor, &rhs, &old, layout.frame::<D>(p), 1.0);
+                let e: [f64; D] = std::array::from_fn(|k| new[k] - old[k]);
+                let r = match layout.frame::<D>(p) {
+                    None => ldlt_mul::<D>(&factor, &e),
+                    Some(frame) => {
+                        super::unrotate(&frame, &ldlt_mul::<D>(&factor, &super::rotate(&frame, &e)))
+                    }
+                };
+                (e, r.iter().map(|v| v * v).sum())
+            })
+        }
+        System::Laplacian(weights) => verify::check::<D, _>(work, heights, |p, w| {
+            let old = point::<D>(w, p);
+            let (new, _) = weights.update::<D>(layout, constant, 1.0, p, w);
+            let e: [f64; D] = std::array::from_fn(|k| new[k] - old[k]);
+            let sum = weights.sum(p);
+            (e, e.iter().map(|v| (sum * v).powi(2)).sum())
+        }),
+    }
+}

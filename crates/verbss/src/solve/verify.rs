@@ -1,0 +1,128 @@
+//! Whether a solution can be trusted (docs/method.md, "Accepting a step").
+//!
+//! The eq.-8 value measures one sweep's change, not the error: on stretched
+//! cells (a wake cut of cells 10⁻⁵ high and a chord long) the sweeps can
+//! stop, or stall, with nodes far enough from their equilibrium to invert a
+//! thin cell. Each unknown node's error is estimated from its true residual
+//! `r_i = c_i + Σ_j B_ij u_j − K_ii u_i` and its own block:
+//! `e_i = K_ii⁻¹ r_i`, the distance from `u_i` to where the node's springs
+//! put it given its neighbours (one Jacobi step). A smooth error moves a
+//! node and its neighbours together and inverts nothing; `e_i` measures the
+//! error's variation across the node's cells, which is what inverts them.
+//! It is compared with the node's local size `h_i`, the smallest height of
+//! its cells ([`cell_height`]).
+
+use rayon::prelude::*;
+
+use super::{Layout, CHUNK};
+use crate::geometry::{cross, det, norm, point, sub};
+use crate::mesh::CellKind;
+use crate::springs::Connectivity;
+
+/// The result of [`check`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Check {
+    /// Root-mean-square of `|r_i|` over the unknown nodes.
+    pub(crate) true_residual: f64,
+    /// `max_i |e_i| / h_i`.
+    pub(crate) error_ratio: f64,
+    /// The position where the ratio is largest.
+    pub(crate) worst: usize,
+}
+
+/// The smallest height of a cell at `coords`: over its corners, the
+/// corner's parallelogram (parallelepiped) measure over its largest side,
+/// `|det(e₁, e₂)| / max |e_k|` in 2D and `|det(e₁, e₂, e₃)| / max |e_k × e_l|`
+/// in 3D, with `e_k` the corner's edges. For a rectangle (box) this is its
+/// shortest side; for a simplex, a height over one of its largest facets.
+pub(crate) fn cell_height<const D: usize>(kind: CellKind, nodes: &[usize], coords: &[f64]) -> f64 {
+    let mut height = f64::INFINITY;
+    for corner in kind.table().corners {
+        let x0 = point::<D>(coords, nodes[corner[0]]);
+        let e: [[f64; D]; D] =
+            std::array::from_fn(|k| sub(&point::<D>(coords, nodes[corner[k + 1]]), &x0));
+        let volume = det::<D>(&e).abs();
+        let side = if D == 2 {
+            norm(&e[0]).max(norm(&e[1]))
+        } else {
+            let v = |k: usize| [e[k][0], e[k][1], e[k][2]];
+            norm(&cross(&v(0), &v(1)))
+                .max(norm(&cross(&v(1), &v(2))))
+                .max(norm(&cross(&v(2), &v(0))))
+        };
+        height = height.min(if side > 0.0 { volume / side } else { 0.0 });
+    }
+    height
+}
+
+/// The local size `h_i` of each unknown position: the smallest
+/// [`cell_height`] of the node's cells at `coords`.
+pub(crate) fn heights<const D: usize>(
+    conn: &Connectivity,
+    coords: &[f64],
+    layout: &Layout,
+) -> Vec<f64> {
+    let cells: Vec<f64> = (0..conn.cells.len())
+        .into_par_iter()
+        .map(|c| cell_height::<D>(conn.cells.kinds[c], conn.cells.cell(c), coords))
+        .collect();
+    layout
+        .order
+        .par_iter()
+        .map(|&i| {
+            conn.node_cells
+                .row(i)
+                .iter()
+                .map(|&c| cells[c])
+                .fold(f64::INFINITY, f64::min)
+        })
+        .collect()
+}
+
+/// Checks the unknowns `work` against their local sizes `heights`.
+/// `estimate(p, work)` gives position `p`'s error estimate `e_p` and the
+/// squared norm of its true residual `|r_p|²`.
+pub(crate) fn check<const D: usize, F>(work: &[f64], heights: &[f64], estimate: F) -> Check
+where
+    F: Fn(usize, &[f64]) -> ([f64; D], f64) + Sync,
+{
+    let m = heights.len();
+    let parts: Vec<(f64, f64, usize)> = (0..m.div_ceil(CHUNK))
+        .into_par_iter()
+        .map(|t| {
+            let mut sum = 0.0;
+            let (mut worst, mut at) = (0.0f64, t * CHUNK);
+            for p in t * CHUNK..((t + 1) * CHUNK).min(m) {
+                let (e, r2) = estimate(p, work);
+                sum += r2;
+                let size = norm(&e);
+                let ratio = if size == 0.0 {
+                    0.0
+                } else if heights[p] > 0.0 {
+                    size / heights[p]
+                } else {
+                    f64::INFINITY
+                };
+                // `!(ratio <= worst)` also takes a NaN as the worst.
+                if !(ratio <= worst) {
+                    (worst, at) = (ratio, p);
+                }
+            }
+            (sum, worst, at)
+        })
+        .collect();
+    let mut check = Check {
+        true_residual: 0.0,
+        error_ratio: 0.0,
+        worst: 0,
+    };
+    let mut sum = 0.0;
+    for (s, worst, at) in parts {
+        sum += s;
+        if !(worst <= check.error_ratio) {
+            (check.error_ratio, check.worst) = (worst, at);
+        }
+    }
+    check.true_residual = (sum / m.max(1) as f64).sqrt();
+    check
+}
