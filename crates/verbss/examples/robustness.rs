@@ -1,20 +1,23 @@
-//! How far each near-wall treatment carries a motion before the first
-//! inverted element, and what a step costs (docs/robustness.md).
+//! How far the default, the paper's method, the Laplacian and the exact
+//! solve carry a motion before the first inverted element, and what a step
+//! costs (docs/robustness.md).
 //!
 //! ```sh
 //! cargo run --release -p verbss --example robustness -- cases/robust/*.toml
-//! cargo run --release -p verbss --example robustness -- --variants paper,robust CASE.toml
+//! cargo run --release -p verbss --example robustness -- --variants default,verbss CASE.toml
 //! ```
 //!
-//! Each case file is run once per variant — `paper` (the paper's method),
-//! `layer` (rigid layer, automatic thickness), `stiffening` (inverse
-//! wall-distance stiffening, p = 1), `substeps` (adaptive sub-steps down to
-//! 1/64), `robust` (all three: `--method robust`) — with the case's own
-//! solver settings otherwise, until the first inverted element or the last
-//! step. Printed per case and variant: the steps completed and the amplitude
-//! reached (for a rotation, in degrees), where the first inversion is, the
-//! rigid layer's nodes, sweeps and seconds per step, and the cost of a step
-//! relative to `paper` over the steps both completed.
+//! Each case file is run once per variant — `default` (the command line's
+//! defaults: `--method robust`, the escalating solve), `verbss` (the
+//! paper's method), `laplacian`, `exact` (the default's near-wall treatment,
+//! every step solved by the sparse direct solve), and the single treatments
+//! `layer`, `stiffening`, `substeps` — with the case's steps and motions,
+//! until the first inverted element, an unconverged step or the last step.
+//! Printed per case and variant: the steps completed and the amplitude
+//! reached (for a rotation, in degrees), where the run stopped, the rigid
+//! layer's nodes, sweeps and seconds per step, the cost of a step relative
+//! to `verbss` over the steps both completed, the steps that escalated
+//! beyond the sweeps, and the minimum quality.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -25,20 +28,35 @@ use verbss::deform::Deformer;
 use verbss::error::Error;
 use verbss::motion::Motion;
 use verbss::robust::{Layer, Robust};
-use verbss::solve::Method;
+use verbss::solve::{Method, SolveParams, Solver, Stage};
 
-const VARIANTS: [&str; 5] = ["paper", "layer", "stiffening", "substeps", "robust"];
+const VARIANTS: [&str; 7] = [
+    "default",
+    "verbss",
+    "laplacian",
+    "exact",
+    "layer",
+    "stiffening",
+    "substeps",
+];
 
-fn treatment(name: &str) -> Robust {
+/// The near-wall treatment and the solver settings of `variant`.
+fn variant(name: &str) -> (Robust, SolveParams) {
     let mut r = Robust::off();
+    let mut s = SolveParams::default();
     match name {
+        "default" => r = Robust::recommended(),
+        "laplacian" => s.method = Method::Laplacian,
+        "exact" => {
+            r = Robust::recommended();
+            (s.method, s.solver) = (Method::BallVertex, Solver::Direct);
+        }
         "layer" => r.layer = Layer::Auto,
         "stiffening" => r.stiffening = 1.0,
         "substeps" => r.substeps = 6,
-        "robust" => r = Robust::recommended(),
         _ => {}
     }
-    r
+    (r, s)
 }
 
 /// What one run of a case gave.
@@ -50,14 +68,17 @@ struct Outcome {
     sweeps: Vec<usize>,
     seconds: Vec<f64>,
     min_quality: f64,
+    /// Steps that used more than the configured sweeps.
+    escalated: usize,
 }
 
-fn run(case: &Case, variant: &str) -> Result<Outcome, Error> {
+fn run(case: &Case, variant_name: &str) -> Result<Outcome, Error> {
     let mesh = verbss::io::read(&case.mesh)?;
     let attachments = case.attachments(&mesh)?;
     let mut settings = case.settings.clone();
-    settings.solve.method = Method::Verbss;
-    settings.robust = treatment(variant);
+    let threads = settings.solve.threads;
+    (settings.robust, settings.solve) = variant(variant_name);
+    settings.solve.threads = threads;
     let mut d = Deformer::new(&mesh, &attachments, settings)?;
     let mut out = Outcome {
         steps: case.settings.steps,
@@ -67,6 +88,7 @@ fn run(case: &Case, variant: &str) -> Result<Outcome, Error> {
         sweeps: Vec::new(),
         seconds: Vec::new(),
         min_quality: d.current().report.min_quality,
+        escalated: 0,
     };
     for n in 1..=case.settings.steps {
         let start = Instant::now();
@@ -76,8 +98,9 @@ fn run(case: &Case, variant: &str) -> Result<Outcome, Error> {
                 out.sweeps.push(r.iterations);
                 out.completed = n;
                 out.min_quality = out.min_quality.min(r.min_quality);
+                out.escalated += usize::from(r.stages.iter().any(|s| *s != Stage::Sweeps));
             }
-            Err(e @ Error::Inverted { .. }) => {
+            Err(e @ (Error::Inverted { .. } | Error::NotConverged { .. })) => {
                 out.failure = Some(e.to_string());
                 break;
             }
@@ -132,13 +155,13 @@ fn main() -> ExitCode {
         }
     }
     if cases.is_empty() {
-        eprintln!("usage: robustness [--variants paper,layer,...] CASE.toml...");
+        eprintln!("usage: robustness [--variants default,verbss,...] CASE.toml...");
         return ExitCode::from(2);
     }
     println!(
-        "| case | variant | steps done | amplitude | layer nodes | sweeps/step | s/step | cost vs paper | min quality | first inversion |"
+        "| case | variant | steps done | amplitude | layer nodes | sweeps/step | s/step | cost vs verbss | escalated steps | min quality | stopped by |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for path in &cases {
         let case = match Case::read(path) {
             Ok(c) => c,
@@ -148,18 +171,21 @@ fn main() -> ExitCode {
             }
         };
         let name = path.file_stem().unwrap_or_default().to_string_lossy();
-        let mut paper_seconds: Option<Vec<f64>> = None;
+        let mut outcomes = Vec::new();
         for v in &variants {
-            let o = match run(&case, v) {
-                Ok(o) => o,
+            match run(&case, v) {
+                Ok(o) => outcomes.push(o),
                 Err(e) => {
                     eprintln!("{}: {v}: {e}", path.display());
                     return ExitCode::from(1);
                 }
-            };
-            if v == "paper" {
-                paper_seconds = Some(o.seconds.clone());
             }
+        }
+        let paper_seconds = variants
+            .iter()
+            .position(|v| v == "verbss")
+            .map(|k| outcomes[k].seconds.clone());
+        for (v, o) in variants.iter().zip(&outcomes) {
             let cost = match &paper_seconds {
                 Some(p) if !p.is_empty() && !o.seconds.is_empty() => {
                     let k = p.len().min(o.seconds.len());
@@ -169,13 +195,14 @@ fn main() -> ExitCode {
             };
             let fraction = o.completed as f64 / o.steps as f64;
             println!(
-                "| {name} | {v} | {}/{} | {} | {} | {:.0} | {:.3} | {cost} | {:.4} | {} |",
+                "| {name} | {v} | {}/{} | {} | {} | {:.0} | {:.3} | {cost} | {} | {:.4} | {} |",
                 o.completed,
                 o.steps,
                 amplitude(&case, fraction),
                 o.layer_nodes,
                 mean(&o.sweeps.iter().map(|&s| s as f64).collect::<Vec<_>>()),
                 mean(&o.seconds),
+                o.escalated,
                 o.min_quality,
                 o.failure.as_deref().unwrap_or("none"),
             );

@@ -1,0 +1,151 @@
+//! The default solve escalates until every node's error is trusted; a solve
+//! that cannot be trusted stops with exit code 4, never as bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn verbss(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_verbss"))
+        .args(args)
+        .output()
+        .expect("run verbss")
+}
+
+fn repo(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(path)
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// `verbss deform` of the structured C-grid (wake cells 1e-5 high, aspect
+/// ratio 1.4e5) pitched 3° in 3 steps, with `extra` arguments.
+fn pitch_cgrid(dir: &Path, extra: &[&str]) -> (Output, serde_json::Value) {
+    let mesh = repo("cases/meshes/cgrid-113x33.msh");
+    let out = dir.join("pitched.msh");
+    let report = dir.join("report.json");
+    let mut args = vec![
+        "deform",
+        mesh.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "airfoil",
+        "--rotate",
+        "3",
+        "--center",
+        "0.25,0",
+        "--steps",
+        "3",
+        "--report",
+        report.to_str().unwrap(),
+        "--quiet",
+    ];
+    args.extend_from_slice(extra);
+    let o = verbss(&args);
+    let r = serde_json::from_str(&std::fs::read_to_string(report).unwrap()).unwrap();
+    (o, r)
+}
+
+#[test]
+fn the_default_escalates_where_the_sweeps_diverge_and_records_what_ran() {
+    let dir = tempfile::tempdir().unwrap();
+    let (o, r) = pitch_cgrid(dir.path(), &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = &r["settings"];
+    assert_eq!(s["method"], "robust");
+    assert_eq!(s["escalate"], true);
+    assert_eq!(s["accel"], "none");
+    assert_eq!(s["predictor"], "previous");
+    assert_eq!(s["rigid_layer"], "auto");
+    assert_eq!(s["stiffening"], 1.0);
+    assert_eq!(s["substeps"], 6);
+    assert_eq!(s["omega"], 1.6);
+    let steps = r["steps"].as_array().unwrap();
+    assert_eq!(steps.len(), 4);
+    let first: Vec<&str> = steps[1]["stages"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    assert_eq!(first[0], "sweeps", "{first:?}");
+    assert!(
+        first.len() >= 2,
+        "the ω = 1.6 sweeps diverge here: {first:?}"
+    );
+    for step in &steps[1..] {
+        assert_eq!(step["converged"], true);
+        let ratio = step["error_ratio"].as_f64().unwrap();
+        assert!(ratio <= 0.01, "step {}: {ratio}", step["step"]);
+        assert!(step["true_residual"].as_f64().unwrap().is_finite());
+    }
+}
+
+#[test]
+fn an_explicit_omega_means_that_solver_only_and_a_diverged_solve_is_exit_4() {
+    let dir = tempfile::tempdir().unwrap();
+    let (o, r) = pitch_cgrid(dir.path(), &["--omega", "1.6", "--substeps", "0"]);
+    assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("error: step 1: the solve did not converge (stages tried: sweeps; "),
+        "{e}"
+    );
+    assert!(!e.contains("invalid setting"), "{e}");
+    assert_eq!(r["settings"]["escalate"], false);
+    assert!(r["outcome"].as_str().unwrap().contains("did not converge"));
+    // As for an inversion: the last valid mesh (the input) and the failed state.
+    assert!(dir.path().join("pitched.msh").exists());
+    assert!(dir.path().join("pitched.failed.vtu").exists());
+}
+
+#[test]
+fn diverging_sweeps_say_omega_is_too_large() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rotated.su2");
+    let mesh = repo("assets/meshes/su2/mesh_NACA0012_inv.su2");
+    let o = verbss(&[
+        "deform",
+        mesh.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "airfoil",
+        "--rotate",
+        "5",
+        "--center",
+        "0.25,0",
+        "--method",
+        "verbss",
+        "--omega",
+        "1.95",
+        "--quiet",
+    ]);
+    assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("the sweeps diverged: omega too large for this mesh)"),
+        "{e}"
+    );
+    // Without the explicit ω the default escalates and completes.
+    let o = verbss(&[
+        "deform",
+        mesh.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "airfoil",
+        "--rotate",
+        "5",
+        "--center",
+        "0.25,0",
+        "--method",
+        "verbss",
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
