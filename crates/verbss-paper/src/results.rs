@@ -133,6 +133,8 @@ pub fn run_case(case: &PaperCase, root: &Path, out: &Path) -> anyhow::Result<Cas
         settings.solve.method = method;
         settings.solve.solver = solver;
         settings.solve.threads = 1;
+        // The paper's solvers exactly, stopped by eq. 8 alone.
+        settings.solve.escalate = false;
         let case_keep: Vec<usize> = case
             .bins
             .iter()

@@ -829,3 +829,28 @@ fn diverging_sweeps_escalate_to_the_exact_answer() {
         .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
     assert!(worst < 1e-4 * scale, "{worst:e} against {scale:e}");
 }
+
+#[test]
+fn the_laplacian_direct_solve_matches_its_converged_sweeps() {
+    let normals = [[-2.0, 0.0, 0.0]];
+    for layout in [Layout::MixedTriQuad, Layout::Hex, Layout::Tet] {
+        let mesh = grid(layout, 4);
+        let mut u = wavy_boundary(&mesh);
+        let (roles, sliding) = sliding_side(&mesh, &mut u);
+        let mut p = params(Method::Laplacian, Solver::Sor, 1e-14);
+        p.escalate = false;
+        let mut swept = u.clone();
+        assert!(solve(&mesh, &roles, &normals, &mut swept, &p).converged);
+        let mut exact = u.clone();
+        let mut engine = Engine::new(&mesh, &roles, &normals).unwrap();
+        let info = engine.solve_exact(&mesh.coords, &mut exact, &p).unwrap();
+        assert_eq!(info.stages, [Stage::Direct], "{layout:?}");
+        assert!(info.converged && info.error_ratio < 1e-10, "{info:?}");
+        let rel = rel_diff(&exact, &swept);
+        assert!(rel < 1e-9, "{layout:?}: {rel}");
+        let d = mesh.dim;
+        for &i in &sliding {
+            assert!((exact[d * i] - 0.01).abs() < 1e-15, "{layout:?} node {i}");
+        }
+    }
+}

@@ -65,7 +65,7 @@ impl Engine {
             (false, ..) | (_, Method::BallVertex, Solver::Direct) => &[],
             (_, Method::Verbss | Method::Spring, _) => &[Stage::Multigrid, Stage::Direct],
             (_, Method::BallVertex, Solver::Sor) => &[Stage::Direct],
-            (_, Method::Laplacian, _) => &[Stage::SafeSweeps],
+            (_, Method::Laplacian, _) => &[Stage::Direct, Stage::SafeSweeps],
         };
         let chain: Vec<Stage> = std::iter::once(first).chain(then.iter().copied()).collect();
         // The stage that solved the last step is where the next one starts:
@@ -110,6 +110,7 @@ impl Engine {
                 DIRECT_NODES_3D
             };
         let stages: &[Stage] = match params.method {
+            Method::Laplacian if fits => &[Stage::Direct, Stage::SafeSweeps],
             Method::Laplacian => &[Stage::SafeSweeps],
             _ if fits => &[Stage::Direct, Stage::Multigrid],
             Method::BallVertex => &[Stage::Direct],
@@ -242,7 +243,6 @@ impl Engine {
         if exact {
             threshold = ROUND_OFF * if scale == 0.0 { 1.0 } else { scale };
         }
-        let blocks = matches!(built.system, System::Blocks { .. });
         let factored = matches!(built.system, System::Blocks { factored: true, .. });
         let mut stage_params = params.clone();
         let mut hierarchy = None;
@@ -282,19 +282,13 @@ impl Engine {
                 } else {
                     DIRECT_NODES_3D
                 };
-                if !blocks || built.layout.len() > limit {
+                if built.layout.len() > limit {
                     return Ok(None);
                 }
                 if built.lu.is_none() && built.layout.len() > 0 {
-                    let System::Blocks {
-                        blocks, factored, ..
-                    } = &built.system
-                    else {
-                        unreachable!("checked above")
-                    };
                     built.lu = Some(match dim {
-                        2 => super::direct::Lu::new::<2>(&built.layout, blocks, *factored)?,
-                        _ => super::direct::Lu::new::<3>(&built.layout, blocks, *factored)?,
+                        2 => lu::<2>(built)?,
+                        _ => lu::<3>(built)?,
                     });
                 }
                 None
@@ -337,6 +331,18 @@ impl Engine {
         total.true_residual = check.true_residual;
         total.error_ratio = check.error_ratio;
         total.worst_node = built.layout.order.get(check.worst).copied().unwrap_or(0);
+    }
+}
+
+/// The LU factors of the system of `built` (the Laplacian's as blocks).
+fn lu<const D: usize>(built: &super::Built) -> Result<super::direct::Lu> {
+    match &built.system {
+        System::Blocks {
+            blocks, factored, ..
+        } => super::direct::Lu::new::<D>(&built.layout, blocks, *factored),
+        System::Laplacian(w) => {
+            super::direct::Lu::new::<D>(&built.layout, &w.blocks::<D>(&built.layout), false)
+        }
     }
 }
 

@@ -9,8 +9,8 @@
 
 use super::{rotate, unrotate, Layout};
 use crate::error::{Error, Result};
-use crate::geometry::{norm, point, sub};
-use crate::springs::Connectivity;
+use crate::geometry::{norm, packed_index, packed_len, point, sub};
+use crate::springs::{Connectivity, NodeBlocks};
 
 /// Edge weights of the unknown nodes, one row per position.
 pub(crate) struct Weights {
@@ -137,6 +137,36 @@ impl Weights {
             std::array::from_fn(|k| old[k] + step[k]),
             delta.iter().map(|v| v.abs()).sum(),
         )
+    }
+
+    /// The same system as node blocks, `K_pp = (Σ_j k_pj) I` and
+    /// `B_pj = k_pj I` (a sliding node's `K_pp` in its tangent frame, padded
+    /// with 1 for the normal, as [`super::Engine`] prepares spring blocks),
+    /// for the direct solve.
+    pub(crate) fn blocks<const D: usize>(&self, layout: &Layout) -> NodeBlocks {
+        let s = packed_len(D);
+        let identity = |w: f64| -> Vec<f64> {
+            let mut b = vec![0.0; s];
+            for k in 0..D {
+                b[packed_index(k, k)] = w;
+            }
+            b
+        };
+        let mut diag = Vec::with_capacity(s * self.sums.len());
+        for (p, &sum) in self.sums.iter().enumerate() {
+            let mut k = identity(sum);
+            if layout.frame::<D>(p).is_some() {
+                k[packed_index(D - 1, D - 1)] = 1.0;
+            }
+            diag.extend(k);
+        }
+        NodeBlocks {
+            diag,
+            offsets: self.offsets.clone(),
+            neighbours: self.neighbours.clone(),
+            blocks: self.weights.iter().flat_map(|&w| identity(w)).collect(),
+            ..NodeBlocks::default()
+        }
     }
 
     /// `Σ_j k_pj`: position `p`'s diagonal.

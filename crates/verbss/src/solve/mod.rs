@@ -914,6 +914,15 @@ fn run<const D: usize>(
                     )
                 }
             }
+            (System::Laplacian(weights), Stage::Direct) => {
+                let lu = lu.as_ref().expect("factored before the solve");
+                lu.solve::<D>(layout, &weights.blocks::<D>(layout), constant, work)?;
+                SolveInfo {
+                    iterations: 1,
+                    converged: true,
+                    ..SolveInfo::default()
+                }
+            }
             (System::Laplacian(weights), _) => {
                 let weights: &laplacian::Weights = weights;
                 sweep::iterate::<D, _>(
