@@ -347,16 +347,20 @@ struct Moving {
 
 /// A mesh in motion, stepped by a flow solver (see `Deformer.step`).
 ///
-/// Deformer(mesh, method="verbss", omega=1.6, tolerance=1e-5,
-///          max_iterations=1000, threads=0, reference="updated", solver="sor",
-///          accel="none")
+/// Deformer(mesh, method="verbss", omega=None, tolerance=1e-5,
+///          max_iterations=1000, threads=0, reference="updated", solver=None,
+///          accel=None)
 ///
 /// - method: "verbss" (the paper's method: edge + ball-vertex springs, node
 ///   by node), "robust" (verbss with the near-wall treatments of
 ///   docs/robustness.md, the command's default), "ball-vertex"
 ///   (the same system solved globally by `solver`, "sor" or "direct"),
 ///   "spring" (edge springs only) or "laplacian".
-/// - omega: the over-relaxation factor of the sweeps.
+/// - omega: the over-relaxation factor of the sweeps (1.6 when None).
+///   omega, solver and accel all None: a step whose sweeps stall or diverge,
+///   or leave a node's estimated error above 1% of its cell height,
+///   escalates to the multigrid and the direct solve (docs/method.md); any
+///   of them given: exactly that solver.
 /// - tolerance: the sweeps stop when the mean absolute change of one sweep is
 ///   below tolerance × the step's largest prescribed displacement.
 /// - max_iterations: the most sweeps per step.
@@ -456,25 +460,25 @@ impl Deformer {
     #[pyo3(signature = (
         mesh,
         method = "verbss",
-        omega = 1.6,
+        omega = None,
         tolerance = 1e-5,
         max_iterations = 1000,
         threads = 0,
         reference = "updated",
-        solver = "sor",
-        accel = "none",
+        solver = None,
+        accel = None,
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         mesh: &Mesh,
         method: &str,
-        omega: f64,
+        omega: Option<f64>,
         tolerance: f64,
         max_iterations: usize,
         threads: usize,
         reference: &str,
-        solver: &str,
-        accel: &str,
+        solver: Option<&str>,
+        accel: Option<&str>,
     ) -> PyResult<Deformer> {
         let mut settings = Settings::new(1);
         settings.reference = match reference {
@@ -501,6 +505,9 @@ impl Deformer {
                 )))
             }
         };
+        // A solver, accel or omega given means exactly that solver.
+        s.escalate = solver.is_none() && accel.is_none() && omega.is_none();
+        let (solver, accel) = (solver.unwrap_or("sor"), accel.unwrap_or("none"));
         s.solver = match solver {
             "sor" => Solver::Sor,
             "direct" => Solver::Direct,
@@ -520,7 +527,7 @@ impl Deformer {
                 )))
             }
         };
-        s.omega = omega;
+        s.omega = omega.unwrap_or(s.omega);
         s.tolerance = tolerance;
         s.max_iterations = max_iterations;
         s.threads = threads;

@@ -32,7 +32,7 @@ CASES = [
     ("mesh_brick_hex_ffd.su2", "x_p", [0.2, 0.0, 0.05]),
 ]
 STEPS = 2
-SETTINGS = dict(omega=1.6, tolerance=1e-5, max_iterations=1000)
+SETTINGS = dict(omega=1.6, tolerance=1e-5, max_iterations=3000)
 
 
 @pytest.fixture(scope="session")
@@ -162,8 +162,9 @@ def test_errors_carry_the_command_message(cli, tmp_path):
     # Pushing the airfoil through the farfield inverts elements: exit code 3.
     done = run_cli(
         cli, "deform", NACA, "-o", tmp_path / "o.su2", "--moving", "airfoil",
-        "--translate", "30,0", "--tolerance", SETTINGS["tolerance"], "--max-iterations",
-        SETTINGS["max_iterations"], "--method", "verbss", "--quiet",
+        "--translate", "30,0", "--omega", SETTINGS["omega"], "--tolerance",
+        SETTINGS["tolerance"], "--max-iterations", SETTINGS["max_iterations"],
+        "--method", "verbss", "--quiet",
     )
     assert done.returncode == 3
     with pytest.raises(verbss.VerbssError) as e:

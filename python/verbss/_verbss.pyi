@@ -95,7 +95,11 @@ class Deformer:
       ``"ball-vertex"`` (the same system solved globally by ``solver``,
       ``"sor"`` or ``"direct"``), ``"spring"`` (edge springs only) or
       ``"laplacian"``.
-    - ``omega``: the over-relaxation factor of the sweeps.
+    - ``omega``: the over-relaxation factor of the sweeps (1.6 when None).
+      ``omega``, ``solver`` and ``accel`` all None: a step whose sweeps stall
+      or diverge, or leave a node's estimated error above 1% of its cell
+      height, escalates to the multigrid and the direct solve; any of them
+      given: exactly that solver.
     - ``tolerance``: the sweeps stop when the mean absolute change of one
       sweep is below tolerance × the step's largest prescribed displacement.
     - ``max_iterations``: the most sweeps per step.
@@ -114,13 +118,13 @@ class Deformer:
         cls,
         mesh: Mesh,
         method: str = "verbss",
-        omega: float = 1.6,
+        omega: Optional[float] = None,
         tolerance: float = 1e-5,
         max_iterations: int = 1000,
         threads: int = 0,
         reference: str = "updated",
-        solver: str = "sor",
-        accel: str = "none",
+        solver: Optional[str] = None,
+        accel: Optional[str] = None,
     ) -> "Deformer": ...
     def step(self, displacements: Mapping[str, _Displacement]) -> np.ndarray:
         """Takes the next time step and returns the new node coordinates, an

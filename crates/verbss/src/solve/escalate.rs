@@ -30,7 +30,7 @@ use crate::geometry::{ldlt_factor, ldlt_mul, packed_len, point};
 /// The direct solve is tried on 2D systems of at most this many unknown nodes.
 pub const DIRECT_NODES_2D: usize = 400_000;
 /// The same in 3D, where the factors fill in much more.
-pub const DIRECT_NODES_3D: usize = 60_000;
+pub const DIRECT_NODES_3D: usize = 20_000;
 /// GMRES iterations of the multigrid stage.
 const MULTIGRID_ITERATIONS: usize = 60;
 /// The multigrid stage's stop, as a fraction of the error it must reach:
