@@ -82,7 +82,7 @@ where
 /// `limit` sweeps.
 fn stalled(before: f64, now: f64, threshold: f64, done: usize, limit: usize) -> bool {
     let rate = (now / before).powf(1.0 / WINDOW as f64);
-    if !(rate < 0.999) {
+    if rate.is_nan() || rate >= 0.999 {
         return true;
     }
     let needed = (threshold / now).ln() / rate.ln();

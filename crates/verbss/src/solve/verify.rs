@@ -92,20 +92,20 @@ where
         .map(|t| {
             let mut sum = 0.0;
             let (mut worst, mut at) = (0.0f64, t * CHUNK);
-            for p in t * CHUNK..((t + 1) * CHUNK).min(m) {
-                let (e, r2) = estimate(p, work);
+            let first = t * CHUNK;
+            for (k, &height) in heights[first..(first + CHUNK).min(m)].iter().enumerate() {
+                let (e, r2) = estimate(first + k, work);
                 sum += r2;
                 let size = norm(&e);
                 let ratio = if size == 0.0 {
                     0.0
-                } else if heights[p] > 0.0 {
-                    size / heights[p]
+                } else if height > 0.0 && !size.is_nan() {
+                    size / height
                 } else {
                     f64::INFINITY
                 };
-                // `!(ratio <= worst)` also takes a NaN as the worst.
-                if !(ratio <= worst) {
-                    (worst, at) = (ratio, p);
+                if ratio > worst {
+                    (worst, at) = (ratio, first + k);
                 }
             }
             (sum, worst, at)
@@ -119,7 +119,7 @@ where
     let mut sum = 0.0;
     for (s, worst, at) in parts {
         sum += s;
-        if !(worst <= check.error_ratio) {
+        if worst > check.error_ratio {
             (check.error_ratio, check.worst) = (worst, at);
         }
     }
