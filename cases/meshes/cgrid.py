@@ -199,13 +199,9 @@ def build(ni, nj, first, blunt, out):
         wall.append(base)
         outer.append(out_strip)
 
-    geo.synchronize()
-    gmsh.model.addPhysicalGroup(1, wall, name="airfoil")
-    gmsh.model.addPhysicalGroup(1, outer, name="farfield")
-    fluid = gmsh.model.addPhysicalGroup(2, surfaces, name="fluid")
     print(f"i: {n_near + FAR_CELLS} wake cells a branch, {n_nose} + {n_aft} cells a surface; "
           f"j: {nj} nodes")
-    st.write(out, fluid)
+    st.write(out, wall, outer, surfaces)
 
 
 if __name__ == "__main__":

@@ -114,13 +114,9 @@ def build(ni, nj, first, out):
     wall.append(base)
     outer.append(arc_base)
 
-    geo.synchronize()
-    gmsh.model.addPhysicalGroup(1, wall, name="airfoil")
-    gmsh.model.addPhysicalGroup(1, outer, name="farfield")
-    fluid = gmsh.model.addPhysicalGroup(2, surfaces, name="fluid")
     print(f"i: {2 * surface + BASE_CELLS} cells around ({n_nose} + {n_aft} a surface, "
           f"{BASE_CELLS} on the base); j: {nj} nodes")
-    st.write(out, fluid)
+    st.write(out, wall, outer, surfaces)
 
 
 if __name__ == "__main__":

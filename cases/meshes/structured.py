@@ -81,10 +81,14 @@ def block(curves, corners):
     return s
 
 
-def write(out, fluid_tag):
-    """Meshes in 2D, writes `out` (MSH 4.1 binary) and reports the counts of
-    physical group `fluid_tag`."""
+def write(out, wall, outer, surfaces):
+    """Names the groups `airfoil` (curves `wall`), `farfield` (`outer`) and
+    `fluid` (`surfaces`), meshes in 2D, writes `out` (MSH 4.1 binary) and
+    reports the fluid's counts."""
     gmsh.model.geo.synchronize()
+    gmsh.model.addPhysicalGroup(1, wall, name="airfoil")
+    gmsh.model.addPhysicalGroup(1, outer, name="farfield")
+    fluid_tag = gmsh.model.addPhysicalGroup(2, surfaces, name="fluid")
     gmsh.model.mesh.generate(2)
     gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
     gmsh.option.setNumber("Mesh.Binary", 1)

@@ -40,6 +40,17 @@ const MULTIGRID_MARGIN: f64 = 0.1;
 /// largest prescribed displacement.
 const ROUND_OFF: f64 = 1e-12;
 
+/// [`run`] for one dimension.
+type RunIn = fn(
+    &mut super::Built,
+    &rayon::ThreadPool,
+    Option<&mut super::accel::Accelerator>,
+    &mut [f64],
+    &SolveParams,
+    f64,
+    Stage,
+) -> Result<SolveInfo>;
+
 impl Engine {
     /// One step: solves for the unknowns of `displacement` (see the module
     /// documentation of [`crate::solve`]) on reference coordinates `coords`,
@@ -294,26 +305,16 @@ impl Engine {
                 None
             }
         };
-        let info = match conn.dim {
-            2 => run::<2>(
-                built,
-                pool,
-                accelerator,
-                displacement,
-                &stage_params,
-                threshold,
-                stage,
-            )?,
-            _ => run::<3>(
-                built,
-                pool,
-                accelerator,
-                displacement,
-                &stage_params,
-                threshold,
-                stage,
-            )?,
-        };
+        let run_in: RunIn = if conn.dim == 2 { run::<2> } else { run::<3> };
+        let info = run_in(
+            built,
+            pool,
+            accelerator,
+            displacement,
+            &stage_params,
+            threshold,
+            stage,
+        )?;
         Ok(Some((info, hierarchy)))
     }
 
