@@ -140,3 +140,33 @@ fn diverging_sweeps_say_omega_is_too_large() {
     let o = rotate_naca(dir.path(), &[]);
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+#[test]
+fn a_step_is_rejected_for_an_inversion_only_after_its_exact_solve() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("pushed.su2");
+    let report = dir.path().join("report.json");
+    let mesh = repo("assets/meshes/su2/mesh_NACA0012_inv.su2");
+    let o = verbss(&[
+        "deform",
+        mesh.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "airfoil",
+        "--translate",
+        "30,0",
+        "--substeps",
+        "0",
+        "--report",
+        report.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    let r: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(report).unwrap()).unwrap();
+    let failed = r["steps"].as_array().unwrap().last().unwrap();
+    assert_eq!(failed["step"], 1);
+    let stages = failed["stages"].as_array().unwrap();
+    assert_eq!(stages.last().unwrap(), "direct", "{stages:?}");
+}
