@@ -135,3 +135,11 @@ fn vtu_zlib_bombs_are_not_inflated() {
         "DataArray 'u': zlib block 0 inflates to 33 bytes (header says 32)",
     );
 }
+
+#[test]
+fn vtu_nesting_is_bounded() {
+    let dir = tempfile::tempdir().unwrap();
+    let deep = format!("{}{}", "<a>".repeat(200_000), "</a>".repeat(200_000));
+    let path = file(dir.path(), "deep.vtu", vtu("", "", &deep));
+    refused(&path, "deep.vtu:4: elements nested more than 64 deep");
+}

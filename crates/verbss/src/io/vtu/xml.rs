@@ -1,5 +1,5 @@
 //! The XML side of the `.vtu` reader: the element tree, built without
-//! recursion, and error positions.
+//! recursion and at most [`MAX_DEPTH`] elements deep, and error positions.
 
 use std::path::Path;
 
@@ -8,6 +8,9 @@ use quick_xml::events::{BytesStart, Event};
 use quick_xml::Reader;
 
 use crate::error::{Error, Result};
+
+/// How deep elements may nest (a `.vtu` file needs 6 levels).
+const MAX_DEPTH: usize = 64;
 
 /// The file being read, for error messages.
 pub(super) struct Ctx<'a> {
@@ -104,6 +107,9 @@ pub(super) fn parse_tree<'a>(ctx: &Ctx<'a>) -> Result<(Element, Option<Appended<
                 if stack.is_empty() && e.name().as_ref() != b"VTKFile" =>
             {
                 return Err(not_vtk(pos))
+            }
+            Event::Start(_) if stack.len() == MAX_DEPTH => {
+                return Err(ctx.at(pos, format!("elements nested more than {MAX_DEPTH} deep")))
             }
             Event::Start(e) => {
                 let el = element(ctx, &e, pos)?;
