@@ -143,3 +143,43 @@ fn vtu_nesting_is_bounded() {
     let path = file(dir.path(), "deep.vtu", vtu("", "", &deep));
     refused(&path, "deep.vtu:4: elements nested more than 64 deep");
 }
+
+/// The unit square in SU2, groups `left` (x = 0) and `rest`.
+const SQUARE: &str = "NDIME= 2
+NELEM= 2
+5 0 1 2
+5 0 2 3
+NPOIN= 4
+0 0
+1 0
+1 1
+0 1
+NMARK= 2
+MARKER_TAG= left
+MARKER_ELEMS= 1
+3 3 0
+MARKER_TAG= rest
+MARKER_ELEMS= 3
+3 0 1
+3 1 2
+3 2 3
+";
+
+#[test]
+fn case_step_pattern_width_is_bounded() {
+    let dir = tempfile::tempdir().unwrap();
+    file(dir.path(), "square.su2", SQUARE);
+    let case = file(
+        dir.path(),
+        "case.toml",
+        "mesh = \"square.su2\"\nsteps = 2\n\n[[motion]]\nkind = \"positions\"\ngroups = [\"rest\"]\nfiles = \"p_{step:0100000}.dat\"\n",
+    );
+    let out = verbss(&["run", case.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("case.toml:4: invalid setting: the file pattern")
+            && err.contains("asks for 100000 digits (at most 20)"),
+        "{err}"
+    );
+}
