@@ -183,3 +183,145 @@ fn case_step_pattern_width_is_bounded() {
         "{err}"
     );
 }
+
+/// `verbss quality` on `path` in a child killed after 30 s (a hang fails the
+/// test instead of stalling the suite): the exit code and stderr.
+fn quality_within_30_s(path: &Path) -> (Option<i32>, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_verbss"))
+        .args(["quality", path.to_str().unwrap()])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run verbss");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+    while child.try_wait().expect("wait").is_none() {
+        if std::time::Instant::now() > deadline {
+            child.kill().expect("kill");
+            panic!("{} still parsing after 30 s", path.display());
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().expect("output");
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// An MSH 4.1 unit square: its lines, `lines` of them, on a curve with
+/// physical tags 1..=`tags`.
+fn msh_with_tags(lines: usize, tags: usize) -> String {
+    let tag_list: Vec<String> = (1..=tags).map(|t| t.to_string()).collect();
+    let mut s = format!(
+        "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Entities\n0 1 1 0\n1 0 0 0 1 0 0 {tags} {} 0\n\
+         1 0 0 0 1 1 0 0 0\n$EndEntities\n$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n\
+         1 1 0\n0 1 0\n$EndNodes\n$Elements\n2 {} 1 {}\n1 1 1 {lines}\n",
+        tag_list.join(" "),
+        lines + 2,
+        lines + 2
+    );
+    for e in 1..=lines {
+        s += &format!("{e} 1 2\n");
+    }
+    s += &format!(
+        "2 1 2 2\n{} 1 2 3\n{} 1 3 4\n$EndElements\n",
+        lines + 1,
+        lines + 2
+    );
+    s
+}
+
+#[test]
+fn msh_physical_tags_do_not_multiply_elements() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = file(dir.path(), "few.msh", msh_with_tags(3, 2));
+    assert_eq!(quality_within_30_s(&path).0, Some(0));
+    let path = file(dir.path(), "tags.msh", msh_with_tags(1000, 20_000));
+    let (code, err) = quality_within_30_s(&path);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("tags.msh:")
+            && err.contains("the physical groups would hold 20000000 elements, more than 1056576"),
+        "{err}"
+    );
+}
+
+#[test]
+fn msh_unknown_section_search_is_linear() {
+    // Closing keyword `$End$End…$End!`, text `$End$End…`: a window-by-window
+    // search compares 4,000 bytes at each of 1,000,000 places.
+    let dir = tempfile::tempdir().unwrap();
+    let name = format!("{}!", "$End".repeat(1000));
+    let text = format!(
+        "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n${name}\n{}\n",
+        "$End".repeat(1_000_000)
+    );
+    let path = file(dir.path(), "section.msh", text);
+    let (code, err) = quality_within_30_s(&path);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("section.msh:4: unexpected end of file: no $End$End"),
+        "{err}"
+    );
+}
+
+#[test]
+fn su2_many_markers_parse_in_linear_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 300_000;
+    let mut text = format!("{}NMARK= {n}\n", &SQUARE[..SQUARE.find("NMARK").unwrap()]);
+    for i in 0..n {
+        text += &format!("MARKER_TAG= m{i}\nMARKER_ELEMS= 1\n3 0 1\n");
+    }
+    let path = file(dir.path(), "markers.su2", text);
+    assert_eq!(quality_within_30_s(&path).0, Some(0));
+}
+
+#[test]
+fn vtu_many_attributes_parse_in_linear_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let attrs: String = (0..200_000).map(|i| format!(" a{i}=\"{i}\"")).collect();
+    let text = vtu("", "", "").replacen("<VTKFile ", &format!("<VTKFile{attrs} "), 1);
+    let path = file(dir.path(), "attrs.vtu", text);
+    assert_eq!(quality_within_30_s(&path).0, Some(0));
+    let text = vtu("", "", "").replacen("<VTKFile ", "<VTKFile a=\"1\" a=\"2\" ", 1);
+    let path = file(dir.path(), "twice.vtu", text);
+    let (code, err) = quality_within_30_s(&path);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("twice.vtu:2: malformed XML: duplicated attribute a"),
+        "{err}"
+    );
+}
+
+#[test]
+fn vtu_many_group_names_parse_in_linear_time() {
+    // 100,000 FieldData names and 100,000 facets naming the last one.
+    let dir = tempfile::tempdir().unwrap();
+    let n = 100_000;
+    let names: String = (1..=n)
+        .map(|i| {
+            format!("<DataArray type=\"Int32\" Name=\"g{i}\" format=\"ascii\">{i} 1</DataArray>\n")
+        })
+        .collect();
+    let lines = " 0 1".repeat(n);
+    let offsets: String = (0..n).map(|i| format!(" {}", 8 + 2 * i)).collect();
+    let text = vtu("", "", &names)
+        .replace(
+            "NumberOfCells=\"2\"",
+            &format!("NumberOfCells=\"{}\"", n + 2),
+        )
+        .replace(">0 1 2 0 2 3<", &format!(">0 1 2 0 2 3{lines}<"))
+        .replace(">3 6<", &format!(">3 6{offsets}<"))
+        .replace(">5 5<", &format!(">5 5{}<", " 3".repeat(n)))
+        .replace(
+            "<CellData>",
+            &format!(
+                "<CellData><DataArray type=\"Int32\" Name=\"group\" format=\"ascii\">0 0{}</DataArray>",
+                format!(" {n}").repeat(n)
+            ),
+        );
+    let path = file(dir.path(), "names.vtu", text);
+    let (code, err) = quality_within_30_s(&path);
+    assert_eq!(code, Some(0), "{err}");
+}

@@ -30,6 +30,7 @@
 //! (`FFD_NBOX=`, `NPERIODIC=` and any other unknown keyword) are skipped with
 //! their data lines. Node tags are `index + 1`, cell tags `element index + 1`.
 
+use std::collections::HashMap;
 use std::io::Write;
 use std::path::Path;
 
@@ -195,6 +196,8 @@ struct Parser<'a> {
     coords: Vec<f64>,
     cells: Cells,
     markers: Vec<Marker>,
+    /// The line of each marker's `MARKER_TAG=`, by name.
+    marker_lines: HashMap<String, usize>,
     /// One entry per element or marker section, in file order.
     max_refs: Vec<MaxRef>,
     /// The section whose data lines are being read.
@@ -221,6 +224,7 @@ impl<'a> Parser<'a> {
             coords: Vec::new(),
             cells: Cells::new(),
             markers: Vec::new(),
+            marker_lines: HashMap::new(),
             max_refs: Vec::new(),
             open: None,
             closed: None,
@@ -435,10 +439,10 @@ impl<'a> Parser<'a> {
         if name.is_empty() {
             return Err(self.err(line, "empty MARKER_TAG= (expected a name)".into()));
         }
-        if let Some(m) = self.markers.iter().find(|m| m.name == name) {
+        if let Some(first) = self.marker_lines.insert(name.to_string(), line) {
             return Err(self.err(
                 line,
-                format!("marker '{name}' given twice (first at line {})", m.line),
+                format!("marker '{name}' given twice (first at line {first})"),
             ));
         }
         self.markers.push(Marker {

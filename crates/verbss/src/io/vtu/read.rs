@@ -1,5 +1,6 @@
 //! The `.vtu` reader (what it accepts is in the parent module's doc).
 
+use std::collections::HashMap;
 use std::path::Path;
 
 use super::binary::{decode_base64, BlockError, Layout, Ty, Values};
@@ -562,6 +563,11 @@ fn assemble(
             facets: Cells::new(),
         })
         .collect();
+    // The first group of each id (a map: a facet-by-name scan is quadratic).
+    let mut by_id = HashMap::new();
+    for (k, g) in names.iter().enumerate() {
+        by_id.entry(g.0).or_insert(k);
+    }
     let mut volume = Vec::new();
     let mut cells = Cells::new();
     let mut unnamed = None;
@@ -571,7 +577,7 @@ fn assemble(
             cells.push(kind, nodes);
             continue;
         }
-        let named = names.iter().position(|g| g.0 == group_ids[c]);
+        let named = by_id.get(&group_ids[c]).copied();
         let k = named.unwrap_or_else(|| {
             *unnamed.get_or_insert_with(|| {
                 groups.push(Group {

@@ -1,6 +1,7 @@
 //! The XML side of the `.vtu` reader: the element tree, built without
 //! recursion and at most [`MAX_DEPTH`] elements deep, and error positions.
 
+use std::collections::HashSet;
 use std::path::Path;
 
 use quick_xml::errors::SyntaxError;
@@ -164,10 +165,15 @@ pub(super) fn parse_tree<'a>(ctx: &Ctx<'a>) -> Result<(Element, Option<Appended<
 fn element(ctx: &Ctx, e: &BytesStart, pos: usize) -> Result<Element> {
     let malformed = |e: String| ctx.at(pos, format!("malformed XML: {e}"));
     let mut attrs = Vec::new();
-    for a in e.attributes() {
+    // quick-xml's duplicate check is quadratic: a hash set instead.
+    let mut seen = HashSet::new();
+    for a in e.attributes().with_checks(false) {
         let a = a.map_err(|e| malformed(e.to_string()))?;
         let value = a.unescape_value().map_err(|e| malformed(e.to_string()))?;
         let key = String::from_utf8_lossy(a.key.as_ref()).into_owned();
+        if !seen.insert(key.clone()) {
+            return Err(malformed(format!("duplicated attribute {key}")));
+        }
         attrs.push((key, value.into_owned()));
     }
     Ok(Element {
