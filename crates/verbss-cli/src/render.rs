@@ -36,10 +36,10 @@ pub struct RenderArgs {
     #[arg(long, value_parser = parse_cut, conflicts_with = "group")]
     cut: Option<(usize, f64)>,
     /// 3D: azimuth of the viewer about z, degrees from +x.
-    #[arg(long, default_value_t = -60.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = -60.0, allow_hyphen_values = true, value_parser = parse_angle)]
     azimuth: f64,
     /// 3D: elevation of the viewer above the x–y plane, degrees.
-    #[arg(long, default_value_t = 25.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 25.0, allow_hyphen_values = true, value_parser = parse_angle)]
     elevation: f64,
     /// Do not draw the element edges.
     #[arg(long)]
@@ -56,10 +56,21 @@ fn parse_view(s: &str) -> Result<[f64; 4], String> {
         .map(|x| x.trim().parse::<f64>())
         .collect::<Result<_, _>>()
         .map_err(|_| format!("'{s}' is not four numbers x0,x1,y0,y1"))?;
+    let span = |a: f64, b: f64| (b - a).is_finite() && a < b;
     match v[..] {
-        [x0, x1, y0, y1] if x0 < x1 && y0 < y1 => Ok([x0, x1, y0, y1]),
-        [_, _, _, _] => Err(format!("'{s}': expected x0 < x1 and y0 < y1")),
+        [x0, x1, y0, y1] if span(x0, x1) && span(y0, y1) => Ok([x0, x1, y0, y1]),
+        [_, _, _, _] => Err(format!(
+            "'{s}': expected finite x0 < x1 and y0 < y1 (with finite x1 - x0 and y1 - y0)"
+        )),
         _ => Err(format!("'{s}' is not four numbers x0,x1,y0,y1")),
+    }
+}
+
+/// An angle in degrees, finite.
+fn parse_angle(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(a) if a.is_finite() => Ok(a),
+        _ => Err(format!("'{s}' is not a finite angle in degrees")),
     }
 }
 

@@ -184,11 +184,16 @@ fn case_step_pattern_width_is_bounded() {
     );
 }
 
-/// `verbss quality` on `path` in a child killed after 30 s (a hang fails the
-/// test instead of stalling the suite): the exit code and stderr.
+/// `verbss quality` on `path` in a child killed after 30 s.
 fn quality_within_30_s(path: &Path) -> (Option<i32>, String) {
+    within_30_s(&["quality", path.to_str().unwrap()])
+}
+
+/// `verbss ARGS` in a child killed after 30 s (a hang fails the test
+/// instead of stalling the suite): the exit code and stderr.
+fn within_30_s(args: &[&str]) -> (Option<i32>, String) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_verbss"))
-        .args(["quality", path.to_str().unwrap()])
+        .args(args)
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::piped())
         .spawn()
@@ -197,7 +202,7 @@ fn quality_within_30_s(path: &Path) -> (Option<i32>, String) {
     while child.try_wait().expect("wait").is_none() {
         if std::time::Instant::now() > deadline {
             child.kill().expect("kill");
-            panic!("{} still parsing after 30 s", path.display());
+            panic!("verbss {args:?} still running after 30 s");
         }
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
@@ -324,4 +329,42 @@ fn vtu_many_group_names_parse_in_linear_time() {
     let path = file(dir.path(), "names.vtu", text);
     let (code, err) = quality_within_30_s(&path);
     assert_eq!(code, Some(0), "{err}");
+}
+
+#[test]
+fn render_windows_are_clipped_or_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let naca = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../assets/meshes/su2/mesh_NACA0012_inv.su2"
+    );
+    let png = dir.path().join("z.png");
+    let png = png.to_str().unwrap();
+    // Trailing-edge zooms: edges far longer than the window are clipped.
+    for view in ["0.9999999,1.0000001,-1e-7,1e-7", "0,1e-300,0,1e-300"] {
+        let view = format!("--view={view}");
+        let (code, err) = within_30_s(&["render", naca, "-o", png, &view]);
+        assert_eq!(code, Some(0), "{view}: {err}");
+    }
+    let (code, err) = within_30_s(&[
+        "render",
+        naca,
+        "-o",
+        png,
+        "--view=-1e308,1e308,-1e308,1e308",
+    ]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("expected finite x0 < x1 and y0 < y1 (with finite x1 - x0 and y1 - y0)"),
+        "{err}"
+    );
+    let (code, err) = within_30_s(&["render", naca, "-o", png, "--view=1,1.000000000000001,0,1"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("above 1e-12 of the coordinates"), "{err}");
+    let (code, err) = within_30_s(&["render", naca, "-o", png, "--azimuth", "NaN"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("'NaN' is not a finite angle in degrees"),
+        "{err}"
+    );
 }

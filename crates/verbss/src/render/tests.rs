@@ -188,7 +188,7 @@ fn bad_sections_and_options_are_errors_that_say_why() {
     };
     assert_eq!(
         png(&s, &options).err().unwrap().to_string(),
-        "invalid setting: view window 1,0,0,1 (expected x0 < x1 and y0 < y1)"
+        "invalid setting: view window 1,0,0,1 (expected x0 < x1 and y0 < y1, each span finite and above 1e-12 of the coordinates)"
     );
     let dir = tempfile::tempdir().unwrap();
     assert_eq!(
