@@ -157,7 +157,8 @@ pub struct PictureArgs {
 const REPORT_WIDTH: u32 = 1000;
 const GIF_WIDTH: u32 = 640;
 
-/// Records a run's states for its `--html` report and `--gif` animation.
+/// Records a run's states for its `--html` report and `--gif` animation. A
+/// picture that cannot be made is a warning: it never stops the run.
 pub struct Recorder {
     args: PictureArgs,
     mesh: Mesh,
@@ -165,6 +166,8 @@ pub struct Recorder {
     before: Option<Image>,
     worst: Option<Snapshot>,
     gif: Option<Gif>,
+    /// The GIF's window, the first frame's: one frame size per GIF.
+    gif_view: Option<[f64; 4]>,
 }
 
 impl Recorder {
@@ -181,6 +184,7 @@ impl Recorder {
             before: None,
             worst: None,
             gif: None,
+            gif_view: None,
         }
     }
 
@@ -189,7 +193,15 @@ impl Recorder {
         self.args.html.is_some()
     }
 
-    fn picture(&self, s: &Snapshot, title: String, width: u32) -> anyhow::Result<Image> {
+    /// The picture of `s` in window `view` (the whole mesh when `None`), and
+    /// the window it shows.
+    fn picture_in(
+        &self,
+        s: &Snapshot,
+        title: String,
+        width: u32,
+        view: Option<[f64; 4]>,
+    ) -> anyhow::Result<(Image, [f64; 4])> {
         let state = State {
             coords: &s.coords,
             quality: &s.quality,
@@ -198,17 +210,51 @@ impl Recorder {
         let scene = Scene::new(&self.mesh, state, &Section::All, Camera::default())?;
         let mut options = Options::default();
         options.width = width;
-        options.view = self.args.view;
+        options.view = view;
         options.title = title;
-        Ok(render::png(&scene, &options)?)
+        let window = render::Layout::new(&scene, &options)?.window;
+        Ok((render::png(&scene, &options)?, window))
+    }
+
+    fn picture(&self, s: &Snapshot, title: String, width: u32) -> anyhow::Result<Image> {
+        Ok(self.picture_in(s, title, width, self.args.view)?.0)
+    }
+
+    /// Adds the frame of `s` to the GIF; on failure warns and drops the GIF
+    /// (the target keeps what it held).
+    fn gif_frame(&mut self, s: &Snapshot, title: String) {
+        let Some(path) = self.args.gif.clone() else {
+            return;
+        };
+        let add = || -> anyhow::Result<()> {
+            let view = self.args.view.or(self.gif_view);
+            let (frame, window) = self.picture_in(s, title, GIF_WIDTH, view)?;
+            self.gif_view.get_or_insert(window);
+            if self.gif.is_none() {
+                create_parent(&path)?;
+                self.gif = Some(Gif::create(&path, frame.width, frame.height, 6)?);
+            }
+            if let Some(gif) = &mut self.gif {
+                gif.push(&frame)?;
+            }
+            Ok(())
+        };
+        if let Err(e) = add() {
+            eprintln!("warning: no GIF: {e:#}");
+            self.gif = None;
+            self.args.gif = None;
+        }
     }
 
     /// Records an accepted state (step 0 is the input mesh).
-    pub fn step(&mut self, s: &Snapshot) -> anyhow::Result<()> {
+    pub fn step(&mut self, s: &Snapshot) {
         let n = s.report.step;
         if self.args.html.is_some() {
             if n == 0 {
-                self.before = Some(self.picture(s, "step 0 (input)".into(), REPORT_WIDTH)?);
+                match self.picture(s, "step 0 (input)".into(), REPORT_WIDTH) {
+                    Ok(image) => self.before = Some(image),
+                    Err(e) => eprintln!("warning: no picture of the input in the report: {e:#}"),
+                }
             } else if self
                 .worst
                 .as_ref()
@@ -217,19 +263,9 @@ impl Recorder {
                 self.worst = Some(s.clone());
             }
         }
-        if let Some(path) = &self.args.gif {
-            if n.is_multiple_of(self.args.gif_every) || n == self.steps {
-                let frame = self.picture(s, format!("step {n} / {}", self.steps), GIF_WIDTH)?;
-                if self.gif.is_none() {
-                    create_parent(path)?;
-                    self.gif = Some(Gif::create(path, frame.width, frame.height, 6)?);
-                }
-                if let Some(gif) = &mut self.gif {
-                    gif.push(&frame)?;
-                }
-            }
+        if n.is_multiple_of(self.args.gif_every) || n == self.steps {
+            self.gif_frame(s, format!("step {n} / {}", self.steps));
         }
-        Ok(())
     }
 
     /// Writes the report: pictures of the input, the worst accepted step,
@@ -241,11 +277,14 @@ impl Recorder {
         last: &Snapshot,
         failed: Option<&Snapshot>,
     ) -> anyhow::Result<()> {
-        if let (Some(f), Some(mut gif)) = (failed, self.gif.take()) {
-            let frame = self.picture(f, format!("step {} FAILED", f.report.step), GIF_WIDTH)?;
-            gif.push(&frame)?;
+        if let (Some(f), Some(_)) = (failed, &self.gif) {
+            self.gif_frame(f, format!("step {} FAILED", f.report.step));
         }
-        self.gif = None;
+        if let Some(gif) = self.gif.take() {
+            if let Err(e) = gif.finish() {
+                eprintln!("warning: no GIF: {e:#}");
+            }
+        }
         let Some(path) = &self.args.html else {
             return Ok(());
         };

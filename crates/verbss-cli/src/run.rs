@@ -171,7 +171,7 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
     let mut series = Vec::new();
     let initial = deformer.current().clone();
     report.steps.push(initial.report.clone());
-    recorder.step(&initial)?;
+    recorder.step(&initial);
     if job.series {
         write_step(job, &initial, &mut series)?;
     }
@@ -194,7 +194,7 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
                     summary.min_quality = (r.min_quality, n);
                 }
                 report.steps.push(r);
-                recorder.step(deformer.current())?;
+                recorder.step(deformer.current());
                 if job.series && (n % job.every == 0 || n == steps) {
                     write_step(job, deformer.current(), &mut series)?;
                 }

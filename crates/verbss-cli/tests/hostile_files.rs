@@ -368,3 +368,83 @@ fn render_windows_are_clipped_or_refused() {
         "{err}"
     );
 }
+
+#[test]
+fn gif_of_a_3d_mesh_has_one_frame_size_and_is_renamed_into_place() {
+    let dir = tempfile::tempdir().unwrap();
+    let brick = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../assets/meshes/su2/mesh_brick_tets_ffd.su2"
+    );
+    let out = dir.path().join("moved.su2");
+    let gif = dir.path().join("moved.gif");
+    let o = verbss(&[
+        "deform",
+        brick,
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "x_p",
+        "--translate",
+        "0.2,0,0.05",
+        "--steps",
+        "3",
+        "--gif",
+        gif.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(out.exists());
+    let mut options = gif::DecodeOptions::new();
+    options.set_color_output(gif::ColorOutput::RGBA);
+    let mut decoder = options
+        .read_info(std::fs::File::open(&gif).unwrap())
+        .unwrap();
+    let mut sizes = Vec::new();
+    while let Some(frame) = decoder.read_next_frame().unwrap() {
+        sizes.push((frame.width, frame.height));
+    }
+    assert_eq!(sizes.len(), 4, "{sizes:?}");
+    assert!(sizes.iter().all(|s| *s == sizes[0]), "{sizes:?}");
+    // No temporary file is left beside the outputs.
+    let mut names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["moved.gif", "moved.su2"]);
+}
+
+#[test]
+fn a_gif_that_cannot_be_written_does_not_cost_the_mesh() {
+    let dir = tempfile::tempdir().unwrap();
+    let square = file(dir.path(), "square.su2", SQUARE);
+    let blocker = file(dir.path(), "blocker", "a regular file");
+    let out = dir.path().join("moved.su2");
+    let gif = blocker.join("moved.gif");
+    let o = verbss(&[
+        "deform",
+        square.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "rest",
+        "--translate",
+        "0.01,0",
+        "--gif",
+        gif.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("warning: no GIF: cannot create the folder"),
+        "{err}"
+    );
+    assert!(out.exists());
+}

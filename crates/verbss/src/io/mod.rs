@@ -104,6 +104,20 @@ pub fn write(path: &Path, mesh: &Mesh, options: &WriteOptions) -> Result<()> {
     })
 }
 
+/// The temporary file beside `path` that an atomic write fills first
+/// (`.NAME.PID.tmp`).
+pub(crate) fn temp_path(path: &Path) -> PathBuf {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    dir.join(format!(".{name}.{}.tmp", std::process::id()))
+}
+
 /// Writes a file through `fill` so that it is never left half-written: the
 /// bytes go to a temporary file beside `path`, which is renamed over `path`
 /// only once everything was written and flushed. On failure the temporary
@@ -116,15 +130,7 @@ pub fn write_atomic(
         path: path.to_path_buf(),
         source,
     };
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    let tmp = temp_path(path);
     let result = (|| {
         let file = File::create(&tmp)?;
         let mut w = BufWriter::new(file);
