@@ -21,6 +21,7 @@ use verbss::motion::Attachment;
 use verbss::report::Report;
 use verbss::Error;
 
+use crate::overwrite::refuse_input_as_output;
 use crate::progress::Progress;
 use crate::render::{PictureArgs, Recorder};
 
@@ -35,6 +36,9 @@ pub struct RunArgs {
     /// No progress output.
     #[arg(long, short)]
     quiet: bool,
+    /// Allow the final mesh to replace the input mesh.
+    #[arg(long)]
+    overwrite: bool,
     #[command(flatten)]
     pictures: PictureArgs,
 }
@@ -54,6 +58,10 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         .extension()
         .map(|e| e.to_string_lossy().into_owned())
         .unwrap_or_else(|| "vtu".into());
+    if case.output.final_mesh {
+        let last = dir.join(format!("{name}.{extension}"));
+        refuse_input_as_output(&case.mesh, &last, args.overwrite)?;
+    }
     let job = Job {
         name,
         source: case.mesh.display().to_string(),

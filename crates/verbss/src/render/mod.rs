@@ -42,7 +42,7 @@ use plotters::prelude::*;
 use plotters::style::FontStyle;
 
 use crate::error::{Error, Result};
-use crate::io::{temp_path, write_atomic};
+use crate::io::{is_special, link_target, temp_path, write_atomic};
 
 pub use frame::Layout;
 pub use scene::{Camera, Scene, Section, State};
@@ -258,13 +258,20 @@ impl Gif {
                 "a GIF frame of {width} × {height} pixels (at most 65535 each way)"
             )));
         };
-        let tmp = temp_path(path);
+        if is_special(path) {
+            return Err(Error::InvalidSetting(format!(
+                "{}: a device, FIFO or socket (a GIF is written to a regular file)",
+                path.display()
+            )));
+        }
+        let target = link_target(path);
+        let tmp = temp_path(&target);
         let file = File::create(&tmp).map_err(|source| Error::Io {
             path: path.to_path_buf(),
             source,
         })?;
         let mut gif = Gif {
-            path: path.to_path_buf(),
+            path: target,
             tmp,
             encoder: None,
             size: (width, height),
