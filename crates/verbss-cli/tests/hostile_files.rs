@@ -448,3 +448,32 @@ fn a_gif_that_cannot_be_written_does_not_cost_the_mesh() {
     );
     assert!(out.exists());
 }
+
+#[test]
+fn vtu_output_refuses_tags_it_cannot_read_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let t = 1u64 << 63;
+    let msh = format!(
+        "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 {t} {}\n2 1 0 4\n{t}\n{}\n{}\n{}\n\
+         0 0 0\n1 0 0\n1 1 0\n0 1 0\n$EndNodes\n$Elements\n1 2 1 2\n2 1 2 2\n1 {t} {} {}\n\
+         2 {t} {} {}\n$EndElements\n",
+        t + 3,
+        t + 1,
+        t + 2,
+        t + 3,
+        t + 1,
+        t + 2,
+        t + 2,
+        t + 3
+    );
+    let input = file(dir.path(), "big.msh", msh);
+    let out = dir.path().join("big.vtu");
+    let o = verbss(&["convert", input.to_str().unwrap(), out.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("big.vtu: node tag 9223372036854775808 is above 9223372036854775807 (VTU tags are Int64)"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}
