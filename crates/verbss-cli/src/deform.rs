@@ -218,7 +218,7 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
             angle: degrees.to_radians(),
         }
     } else if let Some(path) = &args.positions {
-        Motion::Positions(PositionSource::from_file(path, mesh.node_count(), dim)?)
+        Motion::Positions(PositionSource::for_groups(path, &mesh, &args.moving)?)
     } else {
         unreachable!("clap requires one motion")
     };

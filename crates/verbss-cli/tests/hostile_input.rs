@@ -183,6 +183,23 @@ fn a_positions_file_naming_a_missing_node_is_refused() {
 }
 
 #[test]
+fn a_positions_file_naming_a_node_off_the_moving_groups_is_refused() {
+    // Node 4 is the square's centre: interior, on no group.
+    let (dir, square) = folder();
+    let positions = dir.path().join("positions.dat");
+    std::fs::write(&positions, "0 0.1 0\n4 1 1\n").expect("write positions");
+    rejected(
+        &square,
+        "left",
+        &["--positions", positions.to_str().unwrap()],
+        &format!(
+            "{}:2: node id 4 is not on a moving group (left): its position would be ignored",
+            positions.display()
+        ),
+    );
+}
+
+#[test]
 fn an_output_below_a_regular_file_is_refused() {
     // Root cannot bypass this one: a regular file is not a folder.
     let (dir, square) = folder();

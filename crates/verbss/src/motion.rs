@@ -389,12 +389,36 @@ impl PositionSource {
     pub fn from_file(path: &std::path::Path, nodes: usize, dim: usize) -> Result<PositionSource> {
         let table = positions::read(path, dim)?;
         table.check_against(nodes, path)?;
-        Ok(PositionSource::Final(
-            (0..table.len())
-                .map(|k| (table.ids[k], table.point(k).to_vec()))
-                .collect(),
-        ))
+        Ok(final_positions(&table))
     }
+
+    /// [`PositionSource::from_file`] for the nodes of `groups` of `mesh`: a
+    /// line naming a node on none of them is an error.
+    pub fn for_groups(
+        path: &std::path::Path,
+        mesh: &crate::mesh::Mesh,
+        groups: &[String],
+    ) -> Result<PositionSource> {
+        let table = positions::read(path, mesh.dim)?;
+        table.check_against(mesh.node_count(), path)?;
+        let mut on = vec![false; mesh.node_count()];
+        for g in groups {
+            for i in mesh.group(g)?.nodes() {
+                on[i] = true;
+            }
+        }
+        table.check_on(&on, &groups.join(", "), path)?;
+        Ok(final_positions(&table))
+    }
+}
+
+/// The final positions of a read positions file.
+fn final_positions(table: &positions::Positions) -> PositionSource {
+    PositionSource::Final(
+        (0..table.len())
+            .map(|k| (table.ids[k], table.point(k).to_vec()))
+            .collect(),
+    )
 }
 
 fn missing(node: usize) -> Error {
