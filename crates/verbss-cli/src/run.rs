@@ -179,6 +179,11 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
     let mut series = Vec::new();
     let initial = deformer.current().clone();
     report.steps.push(initial.report.clone());
+    // Outcome "running" until this run ends: an earlier run's report never
+    // outlives a failure of this one.
+    if let Some(path) = &job.report {
+        report.write(path)?;
+    }
     recorder.step(&initial);
     if job.series {
         write_step(job, &initial, &mut series)?;

@@ -317,3 +317,46 @@ fn an_inverting_motion_never_leaves_an_invalid_mesh_in_the_output() {
         ["out.failed.vtu", "out.su2", "square.su2"]
     );
 }
+
+#[test]
+fn a_duplicated_element_is_refused() {
+    let (dir, _) = folder();
+    let mesh = dir.path().join("twice.su2");
+    std::fs::write(
+        &mesh,
+        SQUARE.replace("NELEM= 8\n5 0 1 4\n", "NELEM= 9\n5 0 1 4\n5 1 4 0\n"),
+    )
+    .expect("write the mesh");
+    rejected(
+        &mesh,
+        "left",
+        &["--translate", "0.1,0"],
+        "invalid mesh: elements 1 and 2 have the same nodes (a duplicated element)",
+    );
+}
+
+#[test]
+fn a_failed_run_leaves_no_stale_completed_report() {
+    let (dir, square) = folder();
+    let report = dir.path().join("report.json");
+    std::fs::write(&report, "{\"outcome\": \"completed\"}").expect("write a stale report");
+    // The output is a folder: the run fails (exit 2) when it writes the mesh.
+    let out = dir.path().join("out.su2");
+    std::fs::create_dir(&out).expect("a folder in the way");
+    let o = verbss(&[
+        "deform",
+        square.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "left",
+        "--translate",
+        "0.1,0",
+        "--report",
+        report.to_str().unwrap(),
+        "-q",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&report).expect("read the report");
+    assert!(!text.contains("\"outcome\": \"completed\""), "{text}");
+}
