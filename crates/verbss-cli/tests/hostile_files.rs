@@ -477,3 +477,50 @@ fn vtu_output_refuses_tags_it_cannot_read_back() {
     );
     assert!(!out.exists());
 }
+
+/// The zlib stream of `n` zero bytes.
+fn zeros_zlib(n: usize) -> Vec<u8> {
+    use std::io::Write;
+    let mut z = Vec::new();
+    let mut e = flate2::write::ZlibEncoder::new(&mut z, flate2::Compression::best());
+    e.write_all(&vec![0u8; n]).unwrap();
+    e.finish().unwrap();
+    z
+}
+
+#[test]
+fn the_worst_hostile_files_stay_under_512_mb() {
+    // Real zlib bombs (64 MB of zeros in 64 KB, honest headers) in Points,
+    // PointData and FieldData, and the largest parse fixtures above: the
+    // peak resident memory of every child this test binary ran.
+    let dir = tempfile::tempdir().unwrap();
+    let n = 64 << 20;
+    let z = zeros_zlib(n);
+    let bomb = binary(
+        "u",
+        "1",
+        &block(&[1, n as u32, n as u32, z.len() as u32], &z),
+    );
+    let points = vtu("", "", "").replace(
+        r#"<DataArray type="Float64" NumberOfComponents="3" format="ascii">0 0 0 1 0 0 1 1 0 0 1 0</DataArray>"#,
+        &bomb.replace(r#"NumberOfComponents="1""#, r#"NumberOfComponents="3""#),
+    );
+    let fixtures = [
+        file(dir.path(), "points.vtu", points),
+        file(dir.path(), "pointdata.vtu", vtu(&bomb, "", "")),
+        file(dir.path(), "fielddata.vtu", vtu("", "", &bomb)),
+        file(dir.path(), "tags.msh", msh_with_tags(1000, 20_000)),
+    ];
+    for f in &fixtures {
+        let (code, err) = quality_within_30_s(f);
+        assert!(matches!(code, Some(0 | 2)), "{}: {err}", f.display());
+    }
+    // SAFETY: getrusage only writes the struct it is given.
+    let peak_kb = unsafe {
+        let mut usage: libc::rusage = std::mem::zeroed();
+        assert_eq!(libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage), 0);
+        usage.ru_maxrss
+    };
+    println!("peak resident memory of the children: {peak_kb} KB");
+    assert!(peak_kb < 512 * 1024, "{peak_kb} KB");
+}
