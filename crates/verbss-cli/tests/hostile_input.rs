@@ -360,3 +360,15 @@ fn a_failed_run_leaves_no_stale_completed_report() {
     let text = std::fs::read_to_string(&report).expect("read the report");
     assert!(!text.contains("\"outcome\": \"completed\""), "{text}");
 }
+
+#[test]
+fn a_rotation_center_too_far_to_compute_is_refused() {
+    let (_dir, square) = folder();
+    rejected(
+        &square,
+        "left",
+        &["--rotate", "5", "--center", "1e308,1e308"],
+        "invalid setting: the rotation center (1.000000e308, 1.000000e308) is beyond ±1e100 \
+         (the displacements would overflow)",
+    );
+}

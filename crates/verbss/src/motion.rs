@@ -204,10 +204,25 @@ impl Motion {
         !matches!(self, Motion::Fixed | Motion::Slide { .. })
     }
 
-    /// Checks the motion's settings (non-zero axes, positive lengths) for a
-    /// mesh of dimension `dim`.
+    /// Checks the motion's settings (non-zero axes, positive lengths, a
+    /// translation and a rotation center within ±1e100) for a mesh of
+    /// dimension `dim`.
     pub fn validate(&self, dim: usize) -> Result<()> {
         let bad = |m: String| Err(Error::InvalidSetting(m));
+        // Beyond ±1e100 the springs' products overflow to NaN.
+        let (what, point) = match self {
+            Motion::Translation { displacement } => ("the translation", Some(displacement)),
+            Motion::Rotation { center, .. } | Motion::PitchPlunge { center, .. } => {
+                ("the rotation center", Some(center))
+            }
+            _ => ("", None),
+        };
+        if let Some(p) = point.filter(|p| !p.iter().all(|x| x.abs() <= 1e100)) {
+            return bad(format!(
+                "{what} {} is beyond ±1e100 (the displacements would overflow)",
+                crate::error::format_point(&p[..dim.min(3)])
+            ));
+        }
         match self {
             Motion::Rotation { axis, .. } | Motion::PitchPlunge { axis, .. } if dim == 3 => {
                 unit(axis, "the rotation axis").map(|_| ())
