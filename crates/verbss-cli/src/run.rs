@@ -180,8 +180,8 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
     let initial = deformer.current().clone();
     report.steps.push(initial.report.clone());
     // Outcome "running" until this run ends: an earlier run's report never
-    // outlives a failure of this one.
-    if let Some(path) = &job.report {
+    // outlives a failure of this one (a FIFO or device gets one report only).
+    if let Some(path) = job.report.as_ref().filter(|p| p.is_file()) {
         report.write(path)?;
     }
     recorder.step(&initial);
