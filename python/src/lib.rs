@@ -8,6 +8,8 @@
 
 use std::collections::HashMap;
 use std::path::PathBuf;
+use std::sync::{Arc, Condvar, Mutex};
+use std::time::Duration;
 
 use numpy::ndarray::Array2;
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
@@ -552,14 +554,17 @@ impl Deformer {
     /// is, the interior nodes follow by the springs. The first step fixes
     /// which groups move: every later step names the same groups.
     ///
-    /// The solve runs with the GIL released. Raises VerbssError when a group
+    /// The solve runs with the GIL released (`probe`, a [`GilProbe`], shows
+    /// it). Raises VerbssError when a group
     /// is unknown, a displacement has the wrong shape or is not finite, or the
     /// step inverted an element: the step is then rejected and the deformer
     /// keeps the last accepted step (so the same step can be retried).
+    #[pyo3(signature = (displacements, *, probe = None))]
     fn step<'py>(
         &mut self,
         py: Python<'py>,
         displacements: &Bound<'py, PyAny>,
+        probe: Option<&Bound<'py, GilProbe>>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let given = pairs(displacements)?;
         let names: Vec<String> = given.iter().map(|(n, _)| n.clone()).collect();
@@ -614,7 +619,14 @@ impl Deformer {
                 .map_err(raise)?;
         }
         let deformer = &mut moving.deformer;
-        py.detach(|| deformer.advance()).map_err(raise)?;
+        let probe = probe.map(|p| p.get().state.clone());
+        py.detach(|| {
+            if let Some(state) = probe {
+                GilProbe::signal_and_wait(&state)?;
+            }
+            deformer.advance()
+        })
+        .map_err(raise)?;
         Ok(points_array(py, &deformer.current().coords, dim))
     }
 
@@ -664,12 +676,77 @@ impl Deformer {
     }
 }
 
+/// A handshake across a step's GIL release: `step(…, probe=p)` signals `p`
+/// once the GIL is released and waits there (at most 30 s) for `p.answer()`
+/// before it solves, so a caller that answers ran while the step held no GIL.
+#[pyclass(module = "verbss", frozen)]
+struct GilProbe {
+    /// 0 before the signal, 1 signalled, 2 answered.
+    state: Arc<(Mutex<u8>, Condvar)>,
+}
+
+impl GilProbe {
+    /// The step's side: signals, then waits for the answer.
+    fn signal_and_wait(state: &(Mutex<u8>, Condvar)) -> Result<(), Error> {
+        let (lock, turn) = state;
+        let mut at = lock.lock().unwrap_or_else(|e| e.into_inner());
+        *at = 1;
+        turn.notify_all();
+        let (at, _) = turn
+            .wait_timeout_while(at, Duration::from_secs(30), |s| *s < 2)
+            .unwrap_or_else(|e| e.into_inner());
+        if *at < 2 {
+            return Err(Error::InvalidSetting(
+                "GIL probe: no answer within 30 s while the step held no GIL".into(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[pymethods]
+impl GilProbe {
+    #[new]
+    fn new() -> Self {
+        GilProbe {
+            state: Arc::new((Mutex::new(0), Condvar::new())),
+        }
+    }
+
+    /// Waits (GIL released, at most `timeout` seconds) for a step's signal;
+    /// whether it came.
+    fn wait(&self, py: Python<'_>, timeout: f64) -> bool {
+        let state = self.state.clone();
+        let timeout = Duration::try_from_secs_f64(timeout).unwrap_or(if timeout > 0.0 {
+            Duration::from_secs(u32::MAX.into())
+        } else {
+            Duration::ZERO
+        });
+        py.detach(move || {
+            let (lock, turn) = &*state;
+            let at = lock.lock().unwrap_or_else(|e| e.into_inner());
+            let (at, _) = turn
+                .wait_timeout_while(at, timeout, |s| *s == 0)
+                .unwrap_or_else(|e| e.into_inner());
+            *at >= 1
+        })
+    }
+
+    /// Lets the signalled step go on to its solve.
+    fn answer(&self) {
+        let (lock, turn) = &*self.state;
+        *lock.lock().unwrap_or_else(|e| e.into_inner()) = 2;
+        turn.notify_all();
+    }
+}
+
 /// verbss: Vertex-Ball Spring Smoothing mesh motion, native part.
 #[pymodule]
 fn _verbss(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("VerbssError", m.py().get_type::<VerbssError>())?;
     m.add_class::<Mesh>()?;
     m.add_class::<Deformer>()?;
+    m.add_class::<GilProbe>()?;
     m.add_function(wrap_pyfunction!(read, m)?)?;
     m.add_function(wrap_pyfunction!(quality_json, m)?)?;
     Ok(())

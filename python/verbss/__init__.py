@@ -21,10 +21,11 @@ from typing import Any, Dict, List, Tuple
 
 import numpy as np
 
-from ._verbss import Deformer, Mesh, VerbssError, quality_json, read
+from ._verbss import Deformer, GilProbe, Mesh, VerbssError, quality_json, read
 
 __all__ = [
     "Deformer",
+    "GilProbe",
     "Mesh",
     "VerbssError",
     "from_meshio",

@@ -126,7 +126,9 @@ class Deformer:
         solver: Optional[str] = None,
         accel: Optional[str] = None,
     ) -> "Deformer": ...
-    def step(self, displacements: Mapping[str, _Displacement]) -> np.ndarray:
+    def step(
+        self, displacements: Mapping[str, _Displacement], *, probe: Optional[GilProbe] = None
+    ) -> np.ndarray:
         """Takes the next time step and returns the new node coordinates, an
         (N, D) float64 array.
 
@@ -141,7 +143,7 @@ class Deformer:
         is, the interior nodes follow by the springs. The first step fixes
         which groups move: every later step names the same groups.
 
-        The solve runs with the GIL released. Raises VerbssError when a group
+        The solve runs with the GIL released (``probe`` shows it). Raises VerbssError when a group
         is unknown, a displacement has the wrong shape or is not finite, or
         the step inverted an element: the step is then rejected and the
         deformer keeps the last accepted step (so the same step can be
@@ -163,3 +165,16 @@ def read(path: Union[str, os.PathLike]) -> Mesh:
 
 def quality_json(mesh: Mesh) -> str:
     """The ``verbss quality --json`` summary of a mesh, as JSON text."""
+
+class GilProbe:
+    """A handshake across a step's GIL release: ``step(..., probe=p)``
+    signals ``p`` once the GIL is released and waits there (at most 30 s) for
+    ``p.answer()`` before it solves, so a caller that answers ran while the
+    step held no GIL."""
+
+    def __init__(self) -> None: ...
+    def wait(self, timeout: float) -> bool:
+        """Waits (GIL released, at most ``timeout`` seconds) for a step's
+        signal; whether it came."""
+    def answer(self) -> None:
+        """Lets the signalled step go on to its solve."""

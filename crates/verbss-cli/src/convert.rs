@@ -6,6 +6,8 @@ use std::process::ExitCode;
 use clap::{Args, ValueEnum};
 use verbss::io::{self, MshVersion, WriteOptions};
 
+use crate::overwrite::refuse_input_as_output;
+
 /// Arguments of `verbss convert`.
 #[derive(Args)]
 pub struct ConvertArgs {
@@ -19,6 +21,9 @@ pub struct ConvertArgs {
     /// Write a binary .msh.
     #[arg(long)]
     binary: bool,
+    /// Allow the output to be the input file.
+    #[arg(long)]
+    overwrite: bool,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -31,6 +36,7 @@ enum MshVersionArg {
 
 /// Runs `verbss convert`.
 pub fn run(args: ConvertArgs) -> anyhow::Result<ExitCode> {
+    refuse_input_as_output(&args.input, &args.output, args.overwrite)?;
     let mesh = io::read(&args.input)?;
     let mut options = WriteOptions::default();
     options.msh_version = match args.msh_version {

@@ -17,6 +17,7 @@ use verbss::motion::{Attachment, Motion, PositionSource};
 use verbss::robust::{Layer, Robust};
 use verbss::solve::{Accel, Method, Solver};
 
+use crate::overwrite::refuse_input_as_output;
 use crate::render::{PictureArgs, Recorder};
 use crate::run::{execute, file_stem, Job};
 
@@ -114,6 +115,9 @@ pub struct DeformArgs {
     /// No progress output.
     #[arg(long, short)]
     quiet: bool,
+    /// Allow the output to be the input mesh.
+    #[arg(long)]
+    overwrite: bool,
     #[command(flatten)]
     pictures: PictureArgs,
 }
@@ -191,6 +195,7 @@ fn point3(name: &str, v: &[f64], dim: usize) -> anyhow::Result<[f64; 3]> {
 /// Runs `verbss deform`.
 pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
     let format = Format::from_path(&args.output)?;
+    refuse_input_as_output(&args.mesh, &args.output, args.overwrite)?;
     let mesh = io::read(&args.mesh)?;
     for g in args.moving.iter().chain(&args.slide) {
         mesh.group(g)?;
@@ -216,7 +221,7 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
             angle: degrees.to_radians(),
         }
     } else if let Some(path) = &args.positions {
-        Motion::Positions(PositionSource::from_file(path, mesh.node_count(), dim)?)
+        Motion::Positions(PositionSource::for_groups(path, &mesh, &args.moving)?)
     } else {
         unreachable!("clap requires one motion")
     };
@@ -279,7 +284,11 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
         series: false,
         final_mesh: true,
         report: args.report.clone(),
-        extension: format.extension().into(),
+        // As given (`UP.SU2` stays `UP.SU2`).
+        extension: args.output.extension().map_or_else(
+            || format.extension().into(),
+            |e| e.to_string_lossy().into_owned(),
+        ),
         dir,
     };
     let mut recorder = Recorder::new(&args.pictures, &job.mesh, job.settings.steps, None);

@@ -9,6 +9,7 @@
 mod convert;
 mod deform;
 mod demo;
+mod overwrite;
 mod progress;
 mod quality;
 mod render;

@@ -36,10 +36,10 @@ pub struct RenderArgs {
     #[arg(long, value_parser = parse_cut, conflicts_with = "group")]
     cut: Option<(usize, f64)>,
     /// 3D: azimuth of the viewer about z, degrees from +x.
-    #[arg(long, default_value_t = -60.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = -60.0, allow_hyphen_values = true, value_parser = parse_angle)]
     azimuth: f64,
     /// 3D: elevation of the viewer above the x–y plane, degrees.
-    #[arg(long, default_value_t = 25.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 25.0, allow_hyphen_values = true, value_parser = parse_angle)]
     elevation: f64,
     /// Do not draw the element edges.
     #[arg(long)]
@@ -56,10 +56,21 @@ fn parse_view(s: &str) -> Result<[f64; 4], String> {
         .map(|x| x.trim().parse::<f64>())
         .collect::<Result<_, _>>()
         .map_err(|_| format!("'{s}' is not four numbers x0,x1,y0,y1"))?;
+    let span = |a: f64, b: f64| (b - a).is_finite() && a < b;
     match v[..] {
-        [x0, x1, y0, y1] if x0 < x1 && y0 < y1 => Ok([x0, x1, y0, y1]),
-        [_, _, _, _] => Err(format!("'{s}': expected x0 < x1 and y0 < y1")),
+        [x0, x1, y0, y1] if span(x0, x1) && span(y0, y1) => Ok([x0, x1, y0, y1]),
+        [_, _, _, _] => Err(format!(
+            "'{s}': expected finite x0 < x1 and y0 < y1 (with finite x1 - x0 and y1 - y0)"
+        )),
         _ => Err(format!("'{s}' is not four numbers x0,x1,y0,y1")),
+    }
+}
+
+/// An angle in degrees, finite.
+fn parse_angle(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(a) if a.is_finite() => Ok(a),
+        _ => Err(format!("'{s}' is not a finite angle in degrees")),
     }
 }
 
@@ -146,7 +157,8 @@ pub struct PictureArgs {
 const REPORT_WIDTH: u32 = 1000;
 const GIF_WIDTH: u32 = 640;
 
-/// Records a run's states for its `--html` report and `--gif` animation.
+/// Records a run's states for its `--html` report and `--gif` animation. A
+/// picture that cannot be made is a warning: it never stops the run.
 pub struct Recorder {
     args: PictureArgs,
     mesh: Mesh,
@@ -154,6 +166,8 @@ pub struct Recorder {
     before: Option<Image>,
     worst: Option<Snapshot>,
     gif: Option<Gif>,
+    /// The GIF's window, the first frame's: one frame size per GIF.
+    gif_view: Option<[f64; 4]>,
 }
 
 impl Recorder {
@@ -170,6 +184,7 @@ impl Recorder {
             before: None,
             worst: None,
             gif: None,
+            gif_view: None,
         }
     }
 
@@ -178,7 +193,15 @@ impl Recorder {
         self.args.html.is_some()
     }
 
-    fn picture(&self, s: &Snapshot, title: String, width: u32) -> anyhow::Result<Image> {
+    /// The picture of `s` in window `view` (the whole mesh when `None`), and
+    /// the window it shows.
+    fn picture_in(
+        &self,
+        s: &Snapshot,
+        title: String,
+        width: u32,
+        view: Option<[f64; 4]>,
+    ) -> anyhow::Result<(Image, [f64; 4])> {
         let state = State {
             coords: &s.coords,
             quality: &s.quality,
@@ -187,17 +210,51 @@ impl Recorder {
         let scene = Scene::new(&self.mesh, state, &Section::All, Camera::default())?;
         let mut options = Options::default();
         options.width = width;
-        options.view = self.args.view;
+        options.view = view;
         options.title = title;
-        Ok(render::png(&scene, &options)?)
+        let window = render::Layout::new(&scene, &options)?.window;
+        Ok((render::png(&scene, &options)?, window))
+    }
+
+    fn picture(&self, s: &Snapshot, title: String, width: u32) -> anyhow::Result<Image> {
+        Ok(self.picture_in(s, title, width, self.args.view)?.0)
+    }
+
+    /// Adds the frame of `s` to the GIF; on failure warns and drops the GIF
+    /// (the target keeps what it held).
+    fn gif_frame(&mut self, s: &Snapshot, title: String) {
+        let Some(path) = self.args.gif.clone() else {
+            return;
+        };
+        let add = || -> anyhow::Result<()> {
+            let view = self.args.view.or(self.gif_view);
+            let (frame, window) = self.picture_in(s, title, GIF_WIDTH, view)?;
+            self.gif_view.get_or_insert(window);
+            if self.gif.is_none() {
+                create_parent(&path)?;
+                self.gif = Some(Gif::create(&path, frame.width, frame.height, 6)?);
+            }
+            if let Some(gif) = &mut self.gif {
+                gif.push(&frame)?;
+            }
+            Ok(())
+        };
+        if let Err(e) = add() {
+            eprintln!("warning: no GIF: {e:#}");
+            self.gif = None;
+            self.args.gif = None;
+        }
     }
 
     /// Records an accepted state (step 0 is the input mesh).
-    pub fn step(&mut self, s: &Snapshot) -> anyhow::Result<()> {
+    pub fn step(&mut self, s: &Snapshot) {
         let n = s.report.step;
         if self.args.html.is_some() {
             if n == 0 {
-                self.before = Some(self.picture(s, "step 0 (input)".into(), REPORT_WIDTH)?);
+                match self.picture(s, "step 0 (input)".into(), REPORT_WIDTH) {
+                    Ok(image) => self.before = Some(image),
+                    Err(e) => eprintln!("warning: no picture of the input in the report: {e:#}"),
+                }
             } else if self
                 .worst
                 .as_ref()
@@ -206,19 +263,9 @@ impl Recorder {
                 self.worst = Some(s.clone());
             }
         }
-        if let Some(path) = &self.args.gif {
-            if n.is_multiple_of(self.args.gif_every) || n == self.steps {
-                let frame = self.picture(s, format!("step {n} / {}", self.steps), GIF_WIDTH)?;
-                if self.gif.is_none() {
-                    create_parent(path)?;
-                    self.gif = Some(Gif::create(path, frame.width, frame.height, 6)?);
-                }
-                if let Some(gif) = &mut self.gif {
-                    gif.push(&frame)?;
-                }
-            }
+        if n.is_multiple_of(self.args.gif_every) || n == self.steps {
+            self.gif_frame(s, format!("step {n} / {}", self.steps));
         }
-        Ok(())
     }
 
     /// Writes the report: pictures of the input, the worst accepted step,
@@ -230,11 +277,14 @@ impl Recorder {
         last: &Snapshot,
         failed: Option<&Snapshot>,
     ) -> anyhow::Result<()> {
-        if let (Some(f), Some(mut gif)) = (failed, self.gif.take()) {
-            let frame = self.picture(f, format!("step {} FAILED", f.report.step), GIF_WIDTH)?;
-            gif.push(&frame)?;
+        if let (Some(f), Some(_)) = (failed, &self.gif) {
+            self.gif_frame(f, format!("step {} FAILED", f.report.step));
         }
-        self.gif = None;
+        if let Some(gif) = self.gif.take() {
+            if let Err(e) = gif.finish() {
+                eprintln!("warning: no GIF: {e:#}");
+            }
+        }
         let Some(path) = &self.args.html else {
             return Ok(());
         };

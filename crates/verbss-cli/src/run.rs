@@ -22,6 +22,7 @@ use verbss::motion::Attachment;
 use verbss::report::Report;
 use verbss::Error;
 
+use crate::overwrite::refuse_input_as_output;
 use crate::progress::Progress;
 use crate::render::{PictureArgs, Recorder};
 
@@ -36,6 +37,9 @@ pub struct RunArgs {
     /// No progress output.
     #[arg(long, short)]
     quiet: bool,
+    /// Allow the final mesh to replace the input mesh.
+    #[arg(long)]
+    overwrite: bool,
     #[command(flatten)]
     pictures: PictureArgs,
 }
@@ -55,6 +59,10 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         .extension()
         .map(|e| e.to_string_lossy().into_owned())
         .unwrap_or_else(|| "vtu".into());
+    if case.output.final_mesh {
+        let last = dir.join(format!("{name}.{extension}"));
+        refuse_input_as_output(&case.mesh, &last, args.overwrite)?;
+    }
     let job = Job {
         name,
         source: case.mesh.display().to_string(),
@@ -176,7 +184,12 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
     let mut series = Vec::new();
     let initial = deformer.current().clone();
     report.steps.push(initial.report.clone());
-    recorder.step(&initial)?;
+    // Outcome "running" until this run ends: an earlier run's report never
+    // outlives a failure of this one (a FIFO or device gets one report only).
+    if let Some(path) = job.report.as_ref().filter(|p| p.is_file()) {
+        report.write(path)?;
+    }
+    recorder.step(&initial);
     if job.series {
         write_step(job, &initial, &mut series)?;
     }
@@ -199,7 +212,7 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
                     summary.min_quality = (r.min_quality, n);
                 }
                 report.steps.push(r);
-                recorder.step(deformer.current())?;
+                recorder.step(deformer.current());
                 if job.series && (n % job.every == 0 || n == steps) {
                     write_step(job, deformer.current(), &mut series)?;
                 }

@@ -183,6 +183,23 @@ fn a_positions_file_naming_a_missing_node_is_refused() {
 }
 
 #[test]
+fn a_positions_file_naming_a_node_off_the_moving_groups_is_refused() {
+    // Node 4 is the square's centre: interior, on no group.
+    let (dir, square) = folder();
+    let positions = dir.path().join("positions.dat");
+    std::fs::write(&positions, "0 0.1 0\n4 1 1\n").expect("write positions");
+    rejected(
+        &square,
+        "left",
+        &["--positions", positions.to_str().unwrap()],
+        &format!(
+            "{}:2: node id 4 is not on a moving group (left): its position would be ignored",
+            positions.display()
+        ),
+    );
+}
+
+#[test]
 fn an_output_below_a_regular_file_is_refused() {
     // Root cannot bypass this one: a regular file is not a folder.
     let (dir, square) = folder();
@@ -298,5 +315,60 @@ fn an_inverting_motion_never_leaves_an_invalid_mesh_in_the_output() {
     assert_eq!(
         listing(dir.path()),
         ["out.failed.vtu", "out.su2", "square.su2"]
+    );
+}
+
+#[test]
+fn a_duplicated_element_is_refused() {
+    let (dir, _) = folder();
+    let mesh = dir.path().join("twice.su2");
+    std::fs::write(
+        &mesh,
+        SQUARE.replace("NELEM= 8\n5 0 1 4\n", "NELEM= 9\n5 0 1 4\n5 1 4 0\n"),
+    )
+    .expect("write the mesh");
+    rejected(
+        &mesh,
+        "left",
+        &["--translate", "0.1,0"],
+        "invalid mesh: elements 1 and 2 have the same nodes (a duplicated element)",
+    );
+}
+
+#[test]
+fn a_failed_run_leaves_no_stale_completed_report() {
+    let (dir, square) = folder();
+    let report = dir.path().join("report.json");
+    std::fs::write(&report, "{\"outcome\": \"completed\"}").expect("write a stale report");
+    // The output is a folder: the run fails (exit 2) when it writes the mesh.
+    let out = dir.path().join("out.su2");
+    std::fs::create_dir(&out).expect("a folder in the way");
+    let o = verbss(&[
+        "deform",
+        square.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "left",
+        "--translate",
+        "0.1,0",
+        "--report",
+        report.to_str().unwrap(),
+        "-q",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&report).expect("read the report");
+    assert!(!text.contains("\"outcome\": \"completed\""), "{text}");
+}
+
+#[test]
+fn a_rotation_center_too_far_to_compute_is_refused() {
+    let (_dir, square) = folder();
+    rejected(
+        &square,
+        "left",
+        &["--rotate", "5", "--center", "1e308,1e308"],
+        "invalid setting: the rotation center (1.000000e308, 1.000000e308) is beyond ±1e100 \
+         (the displacements would overflow)",
     );
 }

@@ -117,7 +117,7 @@ fn the_smallest_case_writes_every_methods_results_and_the_paper_tables() {
         let limit = m["limit"].as_f64().unwrap();
         assert!(limit > 0.0 && limit <= 6.9, "{m}");
         assert!(m["iterations_per_step"].as_f64().unwrap() >= 1.0, "{m}");
-        assert!(m["seconds_per_step"].as_f64().unwrap() > 0.0, "{m}");
+        assert!(m["seconds_per_step"].as_f64().unwrap() >= 0.0, "{m}");
         assert_eq!(m["bins"][0]["amplitude"], 4.0, "{m}");
     }
     let counts = |k: usize| methods[k]["bins"][0]["counts"].clone();

@@ -525,7 +525,7 @@ impl Case {
                 },
                 MotionSpec::Positions { file, files, .. } => match (file, files) {
                     (Some(f), None) => {
-                        Motion::Positions(PositionSource::from_file(&base.join(f), mesh.node_count(), dim)?)
+                        Motion::Positions(PositionSource::for_groups(&base.join(f), mesh, spec.groups())?)
                     }
                     (None, Some(pattern)) => {
                         Motion::Positions(PositionSource::PerStep(base.join(pattern)))

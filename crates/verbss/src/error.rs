@@ -107,11 +107,32 @@ pub struct Unconverged {
     pub diverged: bool,
 }
 
-/// A point as `(x, y[, z])` with six decimals, as messages print it.
+/// A point as `(x, y[, z])` with six decimals, as messages print it; a
+/// coordinate of 1e9 or more in magnitude in exponent form (`1.500000e300`).
 pub fn format_point(p: &[f64]) -> String {
-    let parts: Vec<String> = p.iter().map(|x| format!("{x:.6}")).collect();
+    let parts: Vec<String> = p
+        .iter()
+        .map(|x| {
+            if x.abs() >= 1e9 {
+                format!("{x:.6e}")
+            } else {
+                format!("{x:.6}")
+            }
+        })
+        .collect();
     format!("({})", parts.join(", "))
 }
 
 /// Result with the library's [`Error`].
 pub type Result<T> = std::result::Result<T, Error>;
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn huge_coordinates_print_short() {
+        assert_eq!(
+            super::format_point(&[1.5e300, -0.25]),
+            "(1.500000e300, -0.250000)"
+        );
+    }
+}

@@ -204,10 +204,25 @@ impl Motion {
         !matches!(self, Motion::Fixed | Motion::Slide { .. })
     }
 
-    /// Checks the motion's settings (non-zero axes, positive lengths) for a
-    /// mesh of dimension `dim`.
+    /// Checks the motion's settings (non-zero axes, positive lengths, a
+    /// translation and a rotation center within ±1e100) for a mesh of
+    /// dimension `dim`.
     pub fn validate(&self, dim: usize) -> Result<()> {
         let bad = |m: String| Err(Error::InvalidSetting(m));
+        // Beyond ±1e100 the springs' products overflow to NaN.
+        let (what, point) = match self {
+            Motion::Translation { displacement } => ("the translation", Some(displacement)),
+            Motion::Rotation { center, .. } | Motion::PitchPlunge { center, .. } => {
+                ("the rotation center", Some(center))
+            }
+            _ => ("", None),
+        };
+        if let Some(p) = point.filter(|p| !p.iter().all(|x| x.abs() <= 1e100)) {
+            return bad(format!(
+                "{what} {} is beyond ±1e100 (the displacements would overflow)",
+                crate::error::format_point(&p[..dim.min(3)])
+            ));
+        }
         match self {
             Motion::Rotation { axis, .. } | Motion::PitchPlunge { axis, .. } if dim == 3 => {
                 unit(axis, "the rotation axis").map(|_| ())
@@ -248,6 +263,13 @@ impl Motion {
                 }
             }
             Motion::Slide { normal: Some(n) } => unit(n, "the slide normal").map(|_| ()),
+            Motion::Positions(PositionSource::PerStep(pattern)) => match step_width(pattern) {
+                Some(w) if w > MAX_STEP_WIDTH => bad(format!(
+                    "the file pattern \"{}\" asks for {w} digits (at most {MAX_STEP_WIDTH})",
+                    pattern.display()
+                )),
+                _ => Ok(()),
+            },
             _ => Ok(()),
         }
     }
@@ -382,12 +404,36 @@ impl PositionSource {
     pub fn from_file(path: &std::path::Path, nodes: usize, dim: usize) -> Result<PositionSource> {
         let table = positions::read(path, dim)?;
         table.check_against(nodes, path)?;
-        Ok(PositionSource::Final(
-            (0..table.len())
-                .map(|k| (table.ids[k], table.point(k).to_vec()))
-                .collect(),
-        ))
+        Ok(final_positions(&table))
     }
+
+    /// [`PositionSource::from_file`] for the nodes of `groups` of `mesh`: a
+    /// line naming a node on none of them is an error.
+    pub fn for_groups(
+        path: &std::path::Path,
+        mesh: &crate::mesh::Mesh,
+        groups: &[String],
+    ) -> Result<PositionSource> {
+        let table = positions::read(path, mesh.dim)?;
+        table.check_against(mesh.node_count(), path)?;
+        let mut on = vec![false; mesh.node_count()];
+        for g in groups {
+            for i in mesh.group(g)?.nodes() {
+                on[i] = true;
+            }
+        }
+        table.check_on(&on, &groups.join(", "), path)?;
+        Ok(final_positions(&table))
+    }
+}
+
+/// The final positions of a read positions file.
+fn final_positions(table: &positions::Positions) -> PositionSource {
+    PositionSource::Final(
+        (0..table.len())
+            .map(|k| (table.ids[k], table.point(k).to_vec()))
+            .collect(),
+    )
 }
 
 fn missing(node: usize) -> Error {
@@ -403,21 +449,32 @@ fn unit_or_z(axis: &[f64; 3], dim: usize) -> [f64; 3] {
     unit(axis, "the rotation axis").unwrap_or([0.0, 0.0, 1.0])
 }
 
-/// The file of step `step` for a pattern with `{step}` or `{step:0W}`.
+/// The widest `{step:0W}` a pattern may ask for (a step number has at
+/// most 20 digits).
+const MAX_STEP_WIDTH: usize = 20;
+
+/// The `{step` … `}` of a pattern: its start and length.
+fn step_field(s: &str) -> Option<(usize, usize)> {
+    let start = s.find("{step")?;
+    Some((start, s[start..].find('}')?))
+}
+
+/// The `W` of a pattern's `{step:0W}`.
+fn step_width(pattern: &std::path::Path) -> Option<usize> {
+    let s = pattern.to_string_lossy();
+    let (start, len) = step_field(&s)?;
+    s[start + 5..start + len].strip_prefix(":0")?.parse().ok()
+}
+
+/// The file of step `step` for a pattern with `{step}` or `{step:0W}` (W
+/// at most 20, checked by [`Motion::validate`]).
 pub fn step_path(pattern: &std::path::Path, step: usize) -> PathBuf {
     let s = pattern.to_string_lossy();
-    let Some(start) = s.find("{step") else {
+    let Some((start, len)) = step_field(&s) else {
         return pattern.to_path_buf();
     };
-    let Some(len) = s[start..].find('}') else {
-        return pattern.to_path_buf();
-    };
-    let spec = &s[start + 5..start + len];
-    let number = match spec
-        .strip_prefix(":0")
-        .and_then(|w| w.parse::<usize>().ok())
-    {
-        Some(width) => format!("{step:0width$}"),
+    let number = match step_width(pattern) {
+        Some(width) => format!("{step:0width$}", width = width.min(MAX_STEP_WIDTH)),
         None => step.to_string(),
     };
     PathBuf::from(format!(

@@ -104,18 +104,9 @@ pub fn write(path: &Path, mesh: &Mesh, options: &WriteOptions) -> Result<()> {
     })
 }
 
-/// Writes a file through `fill` so that it is never left half-written: the
-/// bytes go to a temporary file beside `path`, which is renamed over `path`
-/// only once everything was written and flushed. On failure the temporary
-/// file is removed and `path` is untouched.
-pub fn write_atomic(
-    path: &Path,
-    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
-) -> Result<()> {
-    let io_err = |source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    };
+/// The temporary file beside `path` that an atomic write fills first
+/// (`.NAME.PID.tmp`).
+pub(crate) fn temp_path(path: &Path) -> PathBuf {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
@@ -124,18 +115,65 @@ pub fn write_atomic(
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
+    dir.join(format!(".{name}.{}.tmp", std::process::id()))
+}
+
+/// Writes a file through `fill` so that it is never left half-written: the
+/// bytes go to a temporary file beside `path`, which is renamed over `path`
+/// only once everything was written and flushed. On failure the temporary
+/// file is removed and `path` is untouched. A symbolic link is followed (its
+/// final target is replaced, the link kept); a device, FIFO or socket is
+/// written to directly, never replaced.
+pub fn write_atomic(
+    path: &Path,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<()> {
+    let io_err = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    if is_special(path) {
+        let result = (|| {
+            let mut w = BufWriter::new(File::options().write(true).open(path)?);
+            fill(&mut w)?;
+            w.flush()
+        })();
+        return result.map_err(io_err);
+    }
+    let target = link_target(path);
+    let tmp = temp_path(&target);
     let result = (|| {
         let file = File::create(&tmp)?;
         let mut w = BufWriter::new(file);
         fill(&mut w)?;
         let file = w.into_inner().map_err(|e| e.into_error())?;
         file.sync_all()?;
-        std::fs::rename(&tmp, path)
+        std::fs::rename(&tmp, &target)
     })();
     if let Err(e) = result {
         let _ = std::fs::remove_file(&tmp);
         return Err(io_err(e));
     }
     Ok(())
+}
+
+/// Whether `path` (links followed) is a device, FIFO or socket.
+pub(crate) fn is_special(path: &Path) -> bool {
+    std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir())
+}
+
+/// The final target of `path` when it is a symbolic link (a chain of at most
+/// 40), else `path`.
+pub(crate) fn link_target(path: &Path) -> PathBuf {
+    let mut p = path.to_path_buf();
+    for _ in 0..40 {
+        let Ok(next) = std::fs::read_link(&p) else {
+            break;
+        };
+        p = match p.parent() {
+            Some(dir) => dir.join(next),
+            None => next,
+        };
+    }
+    p
 }

@@ -65,6 +65,28 @@ impl Positions {
     }
 }
 
+impl Positions {
+    /// Checks that every id is a node where `on` is true (the nodes of the
+    /// moving groups `groups`); `path` names the positions file.
+    pub fn check_on(&self, on: &[bool], groups: &str, path: &Path) -> Result<()> {
+        match self
+            .ids
+            .iter()
+            .position(|&id| !on.get(id).copied().unwrap_or(false))
+        {
+            None => Ok(()),
+            Some(k) => Err(Error::Parse {
+                path: path.to_path_buf(),
+                line: self.lines[k],
+                message: format!(
+                    "node id {} is not on a moving group ({groups}): its position would be ignored",
+                    self.ids[k]
+                ),
+            }),
+        }
+    }
+}
+
 /// Reads a positions file of dimension `dim`.
 pub fn read(path: &Path, dim: usize) -> Result<Positions> {
     let bytes = std::fs::read(path).map_err(|source| Error::Io {

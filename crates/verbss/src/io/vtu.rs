@@ -55,10 +55,12 @@ use std::path::Path;
 use crate::error::{Error, Result};
 use crate::mesh::{CellKind, Mesh};
 
+mod binary;
 mod read;
 #[cfg(test)]
 mod tests;
 mod write;
+mod xml;
 
 pub use read::parse;
 pub use write::write_to;

@@ -6,6 +6,10 @@ pub mod kinds;
 
 pub use kind::{CellKind, KindTable};
 
+use std::collections::hash_map::{DefaultHasher, Entry};
+use std::collections::HashMap;
+use std::hash::{Hash, Hasher};
+
 use crate::error::{Error, Result};
 
 /// A list of cells of mixed kinds in compressed form: cell `c` has kind
@@ -182,6 +186,12 @@ impl Mesh {
             ));
         }
         check_cells(&self.cells, n, "cell", |k| k.dim() == self.dim)?;
+        if let Some((a, b)) = repeated_cell(&self.cells) {
+            return bad(format!(
+                "elements {} and {} have the same nodes (a duplicated element)",
+                self.cell_tags[a], self.cell_tags[b]
+            ));
+        }
         for g in &self.groups {
             check_cells(&g.facets, n, &format!("group '{}' facet", g.name), |k| {
                 k.dim() < self.dim
@@ -189,6 +199,32 @@ impl Mesh {
         }
         Ok(())
     }
+}
+
+/// Two cells with the same node set, if any (found by a hash of the sorted
+/// nodes, then compared).
+fn repeated_cell(cells: &Cells) -> Option<(usize, usize)> {
+    let sorted = |c: usize| {
+        let mut key = [usize::MAX; 8];
+        let nodes = cells.cell(c);
+        key[..nodes.len()].copy_from_slice(nodes);
+        key.sort_unstable();
+        key
+    };
+    let mut first = HashMap::with_capacity(cells.len());
+    for c in 0..cells.len() {
+        let key = sorted(c);
+        let mut h = DefaultHasher::new();
+        key.hash(&mut h);
+        match first.entry(h.finish()) {
+            Entry::Vacant(e) => {
+                e.insert(c);
+            }
+            Entry::Occupied(e) if sorted(*e.get()) == key => return Some((*e.get(), c)),
+            Entry::Occupied(_) => {}
+        }
+    }
+    None
 }
 
 fn check_cells(

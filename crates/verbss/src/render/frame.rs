@@ -46,9 +46,10 @@ impl Layout {
         }
         let mut w = match options.view {
             Some(v) => {
-                if !(v.iter().all(|x| x.is_finite()) && v[1] > v[0] && v[3] > v[2]) {
+                if !drawable(v) {
                     return Err(Error::InvalidSetting(format!(
-                        "view window {},{},{},{} (expected x0 < x1 and y0 < y1)",
+                        "view window {},{},{},{} (expected x0 < x1 and y0 < y1, each \
+                         span finite and above 1e-12 of the coordinates)",
                         v[0], v[1], v[2], v[3]
                     )));
                 }
@@ -57,7 +58,14 @@ impl Layout {
             None => {
                 let b = scene.bounds();
                 let pad = 0.02 * (b[1] - b[0]).max(b[3] - b[2]).max(f64::MIN_POSITIVE);
-                [b[0] - pad, b[1] + pad, b[2] - pad, b[3] + pad]
+                let w = [b[0] - pad, b[1] + pad, b[2] - pad, b[3] + pad];
+                if !drawable(w) {
+                    return Err(Error::InvalidSetting(format!(
+                        "the picture's extent {},{},{},{} cannot be drawn (not finite)",
+                        b[0], b[1], b[2], b[3]
+                    )));
+                }
+                w
             }
         };
         let (du, dv) = (w[1] - w[0], w[3] - w[2]);
@@ -113,6 +121,16 @@ impl Layout {
     fn font(&self, size: f64) -> TextStyle<'static> {
         ("sans-serif", size * self.scale).into_font().color(&BLACK)
     }
+}
+
+/// Whether window `[x0, x1, y0, y1]` can be drawn: finite, positive spans
+/// that the coordinates resolve (above 1e-12 of them).
+fn drawable(w: [f64; 4]) -> bool {
+    let span = |a: f64, b: f64| {
+        let d = b - a;
+        d.is_finite() && d > 0.0 && d > 1e-12 * a.abs().max(b.abs())
+    };
+    span(w[0], w[1]) && span(w[2], w[3])
 }
 
 fn rgb(c: Rgb) -> RGBColor {

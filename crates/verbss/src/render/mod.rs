@@ -42,7 +42,7 @@ use plotters::prelude::*;
 use plotters::style::FontStyle;
 
 use crate::error::{Error, Result};
-use crate::io::write_atomic;
+use crate::io::{is_special, link_target, temp_path, write_atomic};
 
 pub use frame::Layout;
 pub use scene::{Camera, Scene, Section, State};
@@ -237,10 +237,13 @@ pub fn write(path: &Path, scene: &Scene, options: &Options) -> Result<()> {
 }
 
 /// An animated GIF being written, one [`Image`] per frame; every frame must
-/// have the first one's size.
+/// have the first one's size. The frames go to a temporary file beside the
+/// target, renamed over it by [`Gif::finish`]: until then (a failed or killed
+/// run) the target is untouched, and a dropped `Gif` removes its temporary.
 pub struct Gif {
     path: PathBuf,
-    encoder: gif::Encoder<BufWriter<File>>,
+    tmp: PathBuf,
+    encoder: Option<gif::Encoder<BufWriter<File>>>,
     size: (u32, u32),
     delay: u16,
 }
@@ -249,27 +252,53 @@ impl Gif {
     /// Starts `path` with frames `width × height` shown `delay` hundredths of
     /// a second each, looping forever.
     pub fn create(path: &Path, width: u32, height: u32, delay: u16) -> Result<Gif> {
-        let io = |source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        };
         let (w, h) = (u16::try_from(width), u16::try_from(height));
         let (Ok(w), Ok(h)) = (w, h) else {
             return Err(Error::InvalidSetting(format!(
                 "a GIF frame of {width} × {height} pixels (at most 65535 each way)"
             )));
         };
-        let file = BufWriter::new(File::create(path).map_err(io)?);
-        let mut encoder = gif::Encoder::new(file, w, h, &[]).map_err(|e| gif_error(path, e))?;
+        if is_special(path) {
+            return Err(Error::InvalidSetting(format!(
+                "{}: a device, FIFO or socket (a GIF is written to a regular file)",
+                path.display()
+            )));
+        }
+        let target = link_target(path);
+        let tmp = temp_path(&target);
+        let file = File::create(&tmp).map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let mut gif = Gif {
+            path: target,
+            tmp,
+            encoder: None,
+            size: (width, height),
+            delay,
+        };
+        let mut encoder =
+            gif::Encoder::new(BufWriter::new(file), w, h, &[]).map_err(|e| gif_error(path, e))?;
         encoder
             .set_repeat(gif::Repeat::Infinite)
             .map_err(|e| gif_error(path, e))?;
-        Ok(Gif {
-            path: path.to_path_buf(),
-            encoder,
-            size: (width, height),
-            delay,
-        })
+        gif.encoder = Some(encoder);
+        Ok(gif)
+    }
+
+    /// Ends the GIF and renames it over the target.
+    pub fn finish(mut self) -> Result<()> {
+        let io = |source| Error::Io {
+            path: self.path.clone(),
+            source,
+        };
+        let encoder = self.encoder.take().expect("taken only here");
+        let file = encoder
+            .into_inner()
+            .and_then(|w| w.into_inner().map_err(|e| e.into_error()))
+            .map_err(io)?;
+        file.sync_all().map_err(io)?;
+        std::fs::rename(&self.tmp, &self.path).map_err(io)
     }
 
     /// Appends a frame, quantised to 255 colours learnt from it (NeuQuant)
@@ -310,8 +339,17 @@ impl Gif {
         );
         frame.delay = self.delay;
         self.encoder
+            .as_mut()
+            .expect("set until finish")
             .write_frame(&frame)
             .map_err(|e| gif_error(&self.path, e))
+    }
+}
+
+impl Drop for Gif {
+    fn drop(&mut self) {
+        // Renamed by `finish`: nothing left to remove then.
+        let _ = std::fs::remove_file(&self.tmp);
     }
 }
 

@@ -90,11 +90,20 @@ impl<'a> Canvas<'a> {
         if a[0] > b[0] {
             std::mem::swap(&mut a, &mut b);
         }
+        if !a.iter().chain(&b).all(|x| x.is_finite()) {
+            return;
+        }
         let dx = b[0] - a[0];
         let gradient = if dx == 0.0 { 0.0 } else { (b[1] - a[1]) / dx };
         let dz = if dx == 0.0 { 0.0 } else { (b[2] - a[2]) / dx };
-        let start = (a[0] - 0.5).round() as i64;
-        let end = (b[0] - 0.5).round() as i64;
+        // Stepped only across the clip rectangle, however long the line.
+        let (lo, hi) = if steep {
+            (self.clip[1], self.clip[3])
+        } else {
+            (self.clip[0], self.clip[2])
+        };
+        let start = ((a[0] - 0.5).round() as i64).max(lo);
+        let end = ((b[0] - 0.5).round() as i64).min(hi - 1);
         for i in start..=end {
             let x = i as f64 + 0.5;
             let t = (x - a[0]).clamp(0.0, dx.max(0.0));
@@ -102,7 +111,7 @@ impl<'a> Canvas<'a> {
             let z = a[2] + dz * t;
             let j = y.floor();
             let f = y - j;
-            for (jj, cover) in [(j as i64, 1.0 - f), (j as i64 + 1, f)] {
+            for (jj, cover) in [(j as i64, 1.0 - f), ((j as i64).saturating_add(1), f)] {
                 let (px, py) = if steep { (jj, i) } else { (i, jj) };
                 self.blend(px, py, z, tolerance, colour, alpha * cover);
             }
@@ -185,5 +194,16 @@ mod tests {
         canvas.line([0., 5.5, 0.], [10., 5.5, 0.], [200, 200, 200], 1.0, 0.0);
         assert_eq!(count(&rgb, [9, 9, 9]) + count(&rgb, [200, 200, 200]), 36);
         assert_eq!(count(&rgb, [200, 200, 200]), 6);
+    }
+
+    #[test]
+    fn huge_lines_are_clipped_not_stepped() {
+        let mut rgb = vec![0u8; 3 * 10 * 10];
+        let mut canvas = Canvas::new(&mut rgb, 10, [0, 0, 10, 10]);
+        canvas.line([-1e300, 5.5, 0.], [1e300, 5.5, 0.], [7, 7, 7], 1.0, 0.0);
+        canvas.line([5.5, -1e18, 0.], [5.5, 1e18, 0.], [7, 7, 7], 1.0, 0.0);
+        canvas.line([f64::NAN, 0., 0.], [5., 5., 0.], [8, 8, 8], 1.0, 0.0);
+        assert_eq!(count(&rgb, [7, 7, 7]), 19);
+        assert_eq!(count(&rgb, [8, 8, 8]), 0);
     }
 }

@@ -188,7 +188,7 @@ fn bad_sections_and_options_are_errors_that_say_why() {
     };
     assert_eq!(
         png(&s, &options).err().unwrap().to_string(),
-        "invalid setting: view window 1,0,0,1 (expected x0 < x1 and y0 < y1)"
+        "invalid setting: view window 1,0,0,1 (expected x0 < x1 and y0 < y1, each span finite and above 1e-12 of the coordinates)"
     );
     let dir = tempfile::tempdir().unwrap();
     assert_eq!(
@@ -242,7 +242,17 @@ fn png_and_gif_files_decode_to_the_pictures_written() {
             image.height
         )
     );
-    drop(gif);
+    // Nothing at the target before `finish`; a dropped GIF leaves nothing.
+    assert!(!gif_path.exists());
+    gif.finish().unwrap();
+    let dropped = dir.path().join("dropped.gif");
+    drop(Gif::create(&dropped, 10, 10, 5).unwrap());
+    let mut names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["naca.gif", "naca.png"]);
     let mut options = gif::DecodeOptions::new();
     options.set_color_output(gif::ColorOutput::RGBA);
     let mut decoder = options.read_info(File::open(&gif_path).unwrap()).unwrap();

@@ -280,9 +280,8 @@ impl<'a> Cursor<'a> {
     /// keyword); fails at the end of the file.
     pub fn skip_past(&mut self, end: &str) -> Result<()> {
         let rest = &self.bytes[self.pos..];
-        let found = rest
-            .windows(end.len())
-            .position(|w| w == end.as_bytes())
+        // A linear search: a window-by-window one is quadratic in `end`.
+        let found = memchr::memmem::find(rest, end.as_bytes())
             .ok_or_else(|| self.error(format!("unexpected end of file: no {end} closes it")))?;
         let skipped = &rest[..found + end.len()];
         self.line += skipped.iter().filter(|&&b| b == b'\n').count();

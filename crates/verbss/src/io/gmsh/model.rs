@@ -169,6 +169,8 @@ pub(super) struct Elements {
     /// `(dimension, physical tag)` pairs in order of first appearance.
     order: Vec<(usize, i32)>,
     seen: HashSet<(usize, i32)>,
+    /// The `(dimension, range)`s of `physicals` already in `order`.
+    listed: HashSet<(usize, Range<usize>)>,
 }
 
 impl Elements {
@@ -181,10 +183,18 @@ impl Elements {
         b.tags.reserve(n);
     }
 
+    /// No elements yet; runs will be ranges of `physicals` (MSH 4.1: the
+    /// tags of all entities, so a block copies none).
+    pub fn with_physicals(physicals: Vec<i32>) -> Self {
+        Elements {
+            physicals,
+            ..Default::default()
+        }
+    }
+
     /// The elements of dimension `dim` pushed from now on carry `physicals`.
     pub fn set_physicals(&mut self, dim: usize, physicals: &[i32]) {
-        let b = &mut self.buckets[dim];
-        let current = b
+        let current = self.buckets[dim]
             .runs
             .last()
             .map_or(&[][..], |(_, r)| &self.physicals[r.clone()]);
@@ -193,10 +203,26 @@ impl Elements {
         }
         let start = self.physicals.len();
         self.physicals.extend_from_slice(physicals);
-        b.runs.push((b.cells.len(), start..self.physicals.len()));
-        for &p in physicals {
-            if self.seen.insert((dim, p)) {
-                self.order.push((dim, p));
+        self.set_run(dim, start..self.physicals.len());
+    }
+
+    /// The elements of dimension `dim` pushed from now on carry
+    /// `physicals[range]` (of [`Elements::with_physicals`]).
+    pub fn set_run(&mut self, dim: usize, range: Range<usize>) {
+        let b = &mut self.buckets[dim];
+        let same = match b.runs.last() {
+            None => range.is_empty(),
+            Some((_, r)) => *r == range || (r.is_empty() && range.is_empty()),
+        };
+        if same {
+            return;
+        }
+        b.runs.push((b.cells.len(), range.clone()));
+        if self.listed.insert((dim, range.clone())) {
+            for &p in &self.physicals[range] {
+                if self.seen.insert((dim, p)) {
+                    self.order.push((dim, p));
+                }
             }
         }
     }
@@ -258,6 +284,7 @@ pub(super) fn finish(
     if let Some(t) = repeated(&cell_tags) {
         return Err(c.error_at(end, format!("element tag {t} is used by two elements")));
     }
+    check_copies(c, &elements, dim, end)?;
     let mut index = HashMap::new();
     let mut groups: Vec<Group> = Vec::new();
     for &(d, p) in elements.order.iter().filter(|(d, _)| *d < dim) {
@@ -289,6 +316,32 @@ pub(super) fn finish(
     };
     mesh.validate()?;
     Ok(mesh)
+}
+
+/// Fails when the groups would hold more than 8 copies per element of a
+/// dimension below `dim` (plus 2^20): each element is copied into each
+/// physical group of its entity.
+fn check_copies(c: &Cursor, elements: &Elements, dim: usize, end: Mark) -> Result<()> {
+    let (mut count, mut copies) = (0usize, 0usize);
+    for b in &elements.buckets[..dim] {
+        count += b.cells.len();
+        for (r, (start, phys)) in b.runs.iter().enumerate() {
+            let end = b.runs.get(r + 1).map_or(b.cells.len(), |(s, _)| *s);
+            copies = copies.saturating_add((end - start).saturating_mul(phys.len()));
+        }
+    }
+    let limit = count.saturating_mul(8).saturating_add(1 << 20);
+    if copies > limit {
+        return Err(c.error_at(
+            end,
+            format!(
+                "the physical groups would hold {copies} elements, more than {limit} \
+                 (8 per element of dimension below {dim}, plus 1048576): too many \
+                 physical tags per entity"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Removes each cell identical (same kind, same nodes) to the one before it.

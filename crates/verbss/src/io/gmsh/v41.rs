@@ -2,7 +2,7 @@
 //! come in blocks, one per (entity, element type); binary counts and tags are
 //! 64-bit (`size_t`), entity tags and types 32-bit.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::io;
 use std::ops::Range;
 
@@ -85,6 +85,7 @@ pub(super) fn read_entities(c: &mut Cursor) -> Result<Entities> {
                 }
                 tag
             };
+            dedupe(&mut entities.physicals, start);
             entities
                 .map
                 .insert((dim, tag), start..entities.physicals.len());
@@ -92,6 +93,19 @@ pub(super) fn read_entities(c: &mut Cursor) -> Result<Entities> {
     }
     close(c, "$EndEntities", counts.iter().sum(), "entities")?;
     Ok(entities)
+}
+
+/// Drops repeated tags from `tags[start..]`, keeping the first of each.
+fn dedupe(tags: &mut Vec<i32>, start: usize) {
+    let mut seen = HashSet::new();
+    let mut kept = start;
+    for i in start..tags.len() {
+        if seen.insert(tags[i]) {
+            tags[kept] = tags[i];
+            kept += 1;
+        }
+    }
+    tags.truncate(kept);
 }
 
 /// Bytes of a binary block header: three `int`s and a `size_t`.
@@ -235,7 +249,7 @@ pub(super) fn read_elements(
     entities: &Entities,
 ) -> Result<Elements> {
     let (blocks, total) = section_header(c, "the number of elements")?;
-    let mut elements = Elements::default();
+    let mut elements = Elements::with_physicals(entities.physicals.clone());
     let mut read = 0;
     let mut ids = [0usize; 8];
     for b in 0..blocks {
@@ -258,8 +272,8 @@ pub(super) fn read_elements(
             ));
         }
         let physicals = match entities.map.get(&(dim, entity)) {
-            Some(r) => &entities.physicals[r.clone()],
-            None if !entities.present => &[][..],
+            Some(r) => r.clone(),
+            None if !entities.present => 0..0,
             None => {
                 return Err(c.error_at(
                     mark,
@@ -267,7 +281,7 @@ pub(super) fn read_elements(
                 ))
             }
         };
-        elements.set_physicals(dim, physicals);
+        elements.set_run(dim, physicals);
         let nn = kind.node_count();
         if c.binary() {
             let size = 8 * (1 + nn);

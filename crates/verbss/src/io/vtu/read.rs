@@ -1,20 +1,14 @@
 //! The `.vtu` reader (what it accepts is in the parent module's doc).
 
-use std::borrow::Cow;
-use std::io::Read;
+use std::collections::HashMap;
 use std::path::Path;
 
-use base64::engine::general_purpose::{GeneralPurpose, GeneralPurposeConfig};
-use base64::engine::DecodePaddingMode;
-use base64::Engine;
-use quick_xml::errors::SyntaxError;
-use quick_xml::events::{BytesStart, Event};
-use quick_xml::Reader;
-
+use super::binary::{decode_base64, BlockError, Layout, Ty, Values};
+use super::xml::{collect_offsets, parse_tree, Appended, Ctx, Element};
 use super::{
     kind_of_vtk, Fields, VtuData, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY, UNNAMED_GROUP,
 };
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::mesh::{Cells, Group, Mesh};
 
 /// Parses a `.vtu` file's bytes; `path` is only used in error messages.
@@ -28,271 +22,6 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<VtuData> {
     file.build(&root)
 }
 
-/// The file being read, for error messages.
-struct Ctx<'a> {
-    bytes: &'a [u8],
-    path: &'a Path,
-}
-
-impl Ctx<'_> {
-    /// An error at the line holding byte `pos`.
-    fn at(&self, pos: usize, message: String) -> Error {
-        let pos = pos.min(self.bytes.len());
-        Error::Parse {
-            path: self.path.to_path_buf(),
-            line: 1 + self.bytes[..pos].iter().filter(|&&b| b == b'\n').count(),
-            message,
-        }
-    }
-
-    /// An error at byte `offset` of the file.
-    fn at_byte(&self, offset: usize, message: String) -> Error {
-        Error::Binary {
-            path: self.path.to_path_buf(),
-            offset: offset as u64,
-            message,
-        }
-    }
-}
-
-/// One XML element: name, attributes, the byte ranges of its text, children.
-struct Element {
-    name: String,
-    attrs: Vec<(String, String)>,
-    text: Vec<(usize, usize)>,
-    children: Vec<Element>,
-    /// Byte offset of its `<`.
-    pos: usize,
-}
-
-impl Element {
-    fn attr(&self, key: &str) -> Option<&str> {
-        self.attrs
-            .iter()
-            .find(|(k, _)| k == key)
-            .map(|(_, v)| v.as_str())
-    }
-
-    fn children_named<'e>(&'e self, name: &'e str) -> impl Iterator<Item = &'e Element> + 'e {
-        self.children.iter().filter(move |c| c.name == name)
-    }
-
-    fn child(&self, name: &str) -> Option<&Element> {
-        self.children.iter().find(|c| c.name == name)
-    }
-}
-
-/// The `<AppendedData>` section: the bytes after its `_`.
-#[derive(Clone, Copy)]
-struct Appended<'a> {
-    /// File offset of `data[0]`.
-    start: usize,
-    data: &'a [u8],
-    base64: bool,
-}
-
-/// Reads the XML into a tree, up to the end of `<VTKFile>` or the start of
-/// the appended data (which need not be XML).
-fn parse_tree<'a>(ctx: &Ctx<'a>) -> Result<(Element, Option<Appended<'a>>)> {
-    let bytes = ctx.bytes;
-    let mut reader = Reader::from_reader(bytes);
-    let mut stack: Vec<Element> = Vec::new();
-    let not_vtk = |pos| {
-        ctx.at(
-            pos,
-            r#"not a VTK XML file (expected <VTKFile type="UnstructuredGrid">)"#.to_string(),
-        )
-    };
-    let appended = loop {
-        let pos = reader.buffer_position() as usize;
-        let event = match reader.read_event() {
-            Ok(event) => event,
-            Err(quick_xml::Error::Syntax(e)) if e != SyntaxError::InvalidBangMarkup => {
-                return Err(ctx.at(bytes.len(), format!("truncated file: {e}")))
-            }
-            Err(e) => {
-                let at = reader.error_position() as usize;
-                return Err(ctx.at(at, format!("malformed XML: {e}")));
-            }
-        };
-        match event {
-            Event::Start(e) | Event::Empty(e)
-                if stack.is_empty() && e.name().as_ref() != b"VTKFile" =>
-            {
-                return Err(not_vtk(pos))
-            }
-            Event::Start(e) => {
-                let el = element(ctx, &e, pos)?;
-                if el.name == "AppendedData" {
-                    let start = reader.buffer_position() as usize;
-                    let appended = appended_section(ctx, &el, start)?;
-                    stack.push(el);
-                    break appended;
-                }
-                stack.push(el);
-            }
-            Event::Empty(e) => {
-                let el = element(ctx, &e, pos)?;
-                match stack.last_mut() {
-                    Some(parent) => parent.children.push(el),
-                    None => return Ok((el, None)),
-                }
-            }
-            Event::End(_) => {
-                let el = stack.pop().expect("quick-xml checks end tags");
-                match stack.last_mut() {
-                    Some(parent) => parent.children.push(el),
-                    None => return Ok((el, None)),
-                }
-            }
-            Event::Text(t) => match stack.last_mut() {
-                Some(el) => el.text.push((pos, reader.buffer_position() as usize)),
-                None if t.iter().all(u8::is_ascii_whitespace) => {}
-                None => return Err(not_vtk(pos)),
-            },
-            Event::Eof => match stack.last() {
-                None => return Err(not_vtk(pos)),
-                Some(el) => {
-                    return Err(ctx.at(
-                        bytes.len(),
-                        format!("truncated file: end of file inside <{}>", el.name),
-                    ))
-                }
-            },
-            _ => {}
-        }
-    };
-    let mut root = stack.pop().expect("AppendedData was pushed");
-    while let Some(mut parent) = stack.pop() {
-        parent.children.push(root);
-        root = parent;
-    }
-    Ok((root, Some(appended)))
-}
-
-/// An element from a start tag at byte `pos`.
-fn element(ctx: &Ctx, e: &BytesStart, pos: usize) -> Result<Element> {
-    let malformed = |e: String| ctx.at(pos, format!("malformed XML: {e}"));
-    let mut attrs = Vec::new();
-    for a in e.attributes() {
-        let a = a.map_err(|e| malformed(e.to_string()))?;
-        let value = a.unescape_value().map_err(|e| malformed(e.to_string()))?;
-        let key = String::from_utf8_lossy(a.key.as_ref()).into_owned();
-        attrs.push((key, value.into_owned()));
-    }
-    Ok(Element {
-        name: String::from_utf8_lossy(e.name().as_ref()).into_owned(),
-        attrs,
-        text: Vec::new(),
-        children: Vec::new(),
-        pos,
-    })
-}
-
-/// The appended data that starts after the `<AppendedData …>` tag ending at `start`.
-fn appended_section<'a>(ctx: &Ctx<'a>, el: &Element, start: usize) -> Result<Appended<'a>> {
-    let base64 = match el.attr("encoding") {
-        Some("raw") => false,
-        Some("base64") => true,
-        other => {
-            return Err(ctx.at(
-                el.pos,
-                format!(
-                    "AppendedData encoding is {} (expected \"raw\" or \"base64\")",
-                    other.map_or("missing".to_string(), |e| format!("\"{e}\""))
-                ),
-            ))
-        }
-    };
-    let rest = &ctx.bytes[start..];
-    let skip = rest.iter().take_while(|b| b.is_ascii_whitespace()).count();
-    if rest.get(skip) != Some(&b'_') {
-        return Err(ctx.at(
-            start + skip,
-            "AppendedData does not start with '_'".to_string(),
-        ));
-    }
-    let start = start + skip + 1;
-    let mut data = &ctx.bytes[start..];
-    if base64 {
-        let end = data.iter().position(|&b| b == b'<').unwrap_or(data.len());
-        data = data[..end].trim_ascii_end();
-    }
-    Ok(Appended {
-        start,
-        data,
-        base64,
-    })
-}
-
-/// A number type found in a `type` attribute.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Ty {
-    I8,
-    U8,
-    I16,
-    U16,
-    I32,
-    U32,
-    I64,
-    U64,
-    F32,
-    F64,
-}
-
-impl Ty {
-    fn parse(s: &str) -> Option<Ty> {
-        Some(match s {
-            "Int8" => Ty::I8,
-            "UInt8" => Ty::U8,
-            "Int16" => Ty::I16,
-            "UInt16" => Ty::U16,
-            "Int32" => Ty::I32,
-            "UInt32" => Ty::U32,
-            "Int64" => Ty::I64,
-            "UInt64" => Ty::U64,
-            "Float32" => Ty::F32,
-            "Float64" => Ty::F64,
-            _ => return None,
-        })
-    }
-
-    fn size(self) -> usize {
-        match self {
-            Ty::I8 | Ty::U8 => 1,
-            Ty::I16 | Ty::U16 => 2,
-            Ty::I32 | Ty::U32 | Ty::F32 => 4,
-            Ty::I64 | Ty::U64 | Ty::F64 => 8,
-        }
-    }
-
-    fn is_float(self) -> bool {
-        matches!(self, Ty::F32 | Ty::F64)
-    }
-}
-
-/// The values of one array.
-enum Values {
-    Int(Vec<i64>),
-    Float(Vec<f64>),
-}
-
-impl Values {
-    fn len(&self) -> usize {
-        match self {
-            Values::Int(v) => v.len(),
-            Values::Float(v) => v.len(),
-        }
-    }
-
-    fn into_f64(self) -> Vec<f64> {
-        match self {
-            Values::Int(v) => v.into_iter().map(|x| x as f64).collect(),
-            Values::Float(v) => v,
-        }
-    }
-}
-
 /// One decoded `<DataArray>`.
 struct Array<'e> {
     el: &'e Element,
@@ -301,15 +30,17 @@ struct Array<'e> {
     values: Values,
 }
 
-/// A failure inside a binary block: offset in the block's byte stream, message.
-type BlockError = (usize, String);
+/// The most values an array may hold: a count, or a count per component.
+#[derive(Clone, Copy)]
+enum Limit {
+    Values(usize),
+    Tuples(usize),
+}
 
 /// The file-wide settings needed to decode arrays.
 struct VtkFile<'a, 'c> {
     ctx: &'c Ctx<'a>,
-    big_endian: bool,
-    header64: bool,
-    zlib: bool,
+    layout: Layout,
     appended: Option<Appended<'a>>,
     /// Sorted `offset`s of the appended arrays (to cut base64 appended data).
     offsets: Vec<usize>,
@@ -353,29 +84,57 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         offsets.sort_unstable();
         Ok(VtkFile {
             ctx,
-            big_endian,
-            header64,
-            zlib,
+            layout: Layout {
+                big_endian,
+                header64,
+                zlib,
+            },
             appended,
             offsets,
         })
     }
 
-    /// Decodes a `<DataArray>`.
-    fn array<'e>(&self, el: &'e Element) -> Result<Array<'e>> {
+    /// Decodes a `<DataArray>` that `why` (for messages) limits to `limit`.
+    fn array<'e>(&self, el: &'e Element, limit: Limit, why: &str) -> Result<Array<'e>> {
+        self.decode(el, limit, why)?.ok_or_else(|| {
+            let max = match limit {
+                Limit::Values(m) => m.to_string(),
+                Limit::Tuples(t) => format!("{t} tuples"),
+            };
+            self.ctx.at(
+                el.pos,
+                format!(
+                    "DataArray '{}': holds more than the {max} that {why} needs",
+                    el.attr("Name").unwrap_or("")
+                ),
+            )
+        })
+    }
+
+    /// Decodes a `<DataArray>`; `None`, before any inflating, when its binary
+    /// block claims more than `limit` values.
+    fn decode<'e>(&self, el: &'e Element, limit: Limit, why: &str) -> Result<Option<Array<'e>>> {
         let name = el.attr("Name").unwrap_or("").to_string();
         let err = |m: String| self.ctx.at(el.pos, format!("DataArray '{name}': {m}"));
         let ty_name = el.attr("type").unwrap_or("");
         let ty = Ty::parse(ty_name).ok_or_else(|| err(format!("unknown type \"{ty_name}\"")))?;
-        let components = match el.attr("NumberOfComponents") {
+        let components: usize = match el.attr("NumberOfComponents") {
             None | Some("") => 1,
             Some(c) => match c.parse() {
                 Ok(c) if c > 0 => c,
                 _ => return Err(err(format!("NumberOfComponents=\"{c}\" is not a count"))),
             },
         };
+        let max = match limit {
+            Limit::Values(m) => m,
+            Limit::Tuples(t) => components.checked_mul(t).ok_or_else(|| {
+                err(format!(
+                    "NumberOfComponents={components} cannot match {why} (too many values)"
+                ))
+            })?,
+        };
         let values = match el.attr("format").unwrap_or("ascii") {
-            "ascii" => self.ascii(el, ty, &name)?,
+            "ascii" => Some(self.ascii(el, ty, &name)?),
             "binary" => {
                 let text: Vec<u8> = el
                     .text
@@ -385,7 +144,9 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                     .filter(|b| !b.is_ascii_whitespace())
                     .collect();
                 let stream = decode_base64(&text).map_err(|(_, m)| err(m))?;
-                self.block_values(&stream, ty).map_err(|(_, m)| err(m))?
+                self.layout
+                    .block_values(&stream, ty, max)
+                    .map_err(|(_, m)| err(m))?
             }
             "appended" => {
                 let offset = el.attr("offset").unwrap_or("");
@@ -406,29 +167,33 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                         .at_byte(app.start + offset + i, format!("DataArray '{name}': {m}"))
                 };
                 if app.base64 {
+                    let next = self.offsets.partition_point(|&o| o <= offset);
                     let end = self
                         .offsets
-                        .iter()
-                        .find(|&&o| o > offset)
+                        .get(next)
                         .map_or(app.data.len(), |&o| o.min(app.data.len()));
                     let stream = decode_base64(&app.data[offset..end]).map_err(at)?;
-                    self.block_values(&stream, ty)
+                    self.layout
+                        .block_values(&stream, ty, max)
                         .map_err(|(_, m)| at((0, m)))?
                 } else {
-                    self.block_values(&app.data[offset..], ty).map_err(at)?
+                    self.layout
+                        .block_values(&app.data[offset..], ty, max)
+                        .map_err(at)?
                 }
             }
             other => return Err(err(format!("unknown format \"{other}\""))),
         };
-        Ok(Array {
+        Ok(values.map(|values| Array {
             el,
             name,
             components,
             values,
-        })
+        }))
     }
 
-    /// Parses the whitespace-separated numbers of an ascii array.
+    /// Parses the whitespace-separated numbers of an ascii array (as many as
+    /// the file holds: counts are checked by the caller, with the count).
     fn ascii(&self, el: &Element, ty: Ty, name: &str) -> Result<Values> {
         let mut ints = Vec::new();
         let mut floats = Vec::new();
@@ -461,131 +226,6 @@ impl<'a, 'c> VtkFile<'a, 'c> {
             Values::Float(floats)
         } else {
             Values::Int(ints)
-        })
-    }
-
-    /// Reads one header word (4 or 8 bytes) at byte `at` of a block.
-    fn word(&self, s: &[u8], at: usize) -> std::result::Result<u64, BlockError> {
-        let size = if self.header64 { 8 } else { 4 };
-        let b = s.get(at..at + size).ok_or_else(|| {
-            (
-                at,
-                format!(
-                    "truncated: header needs {size} bytes, {} remain",
-                    s.len().saturating_sub(at)
-                ),
-            )
-        })?;
-        Ok(match (self.header64, self.big_endian) {
-            (true, false) => u64::from_le_bytes(b.try_into().expect("8 bytes")),
-            (true, true) => u64::from_be_bytes(b.try_into().expect("8 bytes")),
-            (false, false) => u32::from_le_bytes(b.try_into().expect("4 bytes")).into(),
-            (false, true) => u32::from_be_bytes(b.try_into().expect("4 bytes")).into(),
-        })
-    }
-
-    /// The data bytes of a binary block `s` (header, then data): sliced out,
-    /// or inflated block by block when zlib-compressed.
-    fn block<'s>(&self, s: &'s [u8]) -> std::result::Result<Cow<'s, [u8]>, BlockError> {
-        let h = if self.header64 { 8 } else { 4 };
-        let too_long = |at: usize, claim: u64| {
-            (
-                at,
-                format!(
-                    "truncated: header claims {claim} bytes but only {} remain",
-                    s.len().saturating_sub(at)
-                ),
-            )
-        };
-        if !self.zlib {
-            let n = self.word(s, 0)?;
-            return match usize::try_from(n) {
-                Ok(n) if n <= s.len() - h => Ok(Cow::Borrowed(&s[h..h + n])),
-                _ => Err(too_long(h, n)),
-            };
-        }
-        let blocks = self.word(s, 0)?;
-        let full = self.word(s, h)?;
-        let last = self.word(s, 2 * h)?;
-        let header = match usize::try_from(blocks) {
-            Ok(b) if b <= s.len() / h => (3 + b) * h,
-            _ => return Err(too_long(3 * h, blocks.saturating_mul(h as u64))),
-        };
-        let mut start = header;
-        let mut out = Vec::new();
-        for k in 0..header / h - 3 {
-            let size = self.word(s, (3 + k) * h)?;
-            let end = match usize::try_from(size) {
-                Ok(size) if size <= s.len() - start => start + size,
-                _ => return Err(too_long(start, size)),
-            };
-            let expected = if k + 1 == header / h - 3 && last != 0 {
-                last
-            } else {
-                full
-            };
-            let before = out.len();
-            flate2::read::ZlibDecoder::new(&s[start..end])
-                .take(expected.saturating_add(1))
-                .read_to_end(&mut out)
-                .map_err(|e| (start, format!("zlib block {k}: {e}")))?;
-            if (out.len() - before) as u64 != expected {
-                return Err((
-                    start,
-                    format!(
-                        "zlib block {k} inflates to {} bytes (header says {expected})",
-                        out.len() - before
-                    ),
-                ));
-            }
-            start = end;
-        }
-        Ok(Cow::Owned(out))
-    }
-
-    /// The values of a binary block.
-    fn block_values(&self, s: &[u8], ty: Ty) -> std::result::Result<Values, BlockError> {
-        let data = self.block(s)?;
-        let size = ty.size();
-        if data.len() % size != 0 {
-            return Err((
-                0,
-                format!(
-                    "{} bytes is not a whole number of {size}-byte values",
-                    data.len()
-                ),
-            ));
-        }
-        let be = self.big_endian;
-        macro_rules! conv {
-            ($t:ty) => {
-                data.chunks_exact(size).map(|c| {
-                    let b = c.try_into().expect("chunk of the type's size");
-                    if be {
-                        <$t>::from_be_bytes(b)
-                    } else {
-                        <$t>::from_le_bytes(b)
-                    }
-                })
-            };
-        }
-        Ok(match ty {
-            Ty::I8 => Values::Int(conv!(i8).map(i64::from).collect()),
-            Ty::U8 => Values::Int(conv!(u8).map(i64::from).collect()),
-            Ty::I16 => Values::Int(conv!(i16).map(i64::from).collect()),
-            Ty::U16 => Values::Int(conv!(u16).map(i64::from).collect()),
-            Ty::I32 => Values::Int(conv!(i32).map(i64::from).collect()),
-            Ty::U32 => Values::Int(conv!(u32).map(i64::from).collect()),
-            Ty::I64 => Values::Int(conv!(i64).collect()),
-            Ty::U64 => Values::Int(
-                conv!(u64)
-                    .map(|v| {
-                        i64::try_from(v).map_err(|_| (0, format!("UInt64 value {v} is too large")))
-                    })
-                    .collect::<std::result::Result<_, _>>()?,
-            ),
-            Ty::F32 => Values::Float(conv!(f32).map(f64::from).collect()),
-            Ty::F64 => Values::Float(conv!(f64).collect()),
         })
     }
 
@@ -622,7 +262,11 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         let points_da = points_el
             .child("DataArray")
             .ok_or_else(|| ctx.at(points_el.pos, "missing <DataArray> in <Points>".into()))?;
-        let points = self.array(points_da)?;
+        let points = self.array(
+            points_da,
+            Limit::Values(n.saturating_mul(3)),
+            &format!("NumberOfPoints={n}"),
+        )?;
         let coords = self.points(points, n)?;
 
         let cells_el = section("Cells")?;
@@ -636,7 +280,14 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                         format!("missing DataArray '{name}' in <Cells>"),
                     )
                 })?;
-            self.array(el)
+            let (tuples, why) = match name {
+                "connectivity" => (
+                    ncells.saturating_mul(8),
+                    format!("NumberOfCells={ncells} (at most 8 points each)"),
+                ),
+                _ => (ncells, format!("NumberOfCells={ncells}")),
+            };
+            self.array(el, Limit::Tuples(tuples), &why)
         };
         let arrays = [
             cell_array("connectivity")?,
@@ -790,7 +441,8 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         section
             .children_named("DataArray")
             .map(|el| {
-                let a = self.array(el)?;
+                let why = format!("{key}={count}");
+                let a = self.array(el, Limit::Tuples(count), &why)?;
                 if a.values.len() != a.components * count {
                     return Err(self.ctx.at(
                         el.pos,
@@ -815,7 +467,9 @@ impl<'a, 'c> VtkFile<'a, 'c> {
             if el.attr("type").and_then(Ty::parse).is_none_or(Ty::is_float) {
                 continue;
             }
-            let a = self.array(el)?;
+            let Some(a) = self.decode(el, Limit::Values(3), "a group name")? else {
+                continue;
+            };
             let Values::Int(v) = &a.values else { continue };
             let tag = match v[..] {
                 [id, _] if id >= 1 => None,
@@ -909,6 +563,11 @@ fn assemble(
             facets: Cells::new(),
         })
         .collect();
+    // The first group of each id (a map: a facet-by-name scan is quadratic).
+    let mut by_id = HashMap::new();
+    for (k, g) in names.iter().enumerate() {
+        by_id.entry(g.0).or_insert(k);
+    }
     let mut volume = Vec::new();
     let mut cells = Cells::new();
     let mut unnamed = None;
@@ -918,7 +577,7 @@ fn assemble(
             cells.push(kind, nodes);
             continue;
         }
-        let named = names.iter().position(|g| g.0 == group_ids[c]);
+        let named = by_id.get(&group_ids[c]).copied();
         let k = named.unwrap_or_else(|| {
             *unnamed.get_or_insert_with(|| {
                 groups.push(Group {
@@ -976,54 +635,4 @@ fn assemble(
     };
     mesh.validate()?;
     Ok(VtuData { mesh, fields })
-}
-
-/// Collects the `offset` attributes of all appended `<DataArray>`s.
-fn collect_offsets(el: &Element, out: &mut Vec<usize>) {
-    if el.name == "DataArray" && el.attr("format") == Some("appended") {
-        out.extend(el.attr("offset").and_then(|o| o.parse::<usize>().ok()));
-    }
-    for c in &el.children {
-        collect_offsets(c, out);
-    }
-}
-
-/// Decodes base64 text made of one or more padded segments (VTK encodes a
-/// header and its data separately, meshio sometimes together): the bytes of
-/// all segments, one after the other.
-fn decode_base64(text: &[u8]) -> std::result::Result<Vec<u8>, BlockError> {
-    const ENGINE: GeneralPurpose = GeneralPurpose::new(
-        &base64::alphabet::STANDARD,
-        GeneralPurposeConfig::new()
-            .with_decode_allow_trailing_bits(true)
-            .with_decode_padding_mode(DecodePaddingMode::Indifferent),
-    );
-    let mut out = Vec::with_capacity(text.len() / 4 * 3);
-    let mut start = 0;
-    while start < text.len() {
-        let end = text[start..]
-            .iter()
-            .position(|&b| b == b'=')
-            .map_or(text.len(), |p| ((start + p) / 4 + 1) * 4)
-            .min(text.len());
-        ENGINE
-            .decode_vec(&text[start..end], &mut out)
-            .map_err(|e| match e {
-                base64::DecodeError::InvalidByte(i, b)
-                | base64::DecodeError::InvalidLastSymbol(i, b) => (
-                    start + i,
-                    format!(
-                        "invalid base64 character '{}' at position {}",
-                        b.escape_ascii(),
-                        start + i
-                    ),
-                ),
-                _ => (
-                    end,
-                    format!("base64 data of {} characters is cut short", text.len()),
-                ),
-            })?;
-        start = end;
-    }
-    Ok(out)
 }

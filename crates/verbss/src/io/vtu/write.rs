@@ -13,7 +13,8 @@ use crate::mesh::{CellKind, Mesh};
 /// Fails with [`std::io::ErrorKind::InvalidInput`] if a field has the wrong
 /// length (`components × nodes` or `components × volume cells`), no
 /// component, a duplicate name, or one of the reserved names `node_tag`
-/// (point data), `group` or `cell_tag` (cell data).
+/// (point data), `group` or `cell_tag` (cell data); a node or element tag
+/// above 2^63 − 1.
 pub fn write_to(w: &mut dyn Write, mesh: &Mesh, fields: &Fields) -> std::io::Result<()> {
     check_fields(mesh, fields)?;
     let n = mesh.node_count();
@@ -88,6 +89,15 @@ pub fn write_to(w: &mut dyn Write, mesh: &Mesh, fields: &Fields) -> std::io::Res
 
 /// Rejects fields that do not fit the mesh (see [`write_to`]).
 fn check_fields(mesh: &Mesh, fields: &Fields) -> std::io::Result<()> {
+    // Tags are written as Int64: a larger one would not read back.
+    for (what, tags) in [("node", &mesh.node_tags), ("element", &mesh.cell_tags)] {
+        if let Some(t) = tags.iter().find(|&&t| i64::try_from(t).is_err()) {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                format!("{what} tag {t} is above {} (VTU tags are Int64)", i64::MAX),
+            ));
+        }
+    }
     let lists = [
         (
             "point",
