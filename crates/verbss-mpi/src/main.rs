@@ -15,6 +15,8 @@
 
 #[path = "../../verbss-cli/src/deform.rs"]
 mod deform;
+#[path = "../../verbss-cli/src/overwrite.rs"]
+mod overwrite;
 #[path = "../../verbss-cli/src/progress.rs"]
 mod progress;
 // Only the picture recorder of `--html`/`--gif` is used here, not the

@@ -132,7 +132,7 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
     let initial = stepper.current().clone();
     report.steps.push(initial.report.clone());
     if root {
-        recorder.step(&initial)?;
+        recorder.step(&initial);
         if job.series {
             write_step(job, &initial, &mut series)?;
         }
@@ -160,7 +160,7 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
                 }
                 report.steps.push(r);
                 if root {
-                    recorder.step(stepper.current())?;
+                    recorder.step(stepper.current());
                     if job.series && (n % job.every == 0 || n == steps) {
                         write_step(job, stepper.current(), &mut series)?;
                     }

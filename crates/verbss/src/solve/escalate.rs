@@ -10,10 +10,11 @@
 //!
 //! * block systems (`verbss`, `spring`): GMRES around the multigrid V-cycle
 //!   ([`Stage::Multigrid`]), then the sparse direct solve ([`Stage::Direct`])
-//!   where it fits ([`DIRECT_NODES_2D`], [`DIRECT_NODES_3D`]);
+//!   where it fits ([`DIRECT_NODES_2D`], [`DIRECT_NODES_3D`]), then sweeps
+//!   with ω = 1 ([`Stage::SafeSweeps`]);
 //! * `ball-vertex` with SOR: the direct solve;
-//! * `laplacian`: sweeps with ω = 1 ([`Stage::SafeSweeps`]), which converge
-//!   on its symmetric, diagonally dominant system whatever the mesh.
+//! * `laplacian`: the direct solve of its system, then sweeps with ω = 1,
+//!   which converge on its symmetric, diagonally dominant system.
 //!
 //! A step no stage could solve comes back with `converged = false`; the
 //! stepper turns it into [`crate::Error::NotConverged`].
@@ -74,7 +75,9 @@ impl Engine {
         };
         let then: &[Stage] = match (params.escalate, params.method, params.solver) {
             (false, ..) | (_, Method::BallVertex, Solver::Direct) => &[],
-            (_, Method::Verbss | Method::Spring, _) => &[Stage::Multigrid, Stage::Direct],
+            (_, Method::Verbss | Method::Spring, _) => {
+                &[Stage::Multigrid, Stage::Direct, Stage::SafeSweeps]
+            }
             (_, Method::BallVertex, Solver::Sor) => &[Stage::Direct],
             (_, Method::Laplacian, _) => &[Stage::Direct, Stage::SafeSweeps],
         };
@@ -164,10 +167,12 @@ impl Engine {
             total.hierarchy_built |= seconds.is_some();
             total.stages.push(stage);
             if info.diverged {
+                // What is left is the initial guess: its residual and error
+                // are what a failed solve reports.
                 if let Some(guess) = &guess {
                     displacement.copy_from_slice(guess);
                 }
-                total.error_ratio = f64::INFINITY;
+                self.verify(displacement, &mut total);
                 total.converged = false;
                 continue;
             }
