@@ -47,6 +47,9 @@ fn single(
     let mesh = io::read(input).unwrap();
     let mut settings = Settings::new(steps);
     settings.robust = robust;
+    // The distributed sweeps do not escalate (yet): the single-process
+    // reference is the configured sweeps alone.
+    settings.solve.escalate = false;
     let mut d = Deformer::new(&mesh, attachments, settings).unwrap();
     for n in 1..=steps {
         d.step(n).unwrap();
