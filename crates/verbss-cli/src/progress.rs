@@ -49,10 +49,22 @@ impl Progress {
                 bar.set_message(format!("min quality {:.4}", r.min_quality));
                 bar.set_position(r.step as u64);
             }
-            Mode::Lines => eprintln!(
-                "step {}/{}: {} sweeps, residual {:.2e}, min quality {:.4}, {} inverted, {:.3} s",
-                r.step, self.steps, r.iterations, r.residual, r.min_quality, r.inverted, r.seconds
-            ),
+            Mode::Lines => {
+                let stages: Vec<&str> = r.stages.iter().map(|s| s.name()).collect();
+                eprintln!(
+                    "step {}/{}: {} ({} iterations), true residual {:.2e}, error {:.1e} of the \
+                     cell height, min quality {:.4}, {} inverted, {:.3} s",
+                    r.step,
+                    self.steps,
+                    stages.join(" → "),
+                    r.iterations,
+                    r.true_residual,
+                    r.error_ratio,
+                    r.min_quality,
+                    r.inverted,
+                    r.seconds
+                )
+            }
             Mode::Quiet => {}
         }
     }

@@ -34,6 +34,10 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// Enough sweeps for every step here to meet its stop (an unconverged step
+/// is an error).
+const MAX_SWEEPS: usize = 20_000;
+
 /// The single-process result: the stepper `verbss deform` runs, with the
 /// near-wall treatments of its default `--method robust` or none (`--method
 /// verbss`), written in the output's format.
@@ -50,6 +54,7 @@ fn single(
     // The distributed sweeps do not escalate (yet): the single-process
     // reference is the configured sweeps alone.
     settings.solve.escalate = false;
+    settings.solve.max_iterations = MAX_SWEEPS;
     let mut d = Deformer::new(&mesh, attachments, settings).unwrap();
     for n in 1..=steps {
         d.step(n).unwrap();
@@ -86,6 +91,7 @@ fn same_as_single(
     for np in 1..=3 {
         let out = dir.path().join(format!("np{np}.su2"));
         let steps = steps.to_string();
+        let max_sweeps = MAX_SWEEPS.to_string();
         let mut args = vec![
             "deform",
             input.to_str().unwrap(),
@@ -93,6 +99,8 @@ fn same_as_single(
             out.to_str().unwrap(),
             "--steps",
             &steps,
+            "--max-iterations",
+            &max_sweeps,
             "--quiet",
         ];
         args.extend_from_slice(extra);
