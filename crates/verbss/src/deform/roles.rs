@@ -1,0 +1,211 @@
+//! Which node does what: a node of a moving group follows that group's
+//! motions, even where it also lies on a fixed or sliding group (on several
+//! moving groups: the first named); a node only on sliding groups of one
+//! plane slides in it; every other boundary node is fixed; all other nodes
+//! are free.
+
+use std::collections::HashMap;
+
+use crate::error::{Error, Result};
+use crate::geometry::{cross, norm};
+use crate::mesh::{CellKind, Mesh};
+use crate::motion::{Attachment, Motion};
+use crate::solve::NodeRole;
+use crate::topology;
+
+/// The first two nodes (in node order of the second) at exactly the same
+/// position, if any.
+pub(super) fn duplicate_nodes(mesh: &Mesh) -> Option<(usize, usize)> {
+    let mut seen: HashMap<[u64; 3], usize> = HashMap::with_capacity(mesh.node_count());
+    (0..mesh.node_count()).find_map(|i| {
+        // `+ 0.0` makes −0 and +0 the same key; a 2D point leaves z at 0.
+        let mut key = [0u64; 3];
+        for (k, x) in key.iter_mut().zip(mesh.point(i)) {
+            *k = (x + 0.0).to_bits();
+        }
+        seen.insert(key, i).map(|first| (first, i))
+    })
+}
+
+/// Node roles, slide normals and the motions of moving nodes.
+pub(super) struct Plan {
+    pub(super) roles: Vec<NodeRole>,
+    pub(super) normals: Vec<[f64; 3]>,
+    pub(super) moving: Vec<(usize, Vec<usize>)>,
+}
+
+/// What a group does, from all attachments naming it.
+enum GroupRole {
+    Moving(Vec<usize>),
+    Fixed,
+    Slide(usize),
+}
+
+pub(super) fn plan_roles(mesh: &Mesh, attachments: &[Attachment]) -> Result<Plan> {
+    // Per group (in order of first mention): its role.
+    let mut order: Vec<usize> = Vec::new();
+    let mut roles: HashMap<usize, GroupRole> = HashMap::new();
+    let mut normals: Vec<[f64; 3]> = Vec::new();
+    for (a, att) in attachments.iter().enumerate() {
+        for name in &att.groups {
+            mesh.group(name)?;
+            let g = mesh
+                .groups
+                .iter()
+                .position(|g| &g.name == name)
+                .unwrap_or(0);
+            if att.motion.moves() && mesh.groups[g].facets.is_empty() {
+                return Err(Error::InvalidSetting(format!(
+                    "group '{name}' has no nodes: nothing to move"
+                )));
+            }
+            if !roles.contains_key(&g) {
+                order.push(g);
+            }
+            let entry = roles.remove(&g);
+            let next = match (&att.motion, entry) {
+                (m, Some(GroupRole::Moving(mut chain))) if m.moves() => {
+                    chain.push(a);
+                    GroupRole::Moving(chain)
+                }
+                (m, _) if m.moves() => GroupRole::Moving(vec![a]),
+                (_, Some(GroupRole::Moving(chain))) => GroupRole::Moving(chain),
+                (Motion::Slide { normal }, None) => {
+                    normals.push(match normal {
+                        Some(n) => unit3(n),
+                        None => group_normal(mesh, g)?,
+                    });
+                    GroupRole::Slide(normals.len() - 1)
+                }
+                (Motion::Slide { .. }, Some(GroupRole::Slide(k))) => GroupRole::Slide(k),
+                _ => GroupRole::Fixed,
+            };
+            roles.insert(g, next);
+        }
+    }
+    let n = mesh.node_count();
+    let boundary = topology::boundary_nodes(mesh);
+    let mut node_role: Vec<NodeRole> = boundary
+        .iter()
+        .map(|&b| if b { NodeRole::Fixed } else { NodeRole::Free })
+        .collect();
+    // Sliding: nodes whose every group slides in one plane.
+    let mut slide: Vec<Option<usize>> = vec![None; n];
+    let mut blocked = vec![false; n];
+    for (g, group) in mesh.groups.iter().enumerate() {
+        for i in group.nodes() {
+            match roles.get(&g) {
+                Some(GroupRole::Slide(k)) => match slide[i] {
+                    Some(j) if !parallel(&normals[j], &normals[*k]) => blocked[i] = true,
+                    _ => slide[i] = Some(*k),
+                },
+                _ => blocked[i] = true,
+            }
+        }
+    }
+    for i in 0..n {
+        if let (Some(k), false) = (slide[i], blocked[i]) {
+            node_role[i] = NodeRole::Slide(k);
+        }
+    }
+    let mut moving = Vec::new();
+    let mut taken = vec![false; n];
+    for &g in &order {
+        if let Some(GroupRole::Moving(chain)) = roles.get(&g) {
+            for i in mesh.groups[g].nodes() {
+                if !taken[i] {
+                    taken[i] = true;
+                    node_role[i] = NodeRole::Fixed;
+                    moving.push((i, chain.clone()));
+                }
+            }
+        }
+    }
+    Ok(Plan {
+        roles: node_role,
+        normals,
+        moving,
+    })
+}
+
+fn unit3(v: &[f64; 3]) -> [f64; 3] {
+    let l = norm(v);
+    [v[0] / l, v[1] / l, v[2] / l]
+}
+
+fn parallel(a: &[f64; 3], b: &[f64; 3]) -> bool {
+    norm(&cross(a, b)) < 1e-9
+}
+
+/// The unit normal of a planar group: the sum of its facets' normals, each
+/// turned to agree with the first (a line's normal in 2D, a triangle's cross
+/// product, a quad's diagonals' cross product). Errors when the group is not
+/// planar.
+fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
+    let group = &mesh.groups[g];
+    let dim = mesh.dim;
+    let p = |i: usize| -> [f64; 3] {
+        let x = mesh.point(i);
+        [x[0], x[1], if dim == 3 { x[2] } else { 0.0 }]
+    };
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let mut sum = [0.0; 3];
+    for (kind, nodes) in group.facets.iter() {
+        let n = match (kind, dim) {
+            (CellKind::Line, 2) => {
+                let d = sub(p(nodes[1]), p(nodes[0]));
+                [-d[1], d[0], 0.0]
+            }
+            (CellKind::Triangle, 3) => cross(
+                &sub(p(nodes[1]), p(nodes[0])),
+                &sub(p(nodes[2]), p(nodes[0])),
+            ),
+            (CellKind::Quad, 3) => cross(
+                &sub(p(nodes[2]), p(nodes[0])),
+                &sub(p(nodes[3]), p(nodes[1])),
+            ),
+            _ => continue,
+        };
+        let sign = if sum.iter().zip(&n).map(|(a, b)| a * b).sum::<f64>() < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
+        for d in 0..3 {
+            sum[d] += sign * n[d];
+        }
+    }
+    let not_planar = || {
+        Error::InvalidSetting(format!(
+            "group '{}' does not lie in one plane: give the slide motion a `normal`",
+            group.name
+        ))
+    };
+    if norm(&sum) == 0.0 {
+        return Err(not_planar());
+    }
+    let nrm = unit3(&sum);
+    let nodes = group.nodes();
+    let x0 = p(nodes[0]);
+    let offsets: Vec<f64> = nodes
+        .iter()
+        .map(|&i| {
+            sub(p(i), x0)
+                .iter()
+                .zip(&nrm)
+                .map(|(a, b)| a * b)
+                .sum::<f64>()
+        })
+        .collect();
+    let extent = nodes
+        .iter()
+        .map(|&i| norm(&sub(p(i), x0)))
+        .fold(0.0, f64::max);
+    if offsets
+        .iter()
+        .any(|o| o.abs() > 1e-9 * extent.max(f64::MIN_POSITIVE))
+    {
+        return Err(not_planar());
+    }
+    Ok(nrm)
+}

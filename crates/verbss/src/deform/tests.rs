@@ -1,0 +1,338 @@
+//! Tests of the stepper and of the node roles.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use super::*;
+use crate::mesh::{CellKind, Cells, Group};
+use crate::motion::PositionSource;
+
+const NACA: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../assets/meshes/su2/mesh_NACA0012_inv.su2"
+);
+const BUMP: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../assets/meshes/su2/surface_bump.dat"
+);
+
+/// The unit square as an `n × n` grid of triangles, with groups `left`,
+/// `right`, `bottom` and `top`.
+fn square(n: usize) -> Mesh {
+    let node = |i: usize, j: usize| j * (n + 1) + i;
+    let mut coords = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            coords.extend([i as f64 / n as f64, j as f64 / n as f64]);
+        }
+    }
+    let mut cells = Cells::new();
+    for j in 0..n {
+        for i in 0..n {
+            let (a, b, c, d) = (
+                node(i, j),
+                node(i + 1, j),
+                node(i + 1, j + 1),
+                node(i, j + 1),
+            );
+            cells.push(CellKind::Triangle, &[a, b, c]);
+            cells.push(CellKind::Triangle, &[a, c, d]);
+        }
+    }
+    let side = |name: &str, f: &dyn Fn(usize) -> [usize; 2]| {
+        let mut facets = Cells::new();
+        for k in 0..n {
+            facets.push(CellKind::Line, &f(k));
+        }
+        Group {
+            name: name.into(),
+            tag: None,
+            facets,
+        }
+    };
+    let groups = vec![
+        side("left", &|k| [node(0, k), node(0, k + 1)]),
+        side("right", &|k| [node(n, k), node(n, k + 1)]),
+        side("bottom", &|k| [node(k, 0), node(k + 1, 0)]),
+        side("top", &|k| [node(k, n), node(k + 1, n)]),
+    ];
+    Mesh::new(2, coords, cells, groups).unwrap()
+}
+
+fn attach(groups: &[&str], motion: Motion) -> Attachment {
+    Attachment {
+        groups: groups.iter().map(|g| g.to_string()).collect(),
+        motion,
+    }
+}
+
+#[test]
+fn naca0012_rotated_40_degrees_in_40_steps_stays_valid() {
+    let mesh = crate::io::read(Path::new(NACA)).unwrap();
+    let rotation = Motion::Rotation {
+        center: [0.25, 0.0, 0.0],
+        axis: [0.0, 0.0, 1.0],
+        angle: 40f64.to_radians(),
+    };
+    let mut d = Deformer::new(&mesh, &[attach(&["airfoil"], rotation)], Settings::new(40)).unwrap();
+    for n in 1..=40 {
+        let r = d.step(n).unwrap();
+        assert_eq!(r.inverted, 0);
+        assert!(r.min_quality > 0.0);
+    }
+    // The airfoil turned rigidly by 40° about (0.25, 0); the farfield stayed.
+    let (s, c) = 40f64.to_radians().sin_cos();
+    let x = &d.current().coords;
+    for i in mesh.group("airfoil").unwrap().nodes() {
+        let p = mesh.point(i);
+        let (dx, dy) = (p[0] - 0.25, p[1]);
+        assert!((x[2 * i] - (0.25 + c * dx - s * dy)).abs() < 1e-12);
+        assert!((x[2 * i + 1] - (s * dx + c * dy)).abs() < 1e-12);
+    }
+    for i in mesh.group("farfield").unwrap().nodes() {
+        assert_eq!(&x[2 * i..2 * i + 2], mesh.point(i));
+    }
+}
+
+#[test]
+fn surface_file_puts_every_node_where_the_file_says() {
+    let mesh = crate::io::read(Path::new(NACA)).unwrap();
+    let table = crate::io::positions::read(Path::new(BUMP), 2).unwrap();
+    let map = (0..table.len())
+        .map(|k| (table.ids[k], table.point(k).to_vec()))
+        .collect();
+    let motion = Motion::Positions(PositionSource::Final(map));
+    let mut d = Deformer::new(&mesh, &[attach(&["airfoil"], motion)], Settings::new(2)).unwrap();
+    d.step(1).unwrap();
+    d.step(2).unwrap();
+    assert_eq!(table.len(), 200);
+    for k in 0..table.len() {
+        let i = table.ids[k];
+        assert_eq!(&d.current().coords[2 * i..2 * i + 2], table.point(k));
+    }
+}
+
+#[test]
+fn translation_is_reproduced_by_both_references() {
+    let mesh = square(6);
+    let shift = Motion::Translation {
+        displacement: [0.0, 0.0, 0.0],
+    };
+    for reference in [Reference::Updated, Reference::Fixed] {
+        let mut settings = Settings::new(3);
+        settings.reference = reference;
+        settings.solve.tolerance = 1e-12;
+        let all = ["left", "right", "bottom", "top"];
+        let mut d = Deformer::new(&mesh, &[attach(&all, shift.clone())], settings).unwrap();
+        for n in 1..=3 {
+            let r = d.step(n).unwrap();
+            assert_eq!(r.step, n);
+        }
+        assert!(d.displacement().iter().all(|u| u.abs() < 1e-12));
+    }
+    let moved = Motion::Translation {
+        displacement: [0.3, 0.0, 0.0],
+    };
+    for reference in [Reference::Updated, Reference::Fixed] {
+        let mut settings = Settings::new(3);
+        settings.reference = reference;
+        settings.solve.tolerance = 1e-12;
+        let all = ["left", "right", "bottom", "top"];
+        let mut d = Deformer::new(&mesh, &[attach(&all, moved.clone())], settings).unwrap();
+        for _ in 0..3 {
+            d.advance().unwrap();
+        }
+        let u = d.displacement();
+        for i in 0..mesh.node_count() {
+            assert!(
+                (u[2 * i] - 0.3).abs() < 1e-9,
+                "{reference:?} node {i}: {}",
+                u[2 * i]
+            );
+            assert!(u[2 * i + 1].abs() < 1e-9);
+        }
+    }
+}
+
+/// The linear predictor changes where the sweeps start, not what they
+/// solve: both predictors reach the same meshes, the linear one in fewer
+/// sweeps once two steps are solved (with the fixed reference a motion
+/// linear in time is predicted exactly).
+#[test]
+fn linear_predictor_reaches_the_same_meshes_in_fewer_sweeps() {
+    let mesh = square(16);
+    let lift = Motion::Translation {
+        displacement: [0.0, 0.2, 0.0],
+    };
+    for reference in [Reference::Updated, Reference::Fixed] {
+        let run = |predictor: Predictor| {
+            let mut settings = Settings::new(6);
+            settings.reference = reference;
+            settings.predictor = predictor;
+            settings.solve.tolerance = 1e-10;
+            let attachments = [
+                attach(&["top"], lift.clone()),
+                attach(&["left", "right", "bottom"], Motion::Fixed),
+            ];
+            let mut d = Deformer::new(&mesh, &attachments, settings).unwrap();
+            let sweeps: Vec<usize> = (1..=6).map(|n| d.step(n).unwrap().iterations).collect();
+            (d.current().coords.clone(), sweeps)
+        };
+        let (previous, slow) = run(Predictor::Previous);
+        let (linear, fast) = run(Predictor::Linear);
+        let gap = previous
+            .iter()
+            .zip(&linear)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(gap < 1e-8, "{reference:?}: meshes differ by {gap}");
+        let first = if reference == Reference::Fixed { 1 } else { 2 };
+        assert_eq!(slow[..first], fast[..first], "{reference:?}");
+        assert!(
+            fast[first..].iter().sum::<usize>() < slow[first..].iter().sum::<usize>(),
+            "{reference:?}: {fast:?} vs {slow:?}"
+        );
+    }
+}
+
+#[test]
+fn sliding_walls_let_nodes_move_along_them() {
+    let mesh = square(6);
+    let attachments = [
+        attach(
+            &["right"],
+            Motion::Translation {
+                displacement: [0.2, 0.0, 0.0],
+            },
+        ),
+        attach(&["bottom", "top"], Motion::Slide { normal: None }),
+    ];
+    let mut settings = Settings::new(2);
+    settings.solve.tolerance = 1e-12;
+    let mut d = Deformer::new(&mesh, &attachments, settings).unwrap();
+    // Corner nodes lie on the fixed left wall or the moving right wall.
+    assert_eq!(d.roles()[0], NodeRole::Fixed);
+    assert_eq!(d.roles()[1], NodeRole::Slide(0));
+    assert_eq!(d.roles()[6], NodeRole::Fixed);
+    d.step(2).unwrap();
+    let x = &d.current().coords;
+    for i in 1..6 {
+        // Bottom nodes stay on y = 0 and moved right.
+        assert!(x[2 * i + 1].abs() < 1e-12);
+        assert!(x[2 * i] > mesh.coords[2 * i] + 1e-3);
+    }
+    // The right wall moved by 0.2 exactly.
+    assert_eq!(x[2 * 6], 1.2);
+}
+
+#[test]
+fn moving_group_wins_over_fixed_group() {
+    let mesh = square(4);
+    let attachments = [
+        attach(&["bottom"], Motion::Fixed),
+        attach(
+            &["left"],
+            Motion::Translation {
+                displacement: [0.0, 0.1, 0.0],
+            },
+        ),
+    ];
+    let mut d = Deformer::new(&mesh, &attachments, Settings::new(1)).unwrap();
+    d.step(1).unwrap();
+    // Node 0 is on both groups and follows the moving one.
+    assert_eq!(&d.current().coords[0..2], &[0.0, 0.1]);
+    // Node 1 is only on the fixed group.
+    assert_eq!(&d.current().coords[2..4], &[0.25, 0.0]);
+}
+
+#[test]
+fn inversion_stops_with_the_step_element_place_and_volume() {
+    let mesh = square(1);
+    let push = Motion::Translation {
+        displacement: [2.0, 0.0, 0.0],
+    };
+    let mut d = Deformer::new(&mesh, &[attach(&["left"], push)], Settings::new(2)).unwrap();
+    // Step 1: the left wall reaches x = 1, the cells are flat.
+    let e = d.step(1).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "step 1: element 1 inverted at (1.000000, 0.333333), signed volume 0.000e0 (2 inverted element(s))"
+    );
+    assert_eq!(d.current_step(), 0);
+    assert_eq!(d.current().coords, mesh.coords);
+    let failed = d.failed().unwrap();
+    assert_eq!(failed.report.inverted, 2);
+    assert_eq!(failed.inverted, vec![true, true]);
+    let e = d.step(2).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "step 2: element 1 inverted at (1.333333, 0.333333), signed volume -5.000e-1 (2 inverted element(s))"
+    );
+}
+
+#[test]
+fn given_positions_each_step_match_the_translation_they_trace() {
+    let mesh = square(4);
+    let d = [0.1, 0.05, 0.0];
+    let translation = Motion::Translation { displacement: d };
+    let given = Motion::Positions(PositionSource::Given(HashMap::new()));
+    let fixed = attach(&["bottom"], Motion::Fixed);
+    let mut by_motion = Deformer::new(
+        &mesh,
+        &[attach(&["left"], translation), fixed.clone()],
+        Settings::new(3),
+    )
+    .unwrap();
+    let mut by_data =
+        Deformer::new(&mesh, &[attach(&["left"], given), fixed], Settings::new(3)).unwrap();
+    assert_eq!(
+        by_data.step(1).unwrap_err().to_string(),
+        "invalid setting: the positions give no position for node index 0 of a moving group"
+    );
+    assert_eq!(
+        by_data
+            .set_motion(1, Motion::Fixed)
+            .unwrap_err()
+            .to_string(),
+        "invalid setting: attachment 1: only a moving motion can replace a moving motion"
+    );
+    assert_eq!(
+        by_data
+            .set_motion(2, Motion::Fixed)
+            .unwrap_err()
+            .to_string(),
+        "invalid setting: there is no attachment 2 (the deformer has 2)"
+    );
+    for n in 1..=3 {
+        let f = n as f64 / 3.0;
+        let left = mesh.group("left").unwrap().nodes();
+        let positions = left
+            .iter()
+            .map(|&i| {
+                (
+                    i,
+                    vec![mesh.point(i)[0] + f * d[0], mesh.point(i)[1] + f * d[1]],
+                )
+            })
+            .collect();
+        by_data
+            .set_motion(0, Motion::Positions(PositionSource::Given(positions)))
+            .unwrap();
+        let a = by_motion.advance().unwrap();
+        let b = by_data.advance().unwrap();
+        assert_eq!((a.step, a.iterations), (b.step, b.iterations));
+        assert_eq!(by_motion.current().coords, by_data.current().coords);
+    }
+}
+
+#[test]
+fn unknown_group_is_named() {
+    let mesh = square(2);
+    let e = Deformer::new(&mesh, &[attach(&["wing"], Motion::Fixed)], Settings::new(1))
+        .err()
+        .unwrap();
+    assert_eq!(
+        e.to_string(),
+        "unknown group 'wing' (the mesh has: left, right, bottom, top)"
+    );
+}
