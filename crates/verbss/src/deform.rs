@@ -389,10 +389,16 @@ impl Deformer {
                 && !attempt.info.stages.contains(&Stage::Direct)
             {
                 // An inversion is never the solver's fault: the step solved
-                // exactly is what the guard judges.
+                // exactly is what the guard judges. Where no round-off solve
+                // converges, the accepted solve (error below the bound)
+                // stays the one judged.
                 let exact = self.attempt(&coords, &at, end - done, true)?;
-                report.add(&attempt.info);
-                attempt = exact;
+                if exact.info.converged {
+                    report.add(&attempt.info);
+                    attempt = exact;
+                } else {
+                    report.add(&exact.info);
+                }
             }
             let Attempt {
                 coords: trial,
