@@ -21,33 +21,35 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// `verbss deform` of the structured C-grid (wake cells 1e-5 high, aspect
-/// ratio 1.4e5) pitched 3° in 3 steps, with `extra` arguments.
-fn pitch_cgrid(dir: &Path, extra: &[&str]) -> (Output, serde_json::Value) {
-    let mesh = repo("cases/meshes/cgrid-113x33.msh");
-    let out = dir.join("pitched.msh");
+/// `verbss deform MESH -o DIR/OUT --quiet --report DIR/report.json ARGS…`
+/// (`mesh` relative to the repository): its output and its report.
+fn deform(dir: &Path, mesh: &str, out: &str, args: &[&str]) -> (Output, serde_json::Value) {
+    let mesh = repo(mesh);
+    let out = dir.join(out);
     let report = dir.join("report.json");
-    let mut args = vec![
+    let mut all = vec![
         "deform",
         mesh.to_str().unwrap(),
         "-o",
         out.to_str().unwrap(),
-        "--moving",
-        "airfoil",
-        "--rotate",
-        "3",
-        "--center",
-        "0.25,0",
-        "--steps",
-        "3",
         "--report",
         report.to_str().unwrap(),
         "--quiet",
     ];
-    args.extend_from_slice(extra);
-    let o = verbss(&args);
+    all.extend_from_slice(args);
+    let o = verbss(&all);
     let r = serde_json::from_str(&std::fs::read_to_string(report).unwrap()).unwrap();
     (o, r)
+}
+
+/// The structured C-grid (wake cells 1e-5 high, aspect ratio 1.4e5)
+/// pitched 3° in 3 steps, with `extra` arguments.
+fn pitch_cgrid(dir: &Path, extra: &[&str]) -> (Output, serde_json::Value) {
+    let mut args = vec![
+        "--moving", "airfoil", "--rotate", "3", "--center", "0.25,0", "--steps", "3",
+    ];
+    args.extend_from_slice(extra);
+    deform(dir, "cases/meshes/cgrid-113x33.msh", "pitched.msh", &args)
 }
 
 #[test]
@@ -103,27 +105,15 @@ fn an_explicit_omega_means_that_solver_only_and_a_diverged_solve_is_exit_4() {
     assert!(dir.path().join("pitched.failed.vtu").exists());
 }
 
-/// `verbss deform --method verbss` of the NACA0012 rotated 5°, with `extra`.
+const NACA: &str = "assets/meshes/su2/mesh_NACA0012_inv.su2";
+
+/// `--method verbss` on the NACA0012 rotated 5°, with `extra`.
 fn rotate_naca(dir: &Path, extra: &[&str]) -> Output {
-    let out = dir.join("rotated.su2");
-    let mesh = repo("assets/meshes/su2/mesh_NACA0012_inv.su2");
     let mut args = vec![
-        "deform",
-        mesh.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--moving",
-        "airfoil",
-        "--rotate",
-        "5",
-        "--center",
-        "0.25,0",
-        "--method",
-        "verbss",
-        "--quiet",
+        "--moving", "airfoil", "--rotate", "5", "--center", "0.25,0", "--method", "verbss",
     ];
     args.extend_from_slice(extra);
-    verbss(&args)
+    deform(dir, NACA, "rotated.su2", &args).0
 }
 
 #[test]
@@ -144,27 +134,20 @@ fn diverging_sweeps_say_omega_is_too_large() {
 #[test]
 fn a_step_is_rejected_for_an_inversion_only_after_its_exact_solve() {
     let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("pushed.su2");
-    let report = dir.path().join("report.json");
-    let mesh = repo("assets/meshes/su2/mesh_NACA0012_inv.su2");
-    let o = verbss(&[
-        "deform",
-        mesh.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-        "--moving",
-        "airfoil",
-        "--translate",
-        "30,0",
-        "--substeps",
-        "0",
-        "--report",
-        report.to_str().unwrap(),
-        "--quiet",
-    ]);
+    let (o, r) = deform(
+        dir.path(),
+        NACA,
+        "pushed.su2",
+        &[
+            "--moving",
+            "airfoil",
+            "--translate",
+            "30,0",
+            "--substeps",
+            "0",
+        ],
+    );
     assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(report).unwrap()).unwrap();
     let failed = r["steps"].as_array().unwrap().last().unwrap();
     assert_eq!(failed["step"], 1);
     let stages = failed["stages"].as_array().unwrap();

@@ -1,4 +1,4 @@
-//! Assembly of the node-block spring system (DESIGN §2).
+//! Assembly of the node-block spring system (docs/method.md, "Springs").
 //!
 //! Every unknown node `i` gets one equation `K_ii u_i = Σ_j B_ij u_j` with
 //! symmetric `D×D` blocks:

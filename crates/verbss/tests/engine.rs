@@ -1,4 +1,4 @@
-//! The deformation engine against the contract of DESIGN §2: row sums,
+//! The deformation engine against the contract of docs/method.md: row sums,
 //! translations, zero motion, thread independence, and VerBSS against the
 //! exact (direct) ball-vertex solution on generated and real meshes.
 

@@ -1,4 +1,4 @@
-//! The solvers of the node-block spring system (DESIGN §2).
+//! The solvers of the node-block spring system (docs/method.md, "The node equation and the methods").
 //!
 //! ```text
 //! let mut engine = Engine::new(&mesh, &roles, &normals)?;          // topology, once per mesh
