@@ -3,12 +3,9 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn verbss(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_verbss"))
-        .args(args)
-        .output()
-        .expect("run verbss")
-}
+mod common;
+
+use common::{stderr, verbss};
 
 fn asset(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -18,10 +15,6 @@ fn asset(name: &str) -> PathBuf {
 
 fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 #[test]

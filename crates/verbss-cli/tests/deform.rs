@@ -1,14 +1,10 @@
 //! `verbss deform` end to end on the real NACA0012 mesh.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn verbss(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_verbss"))
-        .args(args)
-        .output()
-        .expect("run verbss")
-}
+mod common;
+
+use common::{stderr, verbss};
 
 fn naca() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/meshes/su2/mesh_NACA0012_inv.su2")
@@ -16,10 +12,6 @@ fn naca() -> PathBuf {
 
 fn bump() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/meshes/su2/surface_bump.dat")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 #[test]

@@ -3,16 +3,13 @@
 //! with the right result), never with a panic, an abort or a blow-up.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
+
+mod common;
+
+use common::{verbss, SQUARE};
 
 use base64::Engine;
-
-fn verbss(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_verbss"))
-        .args(args)
-        .output()
-        .expect("run verbss")
-}
 
 /// Writes `text` as `name` in `dir`.
 fn file(dir: &Path, name: &str, text: impl AsRef<[u8]>) -> PathBuf {
@@ -143,27 +140,6 @@ fn vtu_nesting_is_bounded() {
     let path = file(dir.path(), "deep.vtu", vtu("", "", &deep));
     refused(&path, "deep.vtu:4: elements nested more than 64 deep");
 }
-
-/// The unit square in SU2, groups `left` (x = 0) and `rest`.
-const SQUARE: &str = "NDIME= 2
-NELEM= 2
-5 0 1 2
-5 0 2 3
-NPOIN= 4
-0 0
-1 0
-1 1
-0 1
-NMARK= 2
-MARKER_TAG= left
-MARKER_ELEMS= 1
-3 3 0
-MARKER_TAG= rest
-MARKER_ELEMS= 3
-3 0 1
-3 1 2
-3 2 3
-";
 
 #[test]
 fn case_step_pattern_width_is_bounded() {

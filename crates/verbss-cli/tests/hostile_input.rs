@@ -5,7 +5,11 @@
 //! with groups `left` (x = 0) and `rest`.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
+
+mod common;
+
+use common::{stderr, verbss};
 
 /// The valid square the bad meshes are variants of.
 const SQUARE: &str = "NDIME= 2
@@ -47,17 +51,6 @@ fn bad(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../assets/meshes/bad")
         .join(name)
-}
-
-fn verbss(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_verbss"))
-        .args(args)
-        .output()
-        .expect("run verbss")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 /// A temporary folder holding the valid square as `square.su2`.

@@ -6,37 +6,9 @@ use std::os::unix::fs::FileTypeExt;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// The unit square in SU2, groups `left` (x = 0) and `rest`.
-const SQUARE: &str = "NDIME= 2
-NELEM= 2
-5 0 1 2
-5 0 2 3
-NPOIN= 4
-0 0
-1 0
-1 1
-0 1
-NMARK= 2
-MARKER_TAG= left
-MARKER_ELEMS= 1
-3 3 0
-MARKER_TAG= rest
-MARKER_ELEMS= 3
-3 0 1
-3 1 2
-3 2 3
-";
+mod common;
 
-fn verbss(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_verbss"))
-        .args(args)
-        .output()
-        .expect("run verbss")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{stderr, verbss, SQUARE};
 
 /// A temporary folder holding the square as `square.su2`.
 fn folder() -> (tempfile::TempDir, PathBuf) {

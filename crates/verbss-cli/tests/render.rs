@@ -1,20 +1,16 @@
 //! `verbss render` pictures and the `--html` / `--gif` outputs of `verbss run`.
 
 use std::path::Path;
-use std::process::{Command, Output};
+
+mod common;
+
+use common::verbss;
 
 const SU2: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/meshes/su2/");
 const CASE: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/../../cases/naca0012_bump.toml"
 );
-
-fn verbss(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_verbss"))
-        .args(args)
-        .output()
-        .expect("the verbss binary runs")
-}
 
 /// Width, height and RGB pixels of a PNG file.
 fn decode(path: &Path) -> (u32, u32, Vec<u8>) {

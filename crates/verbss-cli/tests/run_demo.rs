@@ -2,16 +2,13 @@
 //! messages, and the files read back by meshio.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
+
+mod common;
+
+use common::verbss;
 
 const SU2: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/meshes/su2");
-
-fn verbss(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_verbss"))
-        .args(args)
-        .output()
-        .expect("run verbss")
-}
 
 fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()

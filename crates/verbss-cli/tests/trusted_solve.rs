@@ -2,23 +2,16 @@
 //! that cannot be trusted stops with exit code 4, never as bad input.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn verbss(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_verbss"))
-        .args(args)
-        .output()
-        .expect("run verbss")
-}
+mod common;
+
+use common::{stderr, verbss};
 
 fn repo(path: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../..")
         .join(path)
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 /// `verbss deform MESH -o DIR/OUT --quiet --report DIR/report.json ARGS…`
