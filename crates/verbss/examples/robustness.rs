@@ -10,7 +10,8 @@
 //! Each case file is run once per variant — `default` (the command line's
 //! defaults: `--method robust`, the escalating solve), `verbss` (the
 //! paper's method), `laplacian`, `exact` (the default's near-wall treatment,
-//! every step solved by the sparse direct solve), and the single treatments
+//! every step solved by the sparse direct solve), `springs` (the default
+//! without the blended rigid motion), and the single treatments
 //! `layer`, `stiffening`, `substeps` — with the case's steps and motions,
 //! until the first inverted element, an unconverged step or the last step.
 //! Printed per case and variant: the steps completed and the amplitude
@@ -30,8 +31,9 @@ use verbss::motion::Motion;
 use verbss::robust::{Layer, Robust};
 use verbss::solve::{Method, SolveParams, Solver, Stage};
 
-const VARIANTS: [&str; 7] = [
+const VARIANTS: [&str; 8] = [
     "default",
+    "springs",
     "verbss",
     "laplacian",
     "exact",
@@ -46,6 +48,10 @@ fn variant(name: &str) -> (Robust, SolveParams) {
     let mut s = SolveParams::default();
     match name {
         "default" => r = Robust::recommended(),
+        "springs" => {
+            r = Robust::recommended();
+            r.blend = false;
+        }
         "laplacian" => s.method = Method::Laplacian,
         "exact" => {
             r = Robust::recommended();

@@ -34,10 +34,13 @@ use crate::quality::{self, Inversion, Summary};
 use crate::robust::{self, Robust};
 use crate::solve::{Engine, NodeRole, SolveInfo, SolveParams, Stage};
 
+mod blend;
+mod harmonic;
 mod roles;
 #[cfg(test)]
 mod tests;
 
+use self::blend::Blend;
 use self::roles::{duplicate_nodes, plan_roles};
 
 /// Which configuration the springs are built on (the paper's options 1 and 2).
@@ -195,6 +198,8 @@ pub struct Deformer {
     layer: Vec<(usize, Option<usize>, Option<usize>)>,
     /// The rigid layer's thickness around each body.
     layer_thickness: Vec<f64>,
+    /// The blended rigid motion, when [`Robust::blend`] is on.
+    blend: Option<Blend>,
     orientation: Vec<i8>,
     /// The last solution per unit step fraction (increment, or total
     /// displacement with the fixed reference): the next step's guess.
@@ -246,6 +251,15 @@ impl Deformer {
                 (i, k, plane)
             })
             .collect();
+        let blend = if settings.robust.blend && !plan.moving.is_empty() {
+            Some(Blend::new(
+                mesh,
+                &plan.roles,
+                bodies(&plan.moving, &rigid.nodes),
+            ))
+        } else {
+            None
+        };
         let mut engine = Engine::new(mesh, &plan.roles, &plan.normals)?;
         engine.set_stiffness(rigid.stiffness);
         let orientation = quality::orientation(mesh);
@@ -280,6 +294,7 @@ impl Deformer {
             moving: plan.moving,
             layer,
             layer_thickness: rigid.thickness,
+            blend,
             orientation,
             failed: None,
         })
@@ -381,7 +396,8 @@ impl Deformer {
                     (*i, q)
                 })
                 .collect();
-            let mut attempt = self.attempt(&coords, &at, end - done, false)?;
+            let start_at = self.blended(&coords, &at)?;
+            let mut attempt = self.attempt(&start_at, &at, end - done, false)?;
             let escalate = self.settings.solve.escalate;
             if escalate
                 && attempt.info.converged
@@ -392,7 +408,7 @@ impl Deformer {
                 // exactly is what the guard judges. Where no round-off solve
                 // converges, the accepted solve (error below the bound)
                 // stays the one judged.
-                let exact = self.attempt(&coords, &at, end - done, true)?;
+                let exact = self.attempt(&start_at, &at, end - done, true)?;
                 if exact.info.converged {
                     report.add(&attempt.info);
                     attempt = exact;
@@ -507,19 +523,37 @@ impl Deformer {
         Ok(targets)
     }
 
-    /// One solve from `coords` with the prescribed nodes at `targets`, an
-    /// increment of `fraction` of a step; to round-off when `exact`
-    /// ([`Engine::solve_exact`]).
+    /// Where a (sub-)step from `coords` towards `targets` starts: the
+    /// reference configuration (`coords`, or the input mesh with the fixed
+    /// reference) moved by the blended rigid motion when it is on.
+    fn blended(&mut self, coords: &[f64], targets: &[(usize, Vec<f64>)]) -> Result<Vec<f64>> {
+        let reference = match self.settings.reference {
+            Reference::Updated => coords,
+            Reference::Fixed => &self.mesh.coords,
+        };
+        match &mut self.blend {
+            Some(blend) => Ok(blend.apply(reference, targets)),
+            None => Ok(reference.to_vec()),
+        }
+    }
+
+    /// One solve from `start` ([`Deformer::blended`]) with the prescribed
+    /// nodes at `targets`, an increment of `fraction` of a step; to
+    /// round-off when `exact` ([`Engine::solve_exact`]). The springs are
+    /// built on `start` (on the input mesh with the fixed reference) and
+    /// solve for the move from `start`; where `start` already puts every
+    /// prescribed node at its target (a rigid body under the blend) that
+    /// move is zero and nothing is solved.
     fn attempt(
         &mut self,
-        coords: &[f64],
+        start: &[f64],
         targets: &[(usize, Vec<f64>)],
         fraction: f64,
         exact: bool,
     ) -> Result<Attempt> {
         let dim = self.mesh.dim;
-        let base = match self.settings.reference {
-            Reference::Updated => coords,
+        let springs_at = match self.settings.reference {
+            Reference::Updated => start,
             Reference::Fixed => &self.mesh.coords,
         };
         let mut u: Vec<f64> = match &self.earlier {
@@ -545,18 +579,28 @@ impl Deformer {
                 }
             }
         }
+        let mut left: f64 = 0.0;
         for (node, p) in targets {
             for d in 0..dim {
-                u[dim * node + d] = p[d] - base[dim * node + d];
+                let v = p[d] - start[dim * node + d];
+                u[dim * node + d] = v;
+                left = left.max(v.abs());
             }
         }
-        let info = if exact {
+        let info = if self.blend.as_ref().is_some_and(|b| b.leaves_nothing(left)) {
+            u.fill(0.0);
+            SolveInfo {
+                converged: true,
+                ..SolveInfo::default()
+            }
+        } else if exact {
             self.engine
-                .solve_exact(base, &mut u, &self.settings.solve)?
+                .solve_exact(springs_at, &mut u, &self.settings.solve)?
         } else {
-            self.engine.solve(base, &mut u, &self.settings.solve)?
+            self.engine
+                .solve(springs_at, &mut u, &self.settings.solve)?
         };
-        let mut next: Vec<f64> = base.iter().zip(&u).map(|(x, d)| x + d).collect();
+        let mut next: Vec<f64> = start.iter().zip(&u).map(|(x, d)| x + d).collect();
         for (node, p) in targets {
             next[dim * node..dim * (node + 1)].copy_from_slice(p);
         }
@@ -665,4 +709,33 @@ fn summarize(quality: &[f64], inversions: &[Inversion]) -> StepReport {
         bins,
         ..StepReport::default()
     }
+}
+
+/// The bodies of the blended rigid motion: moving nodes sharing a chain of
+/// motions, each as the indices (into `moving`, the order of the step's
+/// targets) its rigid motion is fitted to and the mesh nodes it holds at
+/// weight 1 — its moving nodes and the rigid-layer nodes that follow them.
+fn bodies(
+    moving: &[(usize, Vec<usize>)],
+    layer: &[(usize, Option<usize>)],
+) -> Vec<(Vec<usize>, Vec<usize>)> {
+    let mut body_of_chain: std::collections::HashMap<&[usize], usize> = Default::default();
+    let mut bodies: Vec<(Vec<usize>, Vec<usize>)> = Vec::new();
+    let mut body_of = Vec::with_capacity(moving.len());
+    for (k, (node, chain)) in moving.iter().enumerate() {
+        let next = body_of_chain.len();
+        let b = *body_of_chain.entry(chain.as_slice()).or_insert(next);
+        if b == bodies.len() {
+            bodies.push(Default::default());
+        }
+        bodies[b].0.push(k);
+        bodies[b].1.push(*node);
+        body_of.push(b);
+    }
+    for &(node, k) in layer {
+        if let Some(k) = k {
+            bodies[body_of[k]].1.push(node);
+        }
+    }
+    bodies
 }

@@ -177,7 +177,7 @@ fn unit(v: &[f64; 3], what: &str) -> Result<[f64; 3]> {
 }
 
 /// Rotates `p − c` by `angle` about `axis` (Rodrigues; in 2D about z) and adds `c` back.
-fn rotate(p: &mut [f64], c: &[f64; 3], axis: &[f64; 3], angle: f64) {
+pub(crate) fn rotate(p: &mut [f64], c: &[f64; 3], axis: &[f64; 3], angle: f64) {
     let (s, co) = angle.sin_cos();
     if p.len() == 2 {
         let (x, y) = (p[0] - c[0], p[1] - c[1]);

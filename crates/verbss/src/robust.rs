@@ -75,6 +75,10 @@ pub struct Robust {
     /// (or [`INNER_FRACTION`] of the body's size without a layer), so that
     /// cells near a moving wall deform less (0: off).
     pub stiffening: f64,
+    /// The blended rigid motion: each body's best rigid motion carried into
+    /// the mesh with a harmonic weight before the springs solve what is left
+    /// (`deform/blend.rs`).
+    pub blend: bool,
 }
 
 impl Robust {
@@ -84,12 +88,14 @@ impl Robust {
     }
 
     /// The recommended treatments: the automatic rigid layer, inverse
-    /// wall-distance stiffening (`p = 1`) and sub-steps down to 1/64 of a step.
+    /// wall-distance stiffening (`p = 1`), sub-steps down to 1/64 of a step
+    /// and the blended rigid motion.
     pub fn recommended() -> Robust {
         Robust {
             layer: Layer::Auto,
             substeps: 6,
             stiffening: 1.0,
+            blend: true,
         }
     }
 }
@@ -171,9 +177,9 @@ pub fn prepare(
         .collect();
     let fields: Vec<(Vec<f64>, Vec<usize>)> = body_seeds
         .iter()
-        .map(|seeds| nearest_seed(&graph, mesh, seeds))
+        .map(|seeds| nearest_seed(&graph, mesh.dim, &mesh.coords, seeds))
         .collect();
-    let to_fixed = nearest_seed(&graph, mesh, &fixed).0;
+    let to_fixed = nearest_seed(&graph, mesh.dim, &mesh.coords, &fixed).0;
     let thickness: Vec<f64> = match (given, robust.layer) {
         (Some(t), _) => vec![t; body_seeds.len()],
         (None, Layer::Auto) => body_seeds
@@ -257,11 +263,16 @@ fn fixed_walls(mesh: &Mesh, roles: &[NodeRole], anchor: &[usize]) -> Vec<Vec<usi
         .collect()
 }
 
-/// For every node the distance to its nearest seed and that seed, found by
+/// For every node of `coords` the distance to its nearest seed and that seed, found by
 /// spreading the seeds along the mesh edges (a node takes the nearest, in
 /// straight line, of its neighbours' seeds, until nothing changes). Nodes
 /// no seed reaches keep an infinite distance.
-fn nearest_seed(graph: &Csr, mesh: &Mesh, seeds: &[usize]) -> (Vec<f64>, Vec<usize>) {
+pub(crate) fn nearest_seed(
+    graph: &Csr,
+    dim: usize,
+    coords: &[f64],
+    seeds: &[usize],
+) -> (Vec<f64>, Vec<usize>) {
     let n = graph.rows();
     let mut dist = vec![f64::INFINITY; n];
     let mut seed = vec![usize::MAX; n];
@@ -278,7 +289,10 @@ fn nearest_seed(graph: &Csr, mesh: &Mesh, seeds: &[usize]) -> (Vec<f64>, Vec<usi
         }
         let s = seed[i];
         for &j in graph.row(i) {
-            let d = distance(mesh.point(j), mesh.point(s));
+            let d = distance(
+                &coords[dim * j..dim * (j + 1)],
+                &coords[dim * s..dim * (s + 1)],
+            );
             if d < dist[j] {
                 dist[j] = d;
                 seed[j] = s;
@@ -572,7 +586,7 @@ mod tests {
                 .flat_map(|&[a, b]| [(a, b), (b, a)].into_iter()),
         );
         let seeds: Vec<usize> = moving.iter().map(|m| m.0).collect();
-        let (dist, _) = nearest_seed(&graph, &mesh, &seeds);
+        let (dist, _) = nearest_seed(&graph, mesh.dim, &mesh.coords, &seeds);
         for (phi, d) in t.stiffness.iter().zip(&dist) {
             let expected = if *d <= 0.1 { 1.0 } else { (0.1 / d).powi(2) };
             assert!((phi - expected).abs() < 1e-15 * expected.max(1.0));

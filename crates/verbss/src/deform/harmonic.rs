@@ -1,0 +1,150 @@
+//! The translation's weight of the blended rigid motion: the scalar
+//! problem `Σ_j k_ij (w_j − w_i) = 0`, `k_ij = 1/L_ij`, at every unknown
+//! node, `w` given at the prescribed ones (the Laplacian smoother's system;
+//! docs/method.md, "Blended rigid motion"). Short edges couple strongly, so
+//! small and compressed cells take less of the change. Solved by conjugate
+//! gradients with a Jacobi preconditioner, from the previous increment's
+//! weights.
+
+use crate::mesh::Mesh;
+use crate::topology::Csr;
+
+/// Conjugate gradients stop at this reduction of the residual…
+const REDUCTION: f64 = 1e-8;
+/// …or after this many iterations (the guard judges the mesh a weight makes).
+const MAX_ITERATIONS: usize = 4000;
+
+/// The edges of a mesh and which nodes are unknown.
+pub(super) struct Laplace {
+    dim: usize,
+    edges: Vec<[usize; 2]>,
+    unknown: Vec<bool>,
+}
+
+impl Laplace {
+    /// The problem on `mesh` with unknowns where `unknown` is set (and the
+    /// node is on an edge).
+    pub(super) fn new(mesh: &Mesh, mut unknown: Vec<bool>) -> Laplace {
+        let edges = crate::topology::edges(&mesh.cells);
+        let mut on_edge = vec![false; mesh.node_count()];
+        for &[a, b] in &edges {
+            on_edge[a] = true;
+            on_edge[b] = true;
+        }
+        for (u, e) in unknown.iter_mut().zip(on_edge) {
+            *u &= e;
+        }
+        Laplace {
+            dim: mesh.dim,
+            edges,
+            unknown,
+        }
+    }
+
+    /// Whether node `i` is an unknown.
+    pub(super) fn is_unknown(&self, i: usize) -> bool {
+        self.unknown[i]
+    }
+
+    /// The edges as a graph (both directions).
+    pub(super) fn graph(&self, nodes: usize) -> Csr {
+        Csr::from_pairs(
+            nodes,
+            self.edges
+                .iter()
+                .flat_map(|&[a, b]| [(a, b), (b, a)].into_iter()),
+        )
+    }
+
+    /// Solves for `w` on `coords`: on entry the prescribed values and the
+    /// unknowns' initial guess, on exit the solution (clamped to `[0, 1]`).
+    pub(super) fn solve(&self, coords: &[f64], w: &mut [f64]) {
+        let dim = self.dim;
+        let k: Vec<f64> = self
+            .edges
+            .iter()
+            .map(|&[a, b]| {
+                let squared: f64 = (0..dim)
+                    .map(|d| (coords[dim * a + d] - coords[dim * b + d]).powi(2))
+                    .sum();
+                1.0 / squared.sqrt()
+            })
+            .collect();
+        let n = w.len();
+        let mut diag = vec![0.0; n];
+        for (&[a, b], &ke) in self.edges.iter().zip(&k) {
+            diag[a] += ke;
+            diag[b] += ke;
+        }
+        // A x over the unknowns, prescribed entries of x taken as they are.
+        let apply = |x: &[f64], y: &mut [f64]| {
+            y.fill(0.0);
+            for (&[a, b], &ke) in self.edges.iter().zip(&k) {
+                let f = ke * (x[a] - x[b]);
+                y[a] += f;
+                y[b] -= f;
+            }
+        };
+        let mut r = vec![0.0; n];
+        apply(w, &mut r);
+        let dot = |x: &[f64], y: &[f64]| -> f64 {
+            (0..n)
+                .filter(|&i| self.unknown[i])
+                .map(|i| x[i] * y[i])
+                .sum()
+        };
+        for i in 0..n {
+            r[i] = if self.unknown[i] { -r[i] } else { 0.0 };
+        }
+        // The scale of the residual: the prescribed values' pull on the
+        // unknowns with the unknowns at zero.
+        let mut pull = vec![0.0; n];
+        let prescribed: Vec<f64> = (0..n)
+            .map(|i| if self.unknown[i] { 0.0 } else { w[i] })
+            .collect();
+        apply(&prescribed, &mut pull);
+        let scale = dot(&pull, &pull).sqrt();
+        if scale == 0.0 {
+            for i in (0..n).filter(|&i| self.unknown[i]) {
+                w[i] = 0.0;
+            }
+            return;
+        }
+        let mut z: Vec<f64> = (0..n)
+            .map(|i| r[i] / diag[i].max(f64::MIN_POSITIVE))
+            .collect();
+        let mut p = z.clone();
+        let mut q = vec![0.0; n];
+        let mut rz = dot(&r, &z);
+        for _ in 0..MAX_ITERATIONS {
+            if dot(&r, &r).sqrt() <= REDUCTION * scale {
+                break;
+            }
+            for i in 0..n {
+                if !self.unknown[i] {
+                    p[i] = 0.0;
+                }
+            }
+            apply(&p, &mut q);
+            let pq = dot(&p, &q);
+            if pq <= 0.0 {
+                break;
+            }
+            let alpha = rz / pq;
+            for i in (0..n).filter(|&i| self.unknown[i]) {
+                w[i] += alpha * p[i];
+                r[i] -= alpha * q[i];
+                z[i] = r[i] / diag[i];
+            }
+            let next = dot(&r, &z);
+            let beta = next / rz;
+            rz = next;
+            for i in (0..n).filter(|&i| self.unknown[i]) {
+                p[i] = z[i] + beta * p[i];
+            }
+        }
+        for wi in w.iter_mut() {
+            *wi = wi.clamp(0.0, 1.0);
+        }
+    }
+}
