@@ -69,8 +69,14 @@ pub struct DeformArgs {
     /// layer's thickness; 0: off [default: 1 for robust, 0 otherwise].
     #[arg(long, value_parser = parse_exponent, allow_negative_numbers = true)]
     stiffening: Option<f64>,
+    /// Each body's fitted rigid motion carried into the mesh with smooth
+    /// weights before the springs solve what is left (docs/method.md,
+    /// "Blended rigid motion") [default: on for robust, off otherwise].
+    #[arg(long, value_parser = parse_switch)]
+    blend: Option<bool>,
     /// The spring system and its solution strategy: robust is VerBSS with
-    /// the near-wall treatments (rigid layer auto, stiffening 1, substeps 6);
+    /// the near-wall treatments (rigid layer auto, stiffening 1, substeps 6,
+    /// blend on);
     /// verbss is the paper's method exactly.
     #[arg(long, value_enum, default_value = "robust")]
     method: MethodArg,
@@ -178,6 +184,15 @@ fn parse_exponent(s: &str) -> Result<f64, String> {
     }
 }
 
+/// `on` or `off`.
+fn parse_switch(s: &str) -> Result<bool, String> {
+    match s {
+        "on" => Ok(true),
+        "off" => Ok(false),
+        _ => Err(format!("expected on or off, got '{s}'")),
+    }
+}
+
 /// A point of 2 or 3 numbers as 3 (z = 0).
 fn point3(name: &str, v: &[f64], dim: usize) -> anyhow::Result<[f64; 3]> {
     if v.len() != dim {
@@ -241,6 +256,7 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
     robust.layer = args.rigid_layer.unwrap_or(robust.layer);
     robust.substeps = args.substeps.unwrap_or(robust.substeps);
     robust.stiffening = args.stiffening.unwrap_or(robust.stiffening);
+    robust.blend = args.blend.unwrap_or(robust.blend);
     settings.robust = robust;
     let s = &mut settings.solve;
     s.method = match args.method {

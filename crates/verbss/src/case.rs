@@ -133,6 +133,7 @@ struct SolverTable {
     rigid_layer: Option<LayerSpec>,
     substeps: Option<u32>,
     stiffening: Option<f64>,
+    blend: Option<bool>,
     #[serde(default)]
     predictor: PredictorName,
 }
@@ -388,6 +389,7 @@ impl Case {
             }
             robust.stiffening = p;
         }
+        robust.blend = s.blend.unwrap_or(robust.blend);
         if file.output.every == 0 {
             return Err(at(top("every"), "`output.every` must be at least 1".into()));
         }

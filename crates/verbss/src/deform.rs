@@ -255,7 +255,7 @@ impl Deformer {
             Some(Blend::new(
                 mesh,
                 &plan.roles,
-                bodies(&plan.moving, &rigid.nodes),
+                blend::bodies(&plan.moving, &rigid.nodes),
             ))
         } else {
             None
@@ -396,7 +396,7 @@ impl Deformer {
                     (*i, q)
                 })
                 .collect();
-            let start_at = self.blended(&coords, &at)?;
+            let start_at = self.blended(&coords, &at);
             let mut attempt = self.attempt(&start_at, &at, end - done, false)?;
             let escalate = self.settings.solve.escalate;
             if escalate
@@ -526,15 +526,17 @@ impl Deformer {
     /// Where a (sub-)step from `coords` towards `targets` starts: the
     /// reference configuration (`coords`, or the input mesh with the fixed
     /// reference) moved by the blended rigid motion when it is on.
-    fn blended(&mut self, coords: &[f64], targets: &[(usize, Vec<f64>)]) -> Result<Vec<f64>> {
+    fn blended(&mut self, coords: &[f64], targets: &[(usize, Vec<f64>)]) -> Vec<f64> {
         let reference = match self.settings.reference {
             Reference::Updated => coords,
             Reference::Fixed => &self.mesh.coords,
         };
-        match &mut self.blend {
-            Some(blend) => Ok(blend.apply(reference, targets)),
-            None => Ok(reference.to_vec()),
-        }
+        let Some(blend) = &mut self.blend else {
+            return reference.to_vec();
+        };
+        let mut moved = blend.apply(reference, targets);
+        blend::keep_in_planes(self.mesh.dim, &self.roles, &self.normals, reference, &mut moved);
+        moved
     }
 
     /// One solve from `start` ([`Deformer::blended`]) with the prescribed
@@ -709,33 +711,4 @@ fn summarize(quality: &[f64], inversions: &[Inversion]) -> StepReport {
         bins,
         ..StepReport::default()
     }
-}
-
-/// The bodies of the blended rigid motion: moving nodes sharing a chain of
-/// motions, each as the indices (into `moving`, the order of the step's
-/// targets) its rigid motion is fitted to and the mesh nodes it holds at
-/// weight 1 — its moving nodes and the rigid-layer nodes that follow them.
-fn bodies(
-    moving: &[(usize, Vec<usize>)],
-    layer: &[(usize, Option<usize>)],
-) -> Vec<(Vec<usize>, Vec<usize>)> {
-    let mut body_of_chain: std::collections::HashMap<&[usize], usize> = Default::default();
-    let mut bodies: Vec<(Vec<usize>, Vec<usize>)> = Vec::new();
-    let mut body_of = Vec::with_capacity(moving.len());
-    for (k, (node, chain)) in moving.iter().enumerate() {
-        let next = body_of_chain.len();
-        let b = *body_of_chain.entry(chain.as_slice()).or_insert(next);
-        if b == bodies.len() {
-            bodies.push(Default::default());
-        }
-        bodies[b].0.push(k);
-        bodies[b].1.push(*node);
-        body_of.push(b);
-    }
-    for &(node, k) in layer {
-        if let Some(k) = k {
-            bodies[body_of[k]].1.push(node);
-        }
-    }
-    bodies
 }

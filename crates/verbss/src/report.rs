@@ -61,6 +61,8 @@ pub struct Header {
     pub stiffening: f64,
     /// Sub-steps: down to `1/2^substeps` of a step (0: off).
     pub substeps: u32,
+    /// Whether the blended rigid motion moved the mesh before the springs.
+    pub blend: bool,
 }
 
 impl Header {
@@ -98,6 +100,7 @@ impl Header {
             },
             stiffening: robust.stiffening,
             substeps: robust.substeps,
+            blend: robust.blend,
         }
     }
 }
