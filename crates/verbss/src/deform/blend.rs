@@ -74,7 +74,7 @@ pub(super) struct Blend {
 
 /// One body's fitted rigid motion: `x ↦ c + t + R(θ)(x − c)`.
 struct Rigid {
-    centroid: [f64; 3],
+    centre: [f64; 3],
     translation: [f64; 3],
     axis: [f64; 3],
     angle: f64,
@@ -159,7 +159,7 @@ impl Blend {
                 .map(|&k| {
                     let i = targets[k].0;
                     (0..dim)
-                        .map(|d| (coords[dim * i + d] - rigid.centroid[d]).powi(2))
+                        .map(|d| (coords[dim * i + d] - rigid.centre[d]).powi(2))
                         .sum::<f64>()
                         .sqrt()
                 })
@@ -172,7 +172,7 @@ impl Blend {
                 }
                 let x = &coords[dim * i..dim * (i + 1)];
                 let mut p = x.to_vec();
-                crate::motion::rotate(&mut p, &rigid.centroid, &rigid.axis, wr * rigid.angle);
+                crate::motion::rotate(&mut p, &rigid.centre, &rigid.axis, wr * rigid.angle);
                 for d in 0..dim {
                     moved[dim * i + d] += p[d] + wt * rigid.translation[d] - x[d];
                 }
@@ -296,7 +296,7 @@ fn fit(dim: usize, coords: &[f64], targets: &[(usize, Vec<f64>)], fitted: &[usiz
         rotation_3d(&s)
     };
     Rigid {
-        centroid: c,
+        centre: c,
         translation,
         axis,
         angle,
@@ -325,7 +325,7 @@ impl Rigid {
         let length = norm(&y);
         let s = if length > radius { radius / length } else { 1.0 };
         for d in 0..3 {
-            self.centroid[d] += s * y[d];
+            self.centre[d] += s * y[d];
             self.translation[d] -= s * perp[d];
         }
         self
@@ -449,7 +449,7 @@ mod tests {
         // The fitted motion maps every node onto its target.
         for (i, q) in &targets {
             let mut p = coords[3 * i..3 * i + 3].to_vec();
-            crate::motion::rotate(&mut p, &rigid.centroid, &rigid.axis, rigid.angle);
+            crate::motion::rotate(&mut p, &rigid.centre, &rigid.axis, rigid.angle);
             for d in 0..3 {
                 assert!((p[d] + rigid.translation[d] - q[d]).abs() < 1e-12);
             }
@@ -469,14 +469,14 @@ mod tests {
             })
             .collect();
         let rigid = fit(2, &coords, &targets, &[0, 1, 2]).about_axis(0.6);
-        assert!((rigid.centroid[0] - 1.0).abs() < 1e-12 && rigid.centroid[1].abs() < 1e-12);
+        assert!((rigid.centre[0] - 1.0).abs() < 1e-12 && rigid.centre[1].abs() < 1e-12);
         assert!(norm(&rigid.translation) < 1e-12);
         // Within a smaller radius the centre stops on the way there.
         let near = fit(2, &coords, &targets, &[0, 1, 2]).about_axis(0.25);
-        assert!((near.centroid[0] - 0.75).abs() < 1e-12);
+        assert!((near.centre[0] - 0.75).abs() < 1e-12);
         for (i, q) in &targets {
             let mut p = coords[2 * i..2 * i + 2].to_vec();
-            crate::motion::rotate(&mut p, &near.centroid, &near.axis, near.angle);
+            crate::motion::rotate(&mut p, &near.centre, &near.axis, near.angle);
             assert!((p[0] + near.translation[0] - q[0]).abs() < 1e-12);
             assert!((p[1] + near.translation[1] - q[1]).abs() < 1e-12);
         }
