@@ -103,6 +103,10 @@ pub struct Mesh {
     pub cell_tags: Vec<u64>,
     /// Named boundary groups.
     pub groups: Vec<Group>,
+    /// The sections of the SU2 file the mesh was read from that verbss does
+    /// not use (FFD boxes, periodic data, …), verbatim: writing the mesh as
+    /// SU2 puts them back. Empty for a mesh from any other source.
+    pub su2_skipped: Vec<crate::io::su2::Skipped>,
 }
 
 impl Mesh {
@@ -116,6 +120,7 @@ impl Mesh {
             coords,
             cells,
             groups,
+            su2_skipped: Vec::new(),
         };
         mesh.validate()?;
         Ok(mesh)
