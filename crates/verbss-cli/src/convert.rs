@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use clap::{Args, ValueEnum};
 use verbss::io::{self, MshVersion, WriteOptions};
 
-use crate::overwrite::refuse_input_as_output;
+use crate::overwrite::{note_lost_su2_blocks, refuse_input_as_output};
 
 /// Arguments of `verbss convert`.
 #[derive(Args)]
@@ -45,6 +45,7 @@ pub fn run(args: ConvertArgs) -> anyhow::Result<ExitCode> {
     };
     options.binary = args.binary;
     io::write(&args.output, &mesh, &options)?;
+    note_lost_su2_blocks(&mesh, &args.output);
     println!(
         "wrote {} ({} nodes, {} elements, {} groups)",
         args.output.display(),

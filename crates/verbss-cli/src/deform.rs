@@ -34,21 +34,16 @@ pub struct DeformArgs {
     #[arg(long, value_delimiter = ',', required = true)]
     moving: Vec<String>,
     /// Total translation DX,DY[,DZ].
-    #[arg(
-        long,
-        value_delimiter = ',',
-        allow_negative_numbers = true,
-        num_args = 1
-    )]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, num_args = 1)]
     translate: Option<Vec<f64>>,
     /// Total rotation in degrees (counter-clockwise about the axis), with --center.
-    #[arg(long, allow_negative_numbers = true, requires = "center")]
+    #[arg(long, allow_hyphen_values = true, requires = "center")]
     rotate: Option<f64>,
     /// Centre of the rotation CX,CY[,CZ].
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     center: Option<Vec<f64>>,
     /// Rotation axis AX,AY,AZ (3D; default z).
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     axis: Option<Vec<f64>>,
     /// New node positions (SU2 surface file `GlobalID x y [z]`, or CSV), reached at the last step.
     #[arg(long)]
@@ -59,15 +54,15 @@ pub struct DeformArgs {
     /// Nodes this close to a moving wall move with it: off, auto (the boundary
     /// layer, at least 5% of the body's size) or a wall distance [default:
     /// auto for robust, off otherwise].
-    #[arg(long, value_parser = parse_layer, allow_negative_numbers = true)]
+    #[arg(long, value_parser = parse_layer, allow_hyphen_values = true)]
     rigid_layer: Option<Layer>,
     /// A step that inverts an element is redone in smaller increments, down
     /// to 1/2^K of the step; 0: off [default: 6 for robust, 0 otherwise].
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=30))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=30), allow_hyphen_values = true)]
     substeps: Option<u32>,
     /// Springs at wall distance d scaled by (t/max(d,t))^P, t the rigid
     /// layer's thickness; 0: off [default: 1 for robust, 0 otherwise].
-    #[arg(long, value_parser = parse_exponent, allow_negative_numbers = true)]
+    #[arg(long, value_parser = parse_exponent, allow_hyphen_values = true)]
     stiffening: Option<f64>,
     /// Each body's fitted rigid motion carried into the mesh with smooth
     /// weights before the springs solve what is left (docs/method.md,
@@ -91,7 +86,7 @@ pub struct DeformArgs {
     #[arg(long, value_enum)]
     accel: Option<AccelArg>,
     /// Number of equal increments.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     steps: usize,
     /// Springs on the current mesh each step (updated) or on the input mesh (initial).
     #[arg(long, value_enum, default_value = "updated")]
@@ -101,19 +96,19 @@ pub struct DeformArgs {
     #[arg(long, value_enum, default_value = "previous")]
     predictor: PredictorArg,
     /// Eq.-8 stop, relative to the step's largest prescribed displacement.
-    #[arg(long, default_value_t = 1e-6)]
+    #[arg(long, default_value_t = 1e-6, allow_hyphen_values = true)]
     tolerance: f64,
     /// Use --tolerance as the paper's absolute eq.-8 threshold.
     #[arg(long)]
     absolute_tolerance: bool,
     /// Maximum sweeps per step.
-    #[arg(long, default_value_t = 2000)]
+    #[arg(long, default_value_t = 2000, allow_hyphen_values = true)]
     max_iterations: usize,
     /// Over-relaxation factor ω [default: 1.6].
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     omega: Option<f64>,
     /// Worker threads (results do not depend on it).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     threads: usize,
     /// Write the per-step report (JSON) here.
     #[arg(long)]
@@ -193,18 +188,28 @@ fn parse_switch(s: &str) -> Result<bool, String> {
     }
 }
 
-/// A point of 2 or 3 numbers as 3 (z = 0).
+/// A point of `dim` numbers as 3 (z = 0); a 2D mesh also takes 3 numbers
+/// with z = 0, as a case file does.
 fn point3(name: &str, v: &[f64], dim: usize) -> anyhow::Result<[f64; 3]> {
-    if v.len() != dim {
-        bail!(
-            "--{name} needs {dim} numbers for a {dim}D mesh, got {}",
-            v.len()
-        );
-    }
     if let Some(x) = v.iter().find(|x| !x.is_finite()) {
         bail!("--{name} has a non-finite number ({x})");
     }
-    Ok([v[0], v[1], v.get(2).copied().unwrap_or(0.0)])
+    match v.len() {
+        n if n == dim => Ok([v[0], v[1], v.get(2).copied().unwrap_or(0.0)]),
+        3 if dim == 2 && v[2] == 0.0 => Ok([v[0], v[1], 0.0]),
+        3 if dim == 2 => bail!(
+            "--{name} has a non-zero z on a 2D mesh, which lies in the x–y plane \
+             (give 2 numbers, or 3 with z = 0)"
+        ),
+        n => bail!(
+            "--{name} needs {} for a {dim}D mesh, got {n}",
+            if dim == 2 {
+                "2 numbers (or 3 with z = 0)"
+            } else {
+                "3 numbers"
+            }
+        ),
+    }
 }
 
 /// Runs `verbss deform`.

@@ -1,8 +1,11 @@
-//! The input mesh is never an output unless the user says so.
+//! The input mesh is never an output unless the user says so, and what an
+//! output cannot keep of it is said.
 
 use std::path::Path;
 
 use anyhow::bail;
+use verbss::io::Format;
+use verbss::mesh::Mesh;
 
 /// Fails when `output` is the file `input` (same canonical path), unless
 /// `overwrite` (`--overwrite`).
@@ -19,4 +22,36 @@ pub fn refuse_input_as_output(input: &Path, output: &Path, overwrite: bool) -> a
         );
     }
     Ok(())
+}
+
+/// Says on standard error that `output`, not an SU2 file, leaves out the
+/// sections of the SU2 input that verbss does not use (FFD boxes, periodic
+/// data), naming their first three keywords.
+pub fn note_lost_su2_blocks(mesh: &Mesh, output: &Path) {
+    if mesh.su2_skipped.is_empty() || matches!(Format::from_path(output), Ok(Format::Su2)) {
+        return;
+    }
+    let keywords = mesh.su2_skipped.iter().flat_map(|b| {
+        b.text.lines().filter_map(|l| {
+            Some(format!(
+                "{}=",
+                l.split('%').next()?.split_once('=')?.0.trim()
+            ))
+        })
+    });
+    let mut named: Vec<String> = Vec::new();
+    for k in keywords {
+        if named.len() == 3 {
+            named.push("…".into());
+            break;
+        }
+        if !named.contains(&k) {
+            named.push(k);
+        }
+    }
+    eprintln!(
+        "note: {} leaves out the input's SU2 sections {} (only an .su2 output keeps them)",
+        output.display(),
+        named.join(", ")
+    );
 }

@@ -27,7 +27,7 @@ pub struct RenderArgs {
     #[arg(long, value_parser = parse_view, allow_hyphen_values = true)]
     view: Option<[f64; 4]>,
     /// Width in pixels.
-    #[arg(long, default_value_t = 1600)]
+    #[arg(long, default_value_t = 1600, allow_hyphen_values = true)]
     width: u32,
     /// 3D: draw the facets of this boundary group (repeatable) instead of the whole boundary.
     #[arg(long)]
@@ -146,7 +146,12 @@ pub struct PictureArgs {
     #[arg(long, value_name = "FILE")]
     pub gif: Option<PathBuf>,
     /// A GIF frame every K steps.
-    #[arg(long, value_name = "K", default_value_t = 1)]
+    #[arg(
+        long,
+        value_name = "K",
+        default_value_t = 1,
+        allow_hyphen_values = true
+    )]
     pub gif_every: usize,
     /// Window x0,x1,y0,y1 of the report's pictures and the GIF (2D; whole mesh by default).
     #[arg(long, value_parser = parse_view, allow_hyphen_values = true)]

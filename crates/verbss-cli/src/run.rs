@@ -22,7 +22,7 @@ use verbss::motion::Attachment;
 use verbss::report::Report;
 use verbss::Error;
 
-use crate::overwrite::refuse_input_as_output;
+use crate::overwrite::{note_lost_su2_blocks, refuse_input_as_output};
 use crate::progress::Progress;
 use crate::render::{PictureArgs, Recorder};
 
@@ -114,6 +114,13 @@ pub struct Job {
     pub dir: PathBuf,
 }
 
+impl Job {
+    /// Where the final mesh goes: `DIR/NAME.EXT`.
+    pub fn final_path(&self) -> PathBuf {
+        self.dir.join(format!("{}.{}", self.name, self.extension))
+    }
+}
+
 /// What a run did.
 pub struct Summary {
     /// Steps done (accepted).
@@ -176,6 +183,9 @@ impl Summary {
 pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Result<Summary> {
     std::fs::create_dir_all(&job.dir)
         .with_context(|| format!("cannot create the output folder {}", job.dir.display()))?;
+    if job.final_mesh && !quiet {
+        note_lost_su2_blocks(&job.mesh, &job.final_path());
+    }
     let mut settings = job.settings.clone();
     settings.solve.record_history |= recorder.wants_history();
     let mut deformer = Deformer::new(&job.mesh, &job.attachments, settings)?;
@@ -225,7 +235,7 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
                 let mut mesh = job.mesh.clone();
                 mesh.coords.clone_from(&failed.coords);
                 vtu::write(&failed_path, &mesh, &fields(&job.mesh, failed))?;
-                let last = job.dir.join(format!("{}.{}", job.name, job.extension));
+                let last = job.final_path();
                 io::write(&last, &deformer.mesh(), &WriteOptions::default())?;
                 report.outcome = e.to_string();
                 if let Some(path) = &job.report {
@@ -242,7 +252,7 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
     progress.finish();
     summary.seconds = start.elapsed().as_secs_f64();
     if job.final_mesh {
-        let path = job.dir.join(format!("{}.{}", job.name, job.extension));
+        let path = job.final_path();
         io::write(&path, &deformer.mesh(), &WriteOptions::default())?;
     }
     report.outcome = "completed".into();

@@ -117,8 +117,11 @@ fn convert_round_trips_through_every_format() {
         assert_eq!(stdout(&q), stdout(&reference), "{name}");
         previous = out;
     }
-    let a = verbss::io::read(&src).unwrap();
+    let mut a = verbss::io::read(&src).unwrap();
     let b = verbss::io::read(&previous).unwrap();
+    // The FFD and periodic sections do not pass through the other formats.
+    assert!(!a.su2_skipped.is_empty() && b.su2_skipped.is_empty());
+    a.su2_skipped.clear();
     assert_eq!(a, b);
 }
 

@@ -231,12 +231,12 @@ fn a_motion_of_the_wrong_dimension_is_refused() {
         "--moving",
         "airfoil",
         "--translate",
-        "0,1,2",
+        "0,1,0,0",
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(
         stderr(&o).trim(),
-        "error: --translate needs 2 numbers for a 2D mesh, got 3"
+        "error: --translate needs 2 numbers (or 3 with z = 0) for a 2D mesh, got 4"
     );
 }
 

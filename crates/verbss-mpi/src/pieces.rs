@@ -66,6 +66,7 @@ pub fn write_piece(
         cells: piece_cells,
         cell_tags: cells.iter().map(|&c| part.cell_tags[c]).collect(),
         groups: Vec::new(),
+        su2_skipped: Vec::new(),
     };
     let mut fields = vtu::Fields::default();
     fields.point.push(("displacement".into(), 3, displacement));

@@ -18,6 +18,7 @@ use verbss::Error;
 use verbss_mpi::pieces::{write_piece, write_pvtu};
 use verbss_mpi::stepper::Stepper;
 
+use crate::overwrite::note_lost_su2_blocks;
 use crate::progress::Progress;
 use crate::render::Recorder;
 
@@ -57,6 +58,13 @@ pub struct Job {
     pub extension: String,
     /// The output folder.
     pub dir: PathBuf,
+}
+
+impl Job {
+    /// Where the final mesh goes: `DIR/NAME.EXT`.
+    pub fn final_path(&self) -> PathBuf {
+        self.dir.join(format!("{}.{}", self.name, self.extension))
+    }
 }
 
 /// What a run did.
@@ -123,6 +131,9 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
     let root = world.rank() == 0;
     std::fs::create_dir_all(&job.dir)
         .with_context(|| format!("cannot create the output folder {}", job.dir.display()))?;
+    if root && job.final_mesh && !quiet {
+        note_lost_su2_blocks(&job.mesh, &job.final_path());
+    }
     let mut settings = job.settings.clone();
     settings.solve.record_history |= recorder.wants_history();
     let mut stepper = Stepper::new(&world, &job.mesh, &job.attachments, settings)?;
@@ -171,7 +182,7 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
                 let failed = stepper.failed().expect("a failed step keeps its state");
                 report.steps.push(failed.report.clone());
                 let failed_path = job.dir.join(format!("{}.failed.vtu", job.name));
-                let last = job.dir.join(format!("{}.{}", job.name, job.extension));
+                let last = job.final_path();
                 if root {
                     let mut mesh = job.mesh.clone();
                     mesh.coords.clone_from(&failed.coords);
@@ -205,7 +216,7 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
     if root {
         write_pvtu(&job.dir, &job.name, world.size())?;
         if job.final_mesh {
-            let path = job.dir.join(format!("{}.{}", job.name, job.extension));
+            let path = job.final_path();
             io::write(&path, &stepper.mesh(), &WriteOptions::default())?;
         }
         report.outcome = "completed".into();

@@ -56,6 +56,22 @@ pub enum Error {
         /// The groups that exist, comma separated.
         available: String,
     },
+    /// A group was asked for but the mesh has no boundary groups at all.
+    #[error(
+        "unknown group '{name}': the mesh has no boundary groups. A Gmsh mesh gets them from \
+         physical groups: add `Physical {entity}(\"{name}\") = {{1, 2}};` to the .geo file, or \
+         call `gmsh.model.addPhysicalGroup({facet_dim}, [1, 2], name=\"{name}\")` in Python, \
+         with the tags of the {entity_lower}s on that boundary, and mesh again",
+        entity = if *.dim == 3 { "Surface" } else { "Curve" },
+        entity_lower = if *.dim == 3 { "surface" } else { "curve" },
+        facet_dim = .dim.saturating_sub(1)
+    )]
+    NoGroups {
+        /// The name asked for.
+        name: String,
+        /// The mesh's spatial dimension (2 or 3).
+        dim: usize,
+    },
     /// A picture or chart could not be drawn or encoded.
     #[error("cannot draw the picture: {0}")]
     Render(String),

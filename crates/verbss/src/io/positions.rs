@@ -45,23 +45,32 @@ impl Positions {
     }
 
     /// Checks every id against a mesh of `nodes` nodes (ids `0..nodes`);
-    /// `path` names the positions file in the message.
+    /// `path` names the positions file in the message, which says when the
+    /// ids look 1-based (0 absent, `nodes` present).
     pub fn check_against(&self, nodes: usize, path: &Path) -> Result<()> {
-        match self.ids.iter().position(|&id| id >= nodes) {
-            None => Ok(()),
-            Some(k) => Err(Error::Parse {
-                path: path.to_path_buf(),
-                line: self.lines[k],
-                message: format!(
-                    "node id {} out of range (the mesh has {nodes} nodes: {})",
-                    self.ids[k],
-                    match nodes {
-                        0 => "no valid id".to_string(),
-                        n => format!("ids 0 to {}", n - 1),
-                    }
-                ),
-            }),
-        }
+        let Some(k) = self.ids.iter().position(|&id| id >= nodes) else {
+            return Ok(());
+        };
+        let one_based = !self.ids.contains(&0) && self.ids.iter().all(|&id| id <= nodes);
+        Err(Error::Parse {
+            path: path.to_path_buf(),
+            line: self.lines[k],
+            message: format!(
+                "node id {} out of range (the mesh has {nodes} nodes: {}){}",
+                self.ids[k],
+                match nodes {
+                    0 => "no valid id".to_string(),
+                    n => format!("ids 0 to {}", n - 1),
+                },
+                if one_based {
+                    "; the ids look 1-based (no id 0, the largest equal to the node count): \
+                     ids are 0-based node indices in the mesh file's order, so subtract 1 \
+                     from each"
+                } else {
+                    ""
+                }
+            ),
+        })
     }
 }
 
@@ -306,6 +315,22 @@ mod tests {
                 .to_string(),
             "p.dat:3: node id 5 out of range (the mesh has 5 nodes: ids 0 to 4)"
         );
+    }
+
+    #[test]
+    fn ids_that_look_one_based_get_the_hint() {
+        let p = parse(b"5 0 0\n1 1 1\n", Path::new("p.dat"), 2).unwrap();
+        assert_eq!(
+            p.check_against(5, Path::new("p.dat"))
+                .unwrap_err()
+                .to_string(),
+            "p.dat:1: node id 5 out of range (the mesh has 5 nodes: ids 0 to 4); the ids look \
+             1-based (no id 0, the largest equal to the node count): ids are 0-based node \
+             indices in the mesh file's order, so subtract 1 from each"
+        );
+        let past = parse(b"6 0 0\n1 1 1\n", Path::new("p.dat"), 2).unwrap();
+        let e = past.check_against(5, Path::new("p.dat")).unwrap_err();
+        assert!(!e.to_string().contains("1-based"), "{e}");
     }
 
     #[test]

@@ -103,6 +103,10 @@ pub struct Mesh {
     pub cell_tags: Vec<u64>,
     /// Named boundary groups.
     pub groups: Vec<Group>,
+    /// The sections of the SU2 file the mesh was read from that verbss does
+    /// not use (FFD boxes, periodic data, …), verbatim: writing the mesh as
+    /// SU2 puts them back. Empty for a mesh from any other source.
+    pub su2_skipped: Vec<crate::io::su2::Skipped>,
 }
 
 impl Mesh {
@@ -116,6 +120,7 @@ impl Mesh {
             coords,
             cells,
             groups,
+            su2_skipped: Vec::new(),
         };
         mesh.validate()?;
         Ok(mesh)
@@ -136,15 +141,23 @@ impl Mesh {
         &self.coords[self.dim * i..self.dim * (i + 1)]
     }
 
-    /// The group called `name`, or an error listing the groups that exist.
+    /// The group called `name`, or an error listing the groups that exist
+    /// (or, for a mesh without any, saying how Gmsh adds them).
     pub fn group(&self, name: &str) -> Result<&Group> {
-        self.groups
-            .iter()
-            .find(|g| g.name == name)
-            .ok_or_else(|| Error::UnknownGroup {
-                name: name.to_string(),
-                available: self.group_names().join(", "),
-            })
+        self.groups.iter().find(|g| g.name == name).ok_or_else(|| {
+            let name = name.to_string();
+            if self.groups.is_empty() {
+                Error::NoGroups {
+                    name,
+                    dim: self.dim,
+                }
+            } else {
+                Error::UnknownGroup {
+                    name,
+                    available: self.group_names().join(", "),
+                }
+            }
+        })
     }
 
     /// Names of all groups, in file order.
@@ -287,6 +300,23 @@ mod tests {
         assert_eq!(m.cell_count(), 2);
         assert_eq!(m.point(2), &[1.0, 1.0]);
         assert_eq!(m.group("bottom").unwrap().nodes(), vec![0, 1]);
+    }
+
+    #[test]
+    fn a_mesh_without_groups_says_how_gmsh_adds_them() {
+        let mut m = square();
+        m.groups.clear();
+        assert_eq!(
+            m.group("wall").unwrap_err().to_string(),
+            "unknown group 'wall': the mesh has no boundary groups. A Gmsh mesh gets them from \
+             physical groups: add `Physical Curve(\"wall\") = {1, 2};` to the .geo file, or \
+             call `gmsh.model.addPhysicalGroup(1, [1, 2], name=\"wall\")` in Python, with the \
+             tags of the curves on that boundary, and mesh again"
+        );
+        m.dim = 3;
+        let e = m.group("wall").unwrap_err().to_string();
+        assert!(e.contains("`Physical Surface(\"wall\") = {1, 2};`"), "{e}");
+        assert!(e.contains("addPhysicalGroup(2, [1, 2]"), "{e}");
     }
 
     #[test]

@@ -313,6 +313,7 @@ pub(super) fn finish(
         cells,
         cell_tags,
         groups,
+        su2_skipped: Vec::new(),
     };
     mesh.validate()?;
     Ok(mesh)

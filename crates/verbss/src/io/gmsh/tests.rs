@@ -89,6 +89,7 @@ fn hybrid_2d() -> Mesh {
             group("far field", 9, &[(Line, &[5, 4]), (Line, &[4, 3])]),
             group("corner", 1, &[(Vertex, &[2])]),
         ],
+        su2_skipped: Vec::new(),
     }
 }
 
@@ -121,6 +122,7 @@ fn mixed_3d() -> Mesh {
             group("side", 5, &[(Quad, &[1, 8, 9, 2]), (Triangle, &[1, 8, 5])]),
             group("edge", 1, &[(Line, &[8, 9])]),
         ],
+        su2_skipped: Vec::new(),
     }
 }
 

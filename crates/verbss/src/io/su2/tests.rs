@@ -1,6 +1,7 @@
 //! Tests of the SU2 reader and writer.
 
 use super::*;
+use crate::mesh::Cells;
 
 #[test]
 fn a_vtk_numbered_prism_reads_positively_oriented_and_writes_back() {
@@ -111,6 +112,11 @@ fn rae2822_hybrid_with_ffd_and_periodic_blocks() {
         [("AIRFOIL".to_string(), 192), ("FARFIELD".to_string(), 40)]
     );
     round_trip(&m);
+    let file = std::fs::read_to_string(format!("{DIR}mesh_RAE2822_turb_ffd.su2")).unwrap();
+    let blocks = &file[file.find("NPERIODIC=").unwrap()..];
+    let mut out = Vec::new();
+    write_to(&mut out, &m).unwrap();
+    assert!(String::from_utf8(out).unwrap().ends_with(blocks));
 }
 
 /// A brick mesh on [0,2]×[0,1]×[0,1]: six markers, each on its face.
@@ -252,8 +258,128 @@ FFD_CORNER_POINTS= 4\r
 FFD_SURFACE_POINTS= 1\r
 wall\t0\t1.0\t2.0\r
 ";
-    let m = parse_str(text).unwrap();
+    let mut m = parse_str(text).unwrap();
+    let skipped: Vec<(Anchor, &str)> = m
+        .su2_skipped
+        .iter()
+        .map(|b| (b.after, b.text.as_str()))
+        .collect();
+    assert_eq!(
+        skipped,
+        [
+            (Anchor::Points, "  ndime_extra = ignored\r\n1 2 3\r\n"),
+            (
+                Anchor::Elements,
+                &text[text.find("NPERIODIC").unwrap()..] as &str
+            )
+        ]
+    );
+    m.su2_skipped.clear();
     assert_eq!(m, parse_str(SQUARE).unwrap());
+}
+
+/// A file in the writer's own layout, with skipped blocks after every
+/// section: writing what was read gives the same bytes.
+const SKIPPED_EVERYWHERE: &str = "\
+NZONE= 1
+NDIME= 2
+FFD_NBOX= 0
+NELEM= 2
+5\t0\t1\t2\t0
+5\t0\t2\t3\t1
+% a comment kept with its block
+EXTRA= a b c
+1 2 3
+
+NPOIN= 4
+0.0\t0.0\t0
+1.0\t0.0\t1
+1.0\t1.0\t2
+0.0\t1.0\t3
+NPERIODIC= 1
+PERIODIC_INDEX= 0
+0.0\t0.0\t0.0
+NMARK= 2
+AFTER_NMARK= 1
+MARKER_TAG= wall
+MARKER_ELEMS= 1
+3\t0\t1
+AFTER_WALL= 2
+MARKER_TAG= rest
+MARKER_ELEMS= 3
+3\t1\t2
+3\t2\t3
+3\t3\t0
+FFD_NBOX= 1
+FFD_TAG= MAIN_BOX
+FFD_CORNER_POINTS= 4
+-1e-08\t-0.07
+1.00000001\t-0.07
+1.00000001\t0.07
+-1e-08\t0.07
+FFD_SURFACE_POINTS= 1
+wall\t0\t0.25\t0.5\t0.5
+";
+
+#[test]
+fn skipped_blocks_are_written_back_verbatim_where_they_were() {
+    let m = parse_str(SKIPPED_EVERYWHERE).unwrap();
+    let anchors: Vec<Anchor> = m.su2_skipped.iter().map(|b| b.after).collect();
+    use Anchor::*;
+    assert_eq!(
+        anchors,
+        [
+            Start,
+            Dimension,
+            Elements,
+            Points,
+            MarkerCount,
+            Marker(0),
+            Marker(1)
+        ]
+    );
+    assert_eq!(
+        m.su2_skipped[2].text,
+        "% a comment kept with its block\nEXTRA= a b c\n1 2 3\n\n"
+    );
+    let mut out = Vec::new();
+    write_to(&mut out, &m).unwrap();
+    assert_eq!(String::from_utf8(out).unwrap(), SKIPPED_EVERYWHERE);
+    round_trip(&m);
+}
+
+#[test]
+fn skipped_blocks_of_groups_that_are_gone_follow_the_last_marker() {
+    let mut m = parse_str(SKIPPED_EVERYWHERE).unwrap();
+    m.groups.pop();
+    let mut out = Vec::new();
+    write_to(&mut out, &m).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    let ffd = &SKIPPED_EVERYWHERE[SKIPPED_EVERYWHERE.find("FFD_NBOX= 1").unwrap()..];
+    assert!(
+        text.ends_with(&format!("3\t0\t1\nAFTER_WALL= 2\n{ffd}")),
+        "{text}"
+    );
+    m.groups.clear();
+    let mut out = Vec::new();
+    write_to(&mut out, &m).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    assert!(
+        text.ends_with(&format!("NMARK= 0\nAFTER_NMARK= 1\nAFTER_WALL= 2\n{ffd}")),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_skipped_block_at_an_end_without_newline_gets_one() {
+    let text = format!("{SQUARE}FFD_NBOX= 0");
+    let m = parse_str(&text).unwrap();
+    assert_eq!(m.su2_skipped[0].text, "FFD_NBOX= 0");
+    let mut out = Vec::new();
+    write_to(&mut out, &m).unwrap();
+    assert!(String::from_utf8(out)
+        .unwrap()
+        .ends_with("3\t0\t1\nFFD_NBOX= 0\n"));
 }
 
 #[test]

@@ -632,6 +632,7 @@ fn assemble(
         cells,
         cell_tags,
         groups,
+        su2_skipped: Vec::new(),
     };
     mesh.validate()?;
     Ok(VtuData { mesh, fields })

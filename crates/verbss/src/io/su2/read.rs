@@ -1,125 +1,13 @@
-//! SU2 native ASCII meshes (`.su2`).
-//!
-//! A file is a list of sections, each opened by a keyword line:
-//!
-//! ```text
-//! NDIME= 2                      % spatial dimension, 2 or 3
-//! NELEM= 2                      % volume elements: VTK type id, node indices, [index]
-//! 5  0 1 2  0
-//! 5  0 2 3  1
-//! NPOIN= 4                      % points: x y [z] [index]
-//! 0 0  0
-//! 1 0  1
-//! 1 1  2
-//! 0 1  3
-//! NMARK= 1                      % boundary markers
-//! MARKER_TAG= wall
-//! MARKER_ELEMS= 1               % marker facets: VTK type id, node indices
-//! 3  0 1
-//! ```
-//!
-//! Node indices are 0-based positions in the `NPOIN=` list. Element type ids
-//! are VTK's: 1 vertex, 3 line, 5 triangle, 9 quadrilateral, 10 tetrahedron,
-//! 12 hexahedron, 13 prism, 14 pyramid. SU2 numbers nodes as VTK does, which
-//! differs from verbss (Gmsh) for the prism only: see [`CellKind::vtk_local`].
-//!
-//! The reader accepts what SU2 and other tools write: `%` comments, blank
-//! lines, sections in any order after `NDIME=`, keywords in any case with or
-//! without `_` and spaces (`MARKER_TAG=`, `MARKERTAG =`), trailing indices after
-//! coordinates and node lists, `NPOIN= n n_domain`. Sections it does not use
-//! (`FFD_NBOX=`, `NPERIODIC=` and any other unknown keyword) are skipped with
-//! their data lines. Node tags are `index + 1`, cell tags `element index + 1`.
+//! The SU2 reader: a line-by-line state machine over the file's sections.
+
+mod entries;
 
 use std::collections::HashMap;
-use std::io::Write;
 use std::path::Path;
 
+use super::{shown, Anchor, Skipped};
 use crate::error::{Error, Result};
-use crate::mesh::{CellKind, Cells, Group, Mesh};
-
-/// The SU2 (VTK) element type ids, their kinds and the names used in messages.
-const TYPES: [(u32, CellKind, &str); 8] = [
-    (1, CellKind::Vertex, "vertex"),
-    (3, CellKind::Line, "line"),
-    (5, CellKind::Triangle, "triangle"),
-    (9, CellKind::Quad, "quadrilateral"),
-    (10, CellKind::Tetra, "tetrahedron"),
-    (12, CellKind::Hexahedron, "hexahedron"),
-    (13, CellKind::Wedge, "prism"),
-    (14, CellKind::Pyramid, "pyramid"),
-];
-
-/// The SU2 type id of a kind.
-fn type_id(kind: CellKind) -> u32 {
-    TYPES
-        .iter()
-        .find(|t| t.1 == kind)
-        .map(|t| t.0)
-        .expect("every kind has an SU2 type id")
-}
-
-/// Parses an SU2 file's bytes; `path` is only used in error messages.
-///
-/// Checks everything [`Mesh::validate`] checks, but reports it with the line:
-/// every count against its data, every node index against `NPOIN=`, every
-/// coordinate finite, every element type allowed where it stands.
-pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
-    Parser::new(bytes, path).run()
-}
-
-/// Writes `mesh` in SU2 format: `NDIME=`, `NELEM=` (elements with their index),
-/// `NPOIN=` (coordinates in shortest round-trip form, so that reading the file
-/// back gives the same bits, with their index), `NMARK=` and one marker per group.
-///
-/// Fails with [`std::io::ErrorKind::InvalidInput`] for a group name an SU2 file
-/// cannot hold (empty, with surrounding spaces, a `%` or a control character).
-pub fn write_to(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
-    for g in &mesh.groups {
-        let name = g.name.as_str();
-        if name.is_empty()
-            || name.trim() != name
-            || name.contains('%')
-            || name.chars().any(char::is_control)
-        {
-            return Err(std::io::Error::new(
-                std::io::ErrorKind::InvalidInput,
-                format!("group name {name:?} cannot be written as an SU2 MARKER_TAG"),
-            ));
-        }
-    }
-    writeln!(w, "NDIME= {}", mesh.dim)?;
-    writeln!(w, "NELEM= {}", mesh.cells.len())?;
-    for (c, (kind, nodes)) in mesh.cells.iter().enumerate() {
-        write_element(w, kind, nodes)?;
-        writeln!(w, "\t{c}")?;
-    }
-    writeln!(w, "NPOIN= {}", mesh.node_count())?;
-    for i in 0..mesh.node_count() {
-        for x in mesh.point(i) {
-            write!(w, "{x:?}\t")?;
-        }
-        writeln!(w, "{i}")?;
-    }
-    writeln!(w, "NMARK= {}", mesh.groups.len())?;
-    for g in &mesh.groups {
-        writeln!(w, "MARKER_TAG= {}", g.name)?;
-        writeln!(w, "MARKER_ELEMS= {}", g.facets.len())?;
-        for (kind, nodes) in g.facets.iter() {
-            write_element(w, kind, nodes)?;
-            writeln!(w)?;
-        }
-    }
-    Ok(())
-}
-
-/// Writes `type n1 … nk` without the end of line, in SU2's (VTK's) node order.
-fn write_element(w: &mut dyn Write, kind: CellKind, nodes: &[usize]) -> std::io::Result<()> {
-    write!(w, "{}", type_id(kind))?;
-    for i in 0..nodes.len() {
-        write!(w, "\t{}", nodes[kind.vtk_local(i)])?;
-    }
-    Ok(())
-}
+use crate::mesh::{Cells, Group, Mesh};
 
 /// One non-blank line with its comment removed.
 enum Line<'a> {
@@ -183,11 +71,19 @@ struct Marker {
 }
 
 /// Line-by-line reader state.
-struct Parser<'a> {
+pub(super) struct Parser<'a> {
     bytes: &'a [u8],
     path: &'a Path,
     pos: usize,
     line: usize,
+    /// Byte offset of the current line.
+    line_start: usize,
+    /// Byte offset just past the line read before the current one (blank
+    /// and comment lines not counted): where the current line's leading
+    /// comments begin.
+    gap_start: usize,
+    /// Byte offset just past the current line.
+    line_end: usize,
     /// `(value, line)` of `NDIME=`, `NPOIN=`, `NELEM=`, `NMARK=`.
     ndime: Option<(usize, usize)>,
     npoin: Option<(usize, usize)>,
@@ -206,17 +102,25 @@ struct Parser<'a> {
     closed: Option<Section>,
     /// The last keyword line: `(keyword, line)`.
     last_keyword: Option<(String, usize)>,
-    /// Inside a section verbss does not use: its data lines are ignored.
-    skipping: bool,
+    /// Inside sections verbss does not use: where they began (byte offset)
+    /// and the section before them. Their data lines are not parsed.
+    skipping: Option<(usize, Anchor)>,
+    /// The last section read, where a skipped block starting now would stand.
+    anchor: Anchor,
+    /// The skipped blocks read so far.
+    skipped: Vec<Skipped>,
 }
 
 impl<'a> Parser<'a> {
-    fn new(bytes: &'a [u8], path: &'a Path) -> Self {
+    pub(super) fn new(bytes: &'a [u8], path: &'a Path) -> Self {
         Parser {
             bytes,
             path,
             pos: 0,
             line: 0,
+            line_start: 0,
+            gap_start: 0,
+            line_end: 0,
             ndime: None,
             npoin: None,
             nelem: None,
@@ -229,7 +133,9 @@ impl<'a> Parser<'a> {
             open: None,
             closed: None,
             last_keyword: None,
-            skipping: false,
+            skipping: None,
+            anchor: Anchor::Start,
+            skipped: Vec::new(),
         }
     }
 
@@ -257,6 +163,7 @@ impl<'a> Parser<'a> {
         while self.pos < self.bytes.len() {
             let rest = &self.bytes[self.pos..];
             let end = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+            self.line_start = self.pos;
             self.pos += end + 1;
             self.line += 1;
             let raw = rest[..end].strip_suffix(b"\r").unwrap_or(&rest[..end]);
@@ -275,6 +182,8 @@ impl<'a> Parser<'a> {
             if text.is_empty() {
                 continue;
             }
+            self.gap_start = self.line_end;
+            self.line_end = self.pos.min(self.bytes.len());
             return Ok(Some(match text.split_once('=') {
                 Some((key, value)) => Line::Keyword {
                     raw: key.trim(),
@@ -291,7 +200,7 @@ impl<'a> Parser<'a> {
         Ok(None)
     }
 
-    fn run(mut self) -> Result<Mesh> {
+    pub(super) fn run(mut self) -> Result<Mesh> {
         while let Some(line) = self.next_line()? {
             match line {
                 Line::Data(text) => self.data(text)?,
@@ -304,7 +213,7 @@ impl<'a> Parser<'a> {
     /// A data line: the next entry of the open section, skipped, or an error.
     fn data(&mut self, text: &str) -> Result<()> {
         let Some(open) = &mut self.open else {
-            if self.skipping {
+            if self.skipping.is_some() {
                 return Ok(());
             }
             let message = match (&self.closed, &self.last_keyword) {
@@ -358,8 +267,8 @@ impl<'a> Parser<'a> {
                 ),
             ));
         }
-        self.skipping = false;
         self.closed = None;
+        let skipped_from = self.skipping.take();
         match key.as_str() {
             "NDIME" => {
                 self.once(self.ndime, "NDIME=")?;
@@ -368,6 +277,7 @@ impl<'a> Parser<'a> {
                     return Err(self.err(line, format!("NDIME= {d} (expected 2 or 3)")));
                 }
                 self.ndime = Some((d, line));
+                self.anchor = Anchor::Dimension;
             }
             "NPOIN" => {
                 self.need_dim("NPOIN=")?;
@@ -375,6 +285,7 @@ impl<'a> Parser<'a> {
                 let n = self.count(value, "NPOIN=")?;
                 self.coords = Vec::with_capacity(self.capacity(n, self.dim()));
                 self.npoin = Some((n, line));
+                self.anchor = Anchor::Points;
                 self.start(Block::Points, n);
             }
             "NELEM" => {
@@ -385,12 +296,14 @@ impl<'a> Parser<'a> {
                 self.cells.kinds.reserve(cap);
                 self.cells.offsets.reserve(cap);
                 self.nelem = Some((n, line));
+                self.anchor = Anchor::Elements;
                 self.start(Block::Elements, n);
             }
             "NMARK" => {
                 self.need_dim("NMARK=")?;
                 self.once(self.nmark, "NMARK=")?;
                 self.nmark = Some((self.count(value, "NMARK=")?, line));
+                self.anchor = Anchor::MarkerCount;
             }
             "MARKERTAG" => self.marker_tag(value)?,
             "MARKERELEMS" => {
@@ -414,10 +327,24 @@ impl<'a> Parser<'a> {
                 m.facets.offsets.reserve(cap);
                 self.start(Block::Marker, n);
             }
-            _ => self.skipping = true,
+            _ => {
+                self.skipping = skipped_from.or(Some((self.gap_start, self.anchor)));
+            }
+        }
+        if let (None, Some(from)) = (self.skipping, skipped_from) {
+            self.keep_skipped(from, self.line_start);
         }
         self.last_keyword = Some((raw.to_string(), line));
         Ok(())
+    }
+
+    /// Keeps the skipped block that began at byte `start` after `after`, up to byte `end`.
+    fn keep_skipped(&mut self, (start, after): (usize, Anchor), end: usize) {
+        let text = &self.bytes[start..end.min(self.bytes.len())];
+        self.skipped.push(Skipped {
+            after,
+            text: String::from_utf8_lossy(text).into_owned(),
+        });
     }
 
     /// `MARKER_TAG= name`: starts a new marker.
@@ -451,6 +378,7 @@ impl<'a> Parser<'a> {
             elems_seen: false,
             facets: Cells::new(),
         });
+        self.anchor = Anchor::Marker(self.markers.len() - 1);
         Ok(())
     }
 
@@ -526,179 +454,11 @@ impl<'a> Parser<'a> {
             )),
         }
     }
-
-    /// `x y [z] [index …]`.
-    fn point(&mut self, text: &str) -> Result<()> {
-        let dim = self.dim();
-        let mut tokens = text.split_whitespace();
-        for k in 0..dim {
-            let Some(t) = tokens.next() else {
-                return Err(self.err(
-                    self.line,
-                    format!(
-                        "expected NDIME= {dim} coordinates, found {k} in '{}'",
-                        shown(text)
-                    ),
-                ));
-            };
-            let x: f64 = t.parse().map_err(|_| {
-                self.err(
-                    self.line,
-                    format!("expected a coordinate, found '{}'", shown(t)),
-                )
-            })?;
-            if !x.is_finite() {
-                return Err(self.err(
-                    self.line,
-                    format!(
-                        "non-finite coordinate '{}' (expected a finite number)",
-                        shown(t)
-                    ),
-                ));
-            }
-            self.coords.push(x);
-        }
-        self.trailing_indices(tokens, &format!("the {dim} coordinates"))
-    }
-
-    /// Anything after a point's coordinates or an element's nodes must be an index.
-    fn trailing_indices<'t>(
-        &self,
-        tokens: impl Iterator<Item = &'t str>,
-        after: &str,
-    ) -> Result<()> {
-        for t in tokens {
-            if t.parse::<u64>().is_err() {
-                return Err(self.err(
-                    self.line,
-                    format!("expected an index after {after}, found '{}'", shown(t)),
-                ));
-            }
-        }
-        Ok(())
-    }
-
-    /// A volume element line `type n1 … nk [index …]`.
-    fn element(&mut self, text: &str) -> Result<()> {
-        let dim = self.dim();
-        let kind = self.element_kind(text, |k| k.dim() == dim)?;
-        let mut cells = std::mem::take(&mut self.cells);
-        let done = self.element_nodes(text, kind, &mut cells);
-        self.cells = cells;
-        done
-    }
-
-    /// A marker element line `type n1 … nk [index …]`.
-    fn marker_element(&mut self, text: &str) -> Result<()> {
-        let dim = self.dim();
-        let kind = self.element_kind(text, |k| k.dim() < dim)?;
-        let mut m = self.markers.pop().expect("a marker section has a marker");
-        let done = self.element_nodes(text, kind, &mut m.facets);
-        self.markers.push(m);
-        done
-    }
-
-    /// The kind named by the line's type id, which must pass `allowed`.
-    fn element_kind(&self, text: &str, allowed: impl Fn(CellKind) -> bool) -> Result<CellKind> {
-        let first = text.split_whitespace().next().unwrap_or("");
-        let expected = || {
-            let names: Vec<String> = TYPES
-                .iter()
-                .filter(|t| allowed(t.1))
-                .map(|t| format!("{} {}", t.0, t.2))
-                .collect();
-            let (last, rest) = names.split_last().expect("every place allows a kind");
-            if rest.is_empty() {
-                last.clone()
-            } else {
-                format!("{} or {last}", rest.join(", "))
-            }
-        };
-        let Ok(id) = first.parse::<u32>() else {
-            return Err(self.err(
-                self.line,
-                format!(
-                    "expected an SU2 element type ({}), found '{}'",
-                    expected(),
-                    shown(first)
-                ),
-            ));
-        };
-        match TYPES.iter().find(|t| t.0 == id) {
-            Some(&(_, kind, _)) if allowed(kind) => Ok(kind),
-            Some(&(_, _, name)) => Err(self.err(
-                self.line,
-                format!(
-                    "SU2 element type {id} ({name}) does not belong in the {} of a {}D mesh \
-                     (expected {})",
-                    self.open_what(),
-                    self.dim(),
-                    expected()
-                ),
-            )),
-            None => Err(self.err(
-                self.line,
-                format!(
-                    "unsupported SU2 element type {id} (expected {})",
-                    expected()
-                ),
-            )),
-        }
-    }
-
-    /// What the section being read holds (the section may have just been closed).
-    fn open_what(&self) -> &'static str {
-        self.open
-            .as_ref()
-            .or(self.closed.as_ref())
-            .map_or("elements", |s| s.block.what())
-    }
-
-    /// Reads the node indices after the type id into `cells`.
-    fn element_nodes(&mut self, text: &str, kind: CellKind, cells: &mut Cells) -> Result<()> {
-        let n = kind.node_count();
-        let mut tokens = text.split_whitespace().skip(1);
-        let start = cells.nodes.len();
-        for k in 0..n {
-            let Some(t) = tokens.next() else {
-                return Err(self.err(
-                    self.line,
-                    format!(
-                        "{} (type {}) needs {n} node indices, found {k}",
-                        kind_name(kind),
-                        type_id(kind)
-                    ),
-                ));
-            };
-            let Ok(i) = t.parse::<usize>() else {
-                return Err(self.err(
-                    self.line,
-                    format!("expected a node index, found '{}'", shown(t)),
-                ));
-            };
-            cells.nodes.push(i);
-        }
-        let mut stored = [0usize; 8];
-        stored[..n].copy_from_slice(&cells.nodes[start..]);
-        for (k, slot) in cells.nodes[start..].iter_mut().enumerate() {
-            *slot = stored[kind.vtk_local(k)];
-        }
-        cells.kinds.push(kind);
-        cells.offsets.push(cells.nodes.len());
-        let top = cells.nodes[start..].iter().copied().max().unwrap_or(0);
-        let line = self.line;
-        let max = self
-            .max_refs
-            .last_mut()
-            .expect("an element section has a max");
-        if max.line == 0 || top > max.index {
-            *max = MaxRef { index: top, line };
-        }
-        self.trailing_indices(tokens, &format!("the {n} node indices"))
-    }
-
     /// Checks what only the end of the file tells and builds the mesh.
-    fn finish(self) -> Result<Mesh> {
+    fn finish(mut self) -> Result<Mesh> {
+        if let Some(from) = self.skipping.take() {
+            self.keep_skipped(from, self.bytes.len());
+        }
         let last = self.line.max(1);
         if let Some(open) = &self.open {
             return Err(self.err(
@@ -766,29 +526,9 @@ impl<'a> Parser<'a> {
                     facets: m.facets,
                 })
                 .collect(),
+            su2_skipped: self.skipped,
         };
         mesh.validate()?;
         Ok(mesh)
     }
 }
-
-/// The SU2/VTK name of a kind, as used in messages.
-fn kind_name(kind: CellKind) -> &'static str {
-    TYPES
-        .iter()
-        .find(|t| t.1 == kind)
-        .map(|t| t.2)
-        .expect("every kind has an SU2 name")
-}
-
-/// A token or line as quoted in messages: printable, at most 40 characters.
-fn shown(text: &str) -> String {
-    let mut s: String = text.chars().take(40).flat_map(char::escape_debug).collect();
-    if text.chars().count() > 40 {
-        s.push('…');
-    }
-    s
-}
-
-#[cfg(test)]
-mod tests;

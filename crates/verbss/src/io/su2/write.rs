@@ -1,0 +1,89 @@
+//! The SU2 writer.
+
+use std::collections::HashMap;
+use std::io::Write;
+
+use super::{type_id, Anchor};
+use crate::mesh::{CellKind, Mesh};
+
+/// Writes `mesh` in SU2 format: `NDIME=`, `NELEM=` (elements with their index),
+/// `NPOIN=` (coordinates in shortest round-trip form, so that reading the file
+/// back gives the same bits, with their index), `NMARK=` and one marker per
+/// group, with the mesh's [`Mesh::su2_skipped`] blocks put back verbatim after
+/// the section each followed (after the last marker when that marker is gone).
+///
+/// Fails with [`std::io::ErrorKind::InvalidInput`] for a group name an SU2 file
+/// cannot hold (empty, with surrounding spaces, a `%` or a control character).
+pub fn write_to(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
+    for g in &mesh.groups {
+        let name = g.name.as_str();
+        if name.is_empty()
+            || name.trim() != name
+            || name.contains('%')
+            || name.chars().any(char::is_control)
+        {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                format!("group name {name:?} cannot be written as an SU2 MARKER_TAG"),
+            ));
+        }
+    }
+    let markers = mesh.groups.len();
+    let mut skipped: HashMap<Anchor, Vec<&str>> = HashMap::new();
+    for b in &mesh.su2_skipped {
+        let after = match b.after {
+            Anchor::Marker(k) if k >= markers => markers
+                .checked_sub(1)
+                .map_or(Anchor::MarkerCount, Anchor::Marker),
+            a => a,
+        };
+        skipped.entry(after).or_default().push(&b.text);
+    }
+    let mut put_back = |w: &mut dyn Write, after: Anchor| -> std::io::Result<()> {
+        for text in skipped.remove(&after).unwrap_or_default() {
+            w.write_all(text.as_bytes())?;
+            if !text.ends_with('\n') {
+                writeln!(w)?;
+            }
+        }
+        Ok(())
+    };
+    put_back(w, Anchor::Start)?;
+    writeln!(w, "NDIME= {}", mesh.dim)?;
+    put_back(w, Anchor::Dimension)?;
+    writeln!(w, "NELEM= {}", mesh.cells.len())?;
+    for (c, (kind, nodes)) in mesh.cells.iter().enumerate() {
+        write_element(w, kind, nodes)?;
+        writeln!(w, "\t{c}")?;
+    }
+    put_back(w, Anchor::Elements)?;
+    writeln!(w, "NPOIN= {}", mesh.node_count())?;
+    for i in 0..mesh.node_count() {
+        for x in mesh.point(i) {
+            write!(w, "{x:?}\t")?;
+        }
+        writeln!(w, "{i}")?;
+    }
+    put_back(w, Anchor::Points)?;
+    writeln!(w, "NMARK= {markers}")?;
+    put_back(w, Anchor::MarkerCount)?;
+    for (k, g) in mesh.groups.iter().enumerate() {
+        writeln!(w, "MARKER_TAG= {}", g.name)?;
+        writeln!(w, "MARKER_ELEMS= {}", g.facets.len())?;
+        for (kind, nodes) in g.facets.iter() {
+            write_element(w, kind, nodes)?;
+            writeln!(w)?;
+        }
+        put_back(w, Anchor::Marker(k))?;
+    }
+    Ok(())
+}
+
+/// Writes `type n1 … nk` without the end of line, in SU2's (VTK's) node order.
+fn write_element(w: &mut dyn Write, kind: CellKind, nodes: &[usize]) -> std::io::Result<()> {
+    write!(w, "{}", type_id(kind))?;
+    for i in 0..nodes.len() {
+        write!(w, "\t{}", nodes[kind.vtk_local(i)])?;
+    }
+    Ok(())
+}
