@@ -255,6 +255,7 @@ impl Deformer {
             Some(Blend::new(
                 mesh,
                 &plan.roles,
+                &plan.normals,
                 blend::bodies(&plan.moving, &rigid.nodes),
             ))
         } else {
@@ -535,7 +536,13 @@ impl Deformer {
             return reference.to_vec();
         };
         let mut moved = blend.apply(reference, targets);
-        blend::keep_in_planes(self.mesh.dim, &self.roles, &self.normals, reference, &mut moved);
+        blend::keep_in_planes(
+            self.mesh.dim,
+            &self.roles,
+            &self.normals,
+            reference,
+            &mut moved,
+        );
         moved
     }
 

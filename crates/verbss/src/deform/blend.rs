@@ -58,18 +58,28 @@ struct Body {
     others: Vec<usize>,
     /// Half the body's size (its wall nodes' bounding-box diagonal).
     radius: f64,
-    /// The translation's last weights, the next increment's initial guess.
-    translation: Vec<f64>,
+    /// The translation's last weights, the next increment's initial
+    /// guesses: sliding nodes held at 0, and sliding nodes free.
+    held_slides: Vec<f64>,
+    free_slides: Vec<f64>,
 }
 
 /// The bodies of a run and the problem their weights solve.
 pub(super) struct Blend {
-    mesh: Mesh,
+    dim: usize,
     /// The diagonal of the input mesh's bounding box.
     extent: f64,
     laplace: Laplace,
     graph: Csr,
     bodies: Vec<Body>,
+    /// The unknowns of the translation's weight with sliding nodes held
+    /// at 0, and with them free.
+    unknown: Vec<bool>,
+    unknown_slides: Vec<bool>,
+    /// The sliding planes' common normal: sliding nodes slide with the
+    /// translation's part along it (`None`: no sliding node, or planes that
+    /// are not parallel, whose nodes then stay).
+    slide_normal: Option<[f64; 3]>,
 }
 
 /// One body's fitted rigid motion: `x ↦ c + t + R(θ)(x − c)`.
@@ -86,11 +96,26 @@ impl Blend {
     pub(super) fn new(
         mesh: &Mesh,
         roles: &[NodeRole],
+        normals: &[[f64; 3]],
         bodies: Vec<(Vec<usize>, Vec<usize>)>,
     ) -> Blend {
-        let unknown = roles.iter().map(|r| *r != NodeRole::Fixed).collect();
         let n = mesh.node_count();
-        let laplace = Laplace::new(mesh, unknown);
+        let laplace = Laplace::new(mesh);
+        let mut slide_normal = None;
+        let mut parallel = true;
+        for role in roles {
+            if let NodeRole::Slide(k) = *role {
+                let m = normals[k];
+                match slide_normal {
+                    None => slide_normal = Some(m),
+                    Some(first) => parallel &= norm(&cross(&first, &m)) <= 1e-9 * norm(&m),
+                }
+            }
+        }
+        let slide_normal = slide_normal.filter(|_| parallel).map(|m| {
+            let l = norm(&m);
+            [m[0] / l, m[1] / l, m[2] / l]
+        });
         let extent = diagonal(mesh.dim, &mesh.coords, &(0..n).collect::<Vec<_>>());
         let bodies = bodies
             .into_iter()
@@ -108,14 +133,18 @@ impl Blend {
                     fitted,
                     held,
                     others,
-                    translation: vec![0.0; n],
+                    held_slides: vec![0.0; n],
+                    free_slides: vec![0.0; n],
                 }
             })
             .collect();
         Blend {
+            unknown: roles.iter().map(|r| *r == NodeRole::Free).collect(),
+            unknown_slides: roles.iter().map(|r| *r != NodeRole::Fixed).collect(),
+            slide_normal,
             graph: laplace.graph(n),
             laplace,
-            mesh: mesh.clone(),
+            dim: mesh.dim,
             extent,
             bodies,
         }
@@ -131,7 +160,7 @@ impl Blend {
     /// `coords` moved by every body's blended rigid motion towards
     /// `targets` (the prescribed nodes' positions, moving nodes first).
     pub(super) fn apply(&mut self, coords: &[f64], targets: &[(usize, Vec<f64>)]) -> Vec<f64> {
-        let dim = self.mesh.dim;
+        let dim = self.dim;
         let mut moved = coords.to_vec();
         for body in &mut self.bodies {
             let still = body.fitted.iter().all(|&k| {
@@ -141,17 +170,38 @@ impl Blend {
             if still {
                 continue;
             }
-            let rigid = fit(dim, coords, targets, &body.fitted).about_axis(if std::env::var("NOAXIS").is_ok() { 0.0 } else { body.radius });
-            let w = &mut body.translation;
-            for (i, wi) in w.iter_mut().enumerate() {
-                if !self.laplace.is_unknown(i) {
-                    *wi = 0.0;
+            let rigid = fit(dim, coords, targets, &body.fitted).about_axis(body.radius);
+            // The translation's part across the sliding planes and along them.
+            let t = rigid.translation;
+            let (across, along) = match self.slide_normal {
+                Some(m) => {
+                    let tn = dot(&t, &m);
+                    let across = [tn * m[0], tn * m[1], tn * m[2]];
+                    (
+                        across,
+                        [t[0] - across[0], t[1] - across[1], t[2] - across[2]],
+                    )
                 }
+                None => (t, [0.0; 3]),
+            };
+            let moves = |v: &[f64; 3]| norm(v) > ROUND_OFF * self.extent;
+            for (w, unknown, part) in [
+                (&mut body.held_slides, &self.unknown, &across),
+                (&mut body.free_slides, &self.unknown_slides, &along),
+            ] {
+                if !moves(part) {
+                    continue;
+                }
+                for (wi, &u) in w.iter_mut().zip(unknown.iter()) {
+                    if !u {
+                        *wi = 0.0;
+                    }
+                }
+                for &i in &body.held {
+                    w[i] = 1.0;
+                }
+                self.laplace.solve(coords, unknown, w);
             }
-            for &i in &body.held {
-                w[i] = 1.0;
-            }
-            self.laplace.solve(coords, w);
             // The body's radius about the centre it turns about.
             let reach = body
                 .fitted
@@ -165,16 +215,19 @@ impl Blend {
                 })
                 .fold(0.0, f64::max);
             let rotation = angle_weights(&self.graph, dim, coords, body, reach);
+            let (across_on, along_on) = (moves(&across), moves(&along));
             for i in 0..coords.len() / dim {
-                let (wt, wr) = (body.translation[i], rotation[i]);
-                if wt == 0.0 && wr == 0.0 {
+                let wa = if across_on { body.held_slides[i] } else { 0.0 };
+                let wb = if along_on { body.free_slides[i] } else { 0.0 };
+                let wr = rotation[i];
+                if wa == 0.0 && wb == 0.0 && wr == 0.0 {
                     continue;
                 }
                 let x = &coords[dim * i..dim * (i + 1)];
                 let mut p = x.to_vec();
                 crate::motion::rotate(&mut p, &rigid.centre, &rigid.axis, wr * rigid.angle);
                 for d in 0..dim {
-                    moved[dim * i + d] += p[d] + wt * rigid.translation[d] - x[d];
+                    moved[dim * i + d] += p[d] - x[d] + wa * across[d] + wb * along[d];
                 }
             }
         }
@@ -318,12 +371,20 @@ impl Rigid {
         let a = self.axis;
         let t = self.translation;
         let along = dot(&t, &a);
-        let perp = [t[0] - along * a[0], t[1] - along * a[1], t[2] - along * a[2]];
+        let perp = [
+            t[0] - along * a[0],
+            t[1] - along * a[1],
+            t[2] - along * a[2],
+        ];
         let turn = cross(&a, &perp);
         let y: [f64; 3] =
             std::array::from_fn(|d| ((1.0 - cos) * perp[d] + sin * turn[d]) / (2.0 - 2.0 * cos));
         let length = norm(&y);
-        let s = if length > radius { radius / length } else { 1.0 };
+        let s = if length > radius {
+            radius / length
+        } else {
+            1.0
+        };
         for d in 0..3 {
             self.centre[d] += s * y[d];
             self.translation[d] -= s * perp[d];

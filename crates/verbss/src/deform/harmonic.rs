@@ -14,36 +14,27 @@ const REDUCTION: f64 = 1e-8;
 /// …or after this many iterations (the guard judges the mesh a weight makes).
 const MAX_ITERATIONS: usize = 4000;
 
-/// The edges of a mesh and which nodes are unknown.
+/// The edges of a mesh and the nodes on them.
 pub(super) struct Laplace {
     dim: usize,
     edges: Vec<[usize; 2]>,
-    unknown: Vec<bool>,
+    on_edge: Vec<bool>,
 }
 
 impl Laplace {
-    /// The problem on `mesh` with unknowns where `unknown` is set (and the
-    /// node is on an edge).
-    pub(super) fn new(mesh: &Mesh, mut unknown: Vec<bool>) -> Laplace {
+    /// The problem on the edges of `mesh`.
+    pub(super) fn new(mesh: &Mesh) -> Laplace {
         let edges = crate::topology::edges(&mesh.cells);
         let mut on_edge = vec![false; mesh.node_count()];
         for &[a, b] in &edges {
             on_edge[a] = true;
             on_edge[b] = true;
         }
-        for (u, e) in unknown.iter_mut().zip(on_edge) {
-            *u &= e;
-        }
         Laplace {
             dim: mesh.dim,
             edges,
-            unknown,
+            on_edge,
         }
-    }
-
-    /// Whether node `i` is an unknown.
-    pub(super) fn is_unknown(&self, i: usize) -> bool {
-        self.unknown[i]
     }
 
     /// The edges as a graph (both directions).
@@ -56,10 +47,16 @@ impl Laplace {
         )
     }
 
-    /// Solves for `w` on `coords`: on entry the prescribed values and the
+    /// Solves for `w` on `coords` with unknowns where `unknown` is set (and
+    /// the node is on an edge): on entry the prescribed values and the
     /// unknowns' initial guess, on exit the solution (clamped to `[0, 1]`).
-    pub(super) fn solve(&self, coords: &[f64], w: &mut [f64]) {
+    pub(super) fn solve(&self, coords: &[f64], unknown: &[bool], w: &mut [f64]) {
         let dim = self.dim;
+        let unknown: Vec<bool> = unknown
+            .iter()
+            .zip(&self.on_edge)
+            .map(|(u, e)| *u && *e)
+            .collect();
         let k: Vec<f64> = self
             .edges
             .iter()
@@ -88,24 +85,21 @@ impl Laplace {
         let mut r = vec![0.0; n];
         apply(w, &mut r);
         let dot = |x: &[f64], y: &[f64]| -> f64 {
-            (0..n)
-                .filter(|&i| self.unknown[i])
-                .map(|i| x[i] * y[i])
-                .sum()
+            (0..n).filter(|&i| unknown[i]).map(|i| x[i] * y[i]).sum()
         };
         for i in 0..n {
-            r[i] = if self.unknown[i] { -r[i] } else { 0.0 };
+            r[i] = if unknown[i] { -r[i] } else { 0.0 };
         }
         // The scale of the residual: the prescribed values' pull on the
         // unknowns with the unknowns at zero.
         let mut pull = vec![0.0; n];
         let prescribed: Vec<f64> = (0..n)
-            .map(|i| if self.unknown[i] { 0.0 } else { w[i] })
+            .map(|i| if unknown[i] { 0.0 } else { w[i] })
             .collect();
         apply(&prescribed, &mut pull);
         let scale = dot(&pull, &pull).sqrt();
         if scale == 0.0 {
-            for i in (0..n).filter(|&i| self.unknown[i]) {
+            for i in (0..n).filter(|&i| unknown[i]) {
                 w[i] = 0.0;
             }
             return;
@@ -121,7 +115,7 @@ impl Laplace {
                 break;
             }
             for i in 0..n {
-                if !self.unknown[i] {
+                if !unknown[i] {
                     p[i] = 0.0;
                 }
             }
@@ -131,7 +125,7 @@ impl Laplace {
                 break;
             }
             let alpha = rz / pq;
-            for i in (0..n).filter(|&i| self.unknown[i]) {
+            for i in (0..n).filter(|&i| unknown[i]) {
                 w[i] += alpha * p[i];
                 r[i] -= alpha * q[i];
                 z[i] = r[i] / diag[i];
@@ -139,7 +133,7 @@ impl Laplace {
             let next = dot(&r, &z);
             let beta = next / rz;
             rz = next;
-            for i in (0..n).filter(|&i| self.unknown[i]) {
+            for i in (0..n).filter(|&i| unknown[i]) {
                 p[i] = z[i] + beta * p[i];
             }
         }
