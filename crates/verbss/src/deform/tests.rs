@@ -336,3 +336,111 @@ fn unknown_group_is_named() {
         "unknown group 'wing' (the mesh has: left, right, bottom, top)"
     );
 }
+
+/// Settings with the recommended near-wall treatments (the blend on).
+fn recommended(steps: usize) -> Settings {
+    let mut s = Settings::new(steps);
+    s.robust = Robust::recommended();
+    s
+}
+
+#[test]
+fn a_rigid_pitch_is_blended_and_leaves_the_springs_nothing() {
+    let mesh = crate::io::read(Path::new(NACA)).unwrap();
+    let rotation = Motion::Rotation {
+        center: [0.25, 0.0, 0.0],
+        axis: [0.0, 0.0, 1.0],
+        angle: 30f64.to_radians(),
+    };
+    let mut d = Deformer::new(&mesh, &[attach(&["airfoil"], rotation)], recommended(10)).unwrap();
+    let farfield = mesh.group("farfield").unwrap().nodes();
+    for n in 1..=10 {
+        let r = d.step(n).unwrap();
+        assert_eq!((r.inverted, r.iterations), (0, 0), "step {n}");
+        assert!(r.stages.is_empty(), "step {n}: {:?}", r.stages);
+        assert!(r.min_quality > 0.3, "step {n}: {}", r.min_quality);
+    }
+    let x = &d.current().coords;
+    for &i in &farfield {
+        assert_eq!(&x[2 * i..2 * i + 2], mesh.point(i));
+    }
+    // Every free node turned by between 0 and 30° about the quarter chord.
+    for i in 0..mesh.node_count() {
+        let p = mesh.point(i);
+        let (a, b) = ([p[0] - 0.25, p[1]], [x[2 * i] - 0.25, x[2 * i + 1]]);
+        let turned = (a[0] * b[1] - a[1] * b[0]).atan2(a[0] * b[0] + a[1] * b[1]);
+        assert!(
+            (-1e-9..=30f64.to_radians() + 1e-9).contains(&turned),
+            "node {i} turned {turned}"
+        );
+    }
+}
+
+#[test]
+fn a_translation_between_sliding_walls_keeps_them_in_their_planes() {
+    let mesh = square(8);
+    let attachments = [
+        attach(
+            &["right"],
+            Motion::Translation {
+                displacement: [-0.3, 0.0, 0.0],
+            },
+        ),
+        attach(&["bottom", "top"], Motion::Slide { normal: None }),
+    ];
+    let mut d = Deformer::new(&mesh, &attachments, recommended(3)).unwrap();
+    for n in 1..=3 {
+        let r = d.step(n).unwrap();
+        assert_eq!((r.inverted, r.iterations), (0, 0));
+    }
+    let x = &d.current().coords;
+    for i in 0..mesh.node_count() {
+        let p = mesh.point(i);
+        if p[1] == 0.0 || p[1] == 1.0 {
+            assert_eq!(x[2 * i + 1], p[1], "node {i} left its wall");
+        }
+        // A translation along the walls: every node moves along x only,
+        // by the share its weight gives, the right wall by all of it.
+        assert!((x[2 * i + 1] - p[1]).abs() < 1e-12);
+        assert!((-0.3 - 1e-12..=1e-12).contains(&(x[2 * i] - p[0])));
+    }
+}
+
+#[test]
+fn a_deforming_body_leaves_the_springs_its_deformation() {
+    let mesh = square(8);
+    // The right wall bends: its nodes move by 0.1 y (1 − y), not a rigid motion.
+    let table: HashMap<usize, Vec<f64>> = mesh
+        .group("right")
+        .unwrap()
+        .nodes()
+        .into_iter()
+        .map(|i| {
+            let p = mesh.point(i);
+            (i, vec![p[0] - 0.1 * p[1] * (1.0 - p[1]), p[1]])
+        })
+        .collect();
+    let attachments = [attach(
+        &["right"],
+        Motion::Positions(PositionSource::Given(table.clone())),
+    )];
+    let mut d = Deformer::new(&mesh, &attachments, recommended(1)).unwrap();
+    let r = d.step(1).unwrap();
+    assert!(r.converged && r.iterations > 0, "{r:?}");
+    let x = &d.current().coords;
+    for (i, p) in &table {
+        assert_eq!(&x[2 * i..2 * i + 2], p.as_slice());
+    }
+    // The interior follows the bend: the middle row moved left by less
+    // than the wall's middle node (0.025), the bottom and top rows stayed.
+    let node = |i: usize, j: usize| j * 9 + i;
+    for i in 1..8 {
+        let m = node(i, 4);
+        let dx = x[2 * m] - mesh.point(m)[0];
+        assert!(dx < -1e-4 && dx > -0.025, "node {m}: {dx}");
+        for j in [0, 8] {
+            let k = node(i, j);
+            assert_eq!(&x[2 * k..2 * k + 2], mesh.point(k));
+        }
+    }
+}
