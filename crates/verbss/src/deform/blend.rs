@@ -444,13 +444,13 @@ fn largest_eigenvector(mut m: [[f64; 4]; 4]) -> [f64; 4] {
                 let t = if theta == 0.0 { 1.0 } else { t };
                 let c = 1.0 / (t * t + 1.0).sqrt();
                 let s = t * c;
-                for k in 0..4 {
-                    let (mka, mkb) = (m[k][a], m[k][b]);
-                    m[k][a] = c * mka - s * mkb;
-                    m[k][b] = s * mka + c * mkb;
+                for row in m.iter_mut() {
+                    let (mka, mkb) = (row[a], row[b]);
+                    row[a] = c * mka - s * mkb;
+                    row[b] = s * mka + c * mkb;
                 }
-                for k in 0..4 {
-                    let (mak, mbk) = (m[a][k], m[b][k]);
+                let (row_a, row_b) = (m[a], m[b]);
+                for (k, (mak, mbk)) in row_a.iter().zip(row_b).enumerate() {
                     m[a][k] = c * mak - s * mbk;
                     m[b][k] = s * mak + c * mbk;
                 }
