@@ -144,21 +144,26 @@ fn a_mesh_without_groups_says_how_to_add_them_in_gmsh() {
     assert!(!out.exists());
 }
 
-#[test]
-fn positions_with_1_based_ids_get_the_hint() {
-    let dir = tempfile::tempdir().unwrap();
-    let positions = dir.path().join("left.dat");
-    // The left nodes are 0 and 3; numbered from 1 they become 1 and 4.
-    std::fs::write(&positions, "1 -0.1 0\n4 -0.1 1\n").unwrap();
-    let o = deform(
-        dir.path(),
+/// `deform` with the `left` group moved to the positions in `positions`.
+fn move_left_to(dir: &Path, positions: &Path) -> std::process::Output {
+    deform(
+        dir,
         &[
             "--moving",
             "left",
             "--positions",
             positions.to_str().unwrap(),
         ],
-    );
+    )
+}
+
+#[test]
+fn positions_with_1_based_ids_get_the_hint() {
+    let dir = tempfile::tempdir().unwrap();
+    let positions = dir.path().join("left.dat");
+    // The left nodes are 0 and 3; numbered from 1 they become 1 and 4.
+    std::fs::write(&positions, "1 -0.1 0\n4 -0.1 1\n").unwrap();
+    let o = move_left_to(dir.path(), &positions);
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(
         stderr(&o),
@@ -170,14 +175,6 @@ fn positions_with_1_based_ids_get_the_hint() {
         )
     );
     std::fs::write(&positions, "0 -0.1 0\n3 -0.1 1\n").unwrap();
-    let o = deform(
-        dir.path(),
-        &[
-            "--moving",
-            "left",
-            "--positions",
-            positions.to_str().unwrap(),
-        ],
-    );
+    let o = move_left_to(dir.path(), &positions);
     assert!(o.status.success(), "{}", stderr(&o));
 }
