@@ -81,7 +81,7 @@ typedef struct VerbssDeformer VerbssDeformer;
 
 // Settings of a deformer; `verbss_settings_default` fills the defaults.
 typedef struct VerbssSettings {
-  // `VERBSS_METHOD_*` (default `VERBSS_METHOD_VERBSS`).
+  // `VERBSS_METHOD_*` (default `VERBSS_METHOD_ROBUST`, as on the command line).
   int32_t method;
   // `VERBSS_SOLVER_*` (default `VERBSS_SOLVER_SOR`).
   int32_t solver;
@@ -90,11 +90,11 @@ typedef struct VerbssSettings {
   // Over-relaxation factor ω of the sweeps (default 1.6).
   double omega;
   // Stop when the mean absolute change of one sweep is below `tolerance`
-  // times the step's largest prescribed displacement (default 1e-5).
+  // times the step's largest prescribed displacement (default 1e-6).
   double tolerance;
   // Nonzero: `tolerance` is an absolute threshold (default 0).
   int32_t absolute_tolerance;
-  // Most sweeps per step (default 1000).
+  // Most sweeps per step (default 2000).
   size_t max_iterations;
   // Worker threads, 0 for one per core (default 0); results do not depend on it.
   size_t threads;

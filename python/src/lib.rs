@@ -17,11 +17,10 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use verbss::deform::{Reference, Settings, StepReport};
+use std::str::FromStr;
+use verbss::deform::{Preset, Settings, StepReport};
 use verbss::io::WriteOptions;
 use verbss::motion::{Attachment, Motion, PositionSource};
-use verbss::robust::Robust;
-use verbss::solve::{Accel, Method, Solver};
 use verbss::{CellKind, Cells, Error, Group};
 
 create_exception!(
@@ -349,13 +348,14 @@ struct Moving {
 
 /// A mesh in motion, stepped by a flow solver (see `Deformer.step`).
 ///
-/// Deformer(mesh, method="verbss", omega=None, tolerance=1e-5,
-///          max_iterations=1000, threads=0, reference="updated", solver=None,
+/// Deformer(mesh, method="robust", omega=None, tolerance=None,
+///          max_iterations=None, threads=0, reference="updated", solver=None,
 ///          accel=None)
 ///
-/// - method: "verbss" (the paper's method: edge + ball-vertex springs, node
-///   by node), "robust" (verbss with the near-wall treatments of
-///   docs/robustness.md, the command's default), "ball-vertex"
+/// - method: "robust" (the default, as on the command line: verbss with the
+///   near-wall treatments and the blended rigid motion of
+///   docs/robustness.md), "verbss" (the paper's method: edge + ball-vertex
+///   springs, node by node), "ball-vertex"
 ///   (the same system solved globally by `solver`, "sor" or "direct"),
 ///   "spring" (edge springs only) or "laplacian".
 /// - omega: the over-relaxation factor of the sweeps (1.6 when None).
@@ -364,11 +364,14 @@ struct Moving {
 ///   escalates to the multigrid and the direct solve (docs/method.md); any
 ///   of them given: exactly that solver.
 /// - tolerance: the sweeps stop when the mean absolute change of one sweep is
-///   below tolerance × the step's largest prescribed displacement.
-/// - max_iterations: the most sweeps per step.
+///   below tolerance × the step's largest prescribed displacement (1e-6
+///   when None).
+/// - max_iterations: the most sweeps per step (2000 when None).
+/// Invalid settings raise VerbssError here, not at the first step.
 /// - threads: worker threads, 0 for one per core; results do not depend on it.
 /// - reference: "updated" (springs on the current mesh each step) or
-///   "initial" (springs on the input mesh, solving for the total displacement).
+///   "fixed" (also spelled "initial": springs on the input mesh, solving for
+///   the total displacement).
 /// - accel: "none" (plain VerBSS sweeps), "amg" (GMRES around a multigrid
 ///   V-cycle whose smoother is the VerBSS sweep; tolerance then bounds the
 ///   estimated RMS error) or "auto" (amg on large meshes of mostly
@@ -461,10 +464,10 @@ impl Deformer {
     #[new]
     #[pyo3(signature = (
         mesh,
-        method = "verbss",
+        method = "robust",
         omega = None,
-        tolerance = 1e-5,
-        max_iterations = 1000,
+        tolerance = None,
+        max_iterations = None,
         threads = 0,
         reference = "updated",
         solver = None,
@@ -475,64 +478,35 @@ impl Deformer {
         mesh: &Mesh,
         method: &str,
         omega: Option<f64>,
-        tolerance: f64,
-        max_iterations: usize,
-        threads: usize,
+        tolerance: Option<f64>,
+        max_iterations: Option<i64>,
+        threads: i64,
         reference: &str,
         solver: Option<&str>,
         accel: Option<&str>,
     ) -> PyResult<Deformer> {
-        let mut settings = Settings::new(1);
-        settings.reference = match reference {
-            "updated" => Reference::Updated,
-            "initial" => Reference::Fixed,
-            _ => {
-                return Err(invalid_setting(format!(
-                    "unknown reference '{reference}' (expected updated or initial)"
-                )))
-            }
+        let count = |name: &str, v: i64| {
+            usize::try_from(v)
+                .map_err(|_| invalid_setting(format!("{name} must be zero or positive (got {v})")))
         };
-        if method == "robust" {
-            settings.robust = Robust::recommended();
-        }
+        let mut settings = Preset::from_str(method).map_err(raise)?.settings(1);
+        settings.reference = reference.parse().map_err(raise)?;
         let s = &mut settings.solve;
-        s.method = match method {
-            "robust" | "verbss" => Method::Verbss,
-            "ball-vertex" => Method::BallVertex,
-            "spring" => Method::Spring,
-            "laplacian" => Method::Laplacian,
-            _ => {
-                return Err(invalid_setting(format!(
-                    "unknown method '{method}' (expected robust, verbss, ball-vertex, spring or laplacian)"
-                )))
-            }
-        };
         // A solver, accel or omega given means exactly that solver.
         s.escalate = solver.is_none() && accel.is_none() && omega.is_none();
-        let (solver, accel) = (solver.unwrap_or("sor"), accel.unwrap_or("none"));
-        s.solver = match solver {
-            "sor" => Solver::Sor,
-            "direct" => Solver::Direct,
-            _ => {
-                return Err(invalid_setting(format!(
-                    "unknown solver '{solver}' (expected sor or direct)"
-                )))
-            }
-        };
-        s.accel = match accel {
-            "none" => Accel::None,
-            "amg" => Accel::Amg,
-            "auto" => Accel::Auto,
-            _ => {
-                return Err(invalid_setting(format!(
-                    "unknown accel '{accel}' (expected none, amg or auto)"
-                )))
-            }
-        };
+        if let Some(solver) = solver {
+            s.solver = solver.parse().map_err(raise)?;
+        }
+        if let Some(accel) = accel {
+            s.accel = accel.parse().map_err(raise)?;
+        }
         s.omega = omega.unwrap_or(s.omega);
-        s.tolerance = tolerance;
-        s.max_iterations = max_iterations;
-        s.threads = threads;
+        s.tolerance = tolerance.unwrap_or(s.tolerance);
+        if let Some(k) = max_iterations {
+            s.max_iterations = count("max_iterations", k)?;
+        }
+        s.threads = count("threads", threads)?;
+        settings.validate().map_err(raise)?;
         Ok(Deformer {
             mesh: mesh.inner.clone(),
             settings,

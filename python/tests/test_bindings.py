@@ -31,7 +31,7 @@ CASES = [
     ("mesh_brick_hex_ffd.su2", "x_p", [0.2, 0.0, 0.05]),
 ]
 STEPS = 2
-SETTINGS = dict(omega=1.6, tolerance=1e-5, max_iterations=3000)
+SETTINGS = dict(method="verbss", omega=1.6, tolerance=1e-5, max_iterations=3000)
 
 
 @pytest.fixture(scope="session")
@@ -186,7 +186,7 @@ def test_robust_method_matches_the_command_default(cli, tmp_path):
     mesh, group, shift = CASES[1]
     expected = cli_deform(cli, tmp_path, mesh, group, shift, method="robust")
     plain = cli_deform(cli, tmp_path, mesh, group, shift)
-    d = verbss.Deformer(verbss.read(MESHES / mesh), method="robust", **SETTINGS)
+    d = verbss.Deformer(verbss.read(MESHES / mesh), **dict(SETTINGS, method="robust"))
     for n in range(1, STEPS + 1):
         got = d.step({group: np.array(shift) * n / STEPS})
     # The binding's wall positions are X + u, which the rigid layer carries as
@@ -236,8 +236,12 @@ def test_bad_settings_and_arrays_are_named():
     cases = [
         (lambda: verbss.Deformer(mesh, method="fast"),
          "invalid setting: unknown method 'fast' (expected robust, verbss, ball-vertex, spring or laplacian)"),
-        (lambda: verbss.Deformer(mesh, reference="fixed"),
-         "invalid setting: unknown reference 'fixed' (expected updated or initial)"),
+        (lambda: verbss.Deformer(mesh, reference="moving"),
+         "invalid setting: unknown reference 'moving' (expected updated or fixed)"),
+        (lambda: verbss.Deformer(mesh, omega=2.5),
+         "invalid setting: omega 2.5 is outside (0, 2)"),
+        (lambda: verbss.Deformer(mesh, threads=-1),
+         "invalid setting: threads must be zero or positive (got -1)"),
         (lambda: verbss.Deformer(mesh, accel="fast"),
          "invalid setting: unknown accel 'fast' (expected none, amg or auto)"),
         (lambda: verbss.Mesh([[0, 0], [1, 0], [0, 1]], {"tri": [[0, 1, 2]]}),

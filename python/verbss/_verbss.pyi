@@ -91,8 +91,10 @@ class Mesh:
 class Deformer:
     """A mesh in motion, stepped by a flow solver (see :meth:`step`).
 
-    - ``method``: ``"verbss"`` (edge + ball-vertex springs, node by node),
-      ``"ball-vertex"`` (the same system solved globally by ``solver``,
+    - ``method``: ``"robust"`` (the default, as on the command line: verbss
+      with the near-wall treatments and the blended rigid motion),
+      ``"verbss"`` (the paper's method: edge + ball-vertex springs, node by
+      node), ``"ball-vertex"`` (the same system solved globally by ``solver``,
       ``"sor"`` or ``"direct"``), ``"spring"`` (edge springs only) or
       ``"laplacian"``.
     - ``omega``: the over-relaxation factor of the sweeps (1.6 when None).
@@ -101,13 +103,16 @@ class Deformer:
       height, escalates to the multigrid and the direct solve; any of them
       given: exactly that solver.
     - ``tolerance``: the sweeps stop when the mean absolute change of one
-      sweep is below tolerance × the step's largest prescribed displacement.
-    - ``max_iterations``: the most sweeps per step.
+      sweep is below tolerance × the step's largest prescribed displacement
+      (1e-6 when None).
+    - ``max_iterations``: the most sweeps per step (2000 when None).
     - ``threads``: worker threads, 0 for one per core; results do not depend
       on it.
     - ``reference``: ``"updated"`` (springs on the current mesh each step) or
-      ``"initial"`` (springs on the input mesh, solving for the total
-      displacement).
+      ``"fixed"`` (also spelled ``"initial"``: springs on the input mesh,
+      solving for the total displacement).
+
+    Invalid settings raise :class:`VerbssError` here, not at the first step.
     - ``accel``: ``"none"`` (plain VerBSS sweeps), ``"amg"`` (GMRES around a
       multigrid V-cycle whose smoother is the VerBSS sweep; ``tolerance`` then
       bounds the estimated RMS error) or ``"auto"`` (``"amg"`` on large meshes
@@ -117,10 +122,10 @@ class Deformer:
     def __new__(
         cls,
         mesh: Mesh,
-        method: str = "verbss",
+        method: str = "robust",
         omega: Optional[float] = None,
-        tolerance: float = 1e-5,
-        max_iterations: int = 1000,
+        tolerance: Optional[float] = None,
+        max_iterations: Optional[int] = None,
         threads: int = 0,
         reference: str = "updated",
         solver: Optional[str] = None,

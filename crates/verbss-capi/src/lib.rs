@@ -45,10 +45,9 @@ use std::collections::{HashMap, HashSet};
 use std::ffi::{c_char, c_int, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-use verbss::deform::{Deformer, Reference, Settings, StepReport};
+use verbss::deform::{Deformer, Preset, Reference, Settings, StepReport};
 use verbss::motion::{Attachment, Motion, PositionSource};
-use verbss::robust::Robust;
-use verbss::solve::{Accel, Method, Solver};
+use verbss::solve::{Accel, Solver};
 use verbss::{CellKind, Cells, Error, Group, Mesh};
 
 /// Success.
@@ -109,7 +108,7 @@ pub const VERBSS_REFERENCE_INITIAL: i32 = 1;
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct VerbssSettings {
-    /// `VERBSS_METHOD_*` (default `VERBSS_METHOD_VERBSS`).
+    /// `VERBSS_METHOD_*` (default `VERBSS_METHOD_ROBUST`, as on the command line).
     pub method: i32,
     /// `VERBSS_SOLVER_*` (default `VERBSS_SOLVER_SOR`).
     pub solver: i32,
@@ -118,11 +117,11 @@ pub struct VerbssSettings {
     /// Over-relaxation factor ω of the sweeps (default 1.6).
     pub omega: f64,
     /// Stop when the mean absolute change of one sweep is below `tolerance`
-    /// times the step's largest prescribed displacement (default 1e-5).
+    /// times the step's largest prescribed displacement (default 1e-6).
     pub tolerance: f64,
     /// Nonzero: `tolerance` is an absolute threshold (default 0).
     pub absolute_tolerance: i32,
-    /// Most sweeps per step (default 1000).
+    /// Most sweeps per step (default 2000).
     pub max_iterations: usize,
     /// Worker threads, 0 for one per core (default 0); results do not depend on it.
     pub threads: usize,
@@ -131,15 +130,17 @@ pub struct VerbssSettings {
 }
 
 impl Default for VerbssSettings {
+    /// The product's defaults ([`Settings::robust`]), as on the command line.
     fn default() -> Self {
+        let d = Settings::robust(1).solve;
         VerbssSettings {
-            method: VERBSS_METHOD_VERBSS,
+            method: VERBSS_METHOD_ROBUST,
             solver: VERBSS_SOLVER_SOR,
             reference: VERBSS_REFERENCE_UPDATED,
-            omega: 1.6,
-            tolerance: 1e-5,
+            omega: d.omega,
+            tolerance: d.tolerance,
             absolute_tolerance: 0,
-            max_iterations: 1000,
+            max_iterations: d.max_iterations,
             threads: 0,
             accel: VERBSS_ACCEL_NONE,
         }
@@ -340,23 +341,21 @@ fn settings(s: &VerbssSettings) -> Result<Settings, Failure> {
             what.to_ascii_uppercase()
         )))
     };
-    let mut settings = Settings::new(1);
+    let preset = match s.method {
+        VERBSS_METHOD_VERBSS => Preset::Verbss,
+        VERBSS_METHOD_BALL_VERTEX => Preset::BallVertex,
+        VERBSS_METHOD_SPRING => Preset::Spring,
+        VERBSS_METHOD_LAPLACIAN => Preset::Laplacian,
+        VERBSS_METHOD_ROBUST => Preset::Robust,
+        m => return Err(bad("method", m)),
+    };
+    let mut settings = preset.settings(1);
     settings.reference = match s.reference {
         VERBSS_REFERENCE_UPDATED => Reference::Updated,
         VERBSS_REFERENCE_INITIAL => Reference::Fixed,
         r => return Err(bad("reference", r)),
     };
-    if s.method == VERBSS_METHOD_ROBUST {
-        settings.robust = Robust::recommended();
-    }
     let p = &mut settings.solve;
-    p.method = match s.method {
-        VERBSS_METHOD_VERBSS | VERBSS_METHOD_ROBUST => Method::Verbss,
-        VERBSS_METHOD_BALL_VERTEX => Method::BallVertex,
-        VERBSS_METHOD_SPRING => Method::Spring,
-        VERBSS_METHOD_LAPLACIAN => Method::Laplacian,
-        m => return Err(bad("method", m)),
-    };
     p.solver = match s.solver {
         VERBSS_SOLVER_SOR => Solver::Sor,
         VERBSS_SOLVER_DIRECT => Solver::Direct,
@@ -373,6 +372,7 @@ fn settings(s: &VerbssSettings) -> Result<Settings, Failure> {
     p.absolute_tolerance = s.absolute_tolerance != 0;
     p.max_iterations = s.max_iterations;
     p.threads = s.threads;
+    settings.validate()?;
     Ok(settings)
 }
 

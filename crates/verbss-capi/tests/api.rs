@@ -117,8 +117,21 @@ fn steps_match_the_library_and_a_rejected_step_changes_nothing() {
     assert!(message.starts_with("step 1: element "), "{message}");
     assert_eq!(info(d).step, 0);
     assert_eq!(points(d), p);
-    // The same step with a smaller displacement is accepted, then a second.
-    let mut library = library_deformer(&p, &n, Robust::off());
+    // The same step with a smaller displacement is accepted, then a second,
+    // as the library computes them with the defaults (the robust preset)
+    // after the same rejected step.
+    let mut library = library_deformer(&p, &n, Robust::recommended());
+    library
+        .set_motion(
+            0,
+            Motion::Positions(verbss::motion::PositionSource::Given(
+                [(12, vec![0.5 + far[0], 0.5 + far[1]])]
+                    .into_iter()
+                    .collect(),
+            )),
+        )
+        .unwrap();
+    assert!(library.advance().is_err());
     for (step, u) in [[0.1, 0.05], [0.15, -0.05]].iter().enumerate() {
         assert_eq!(unsafe { verbss_deformer_step(d, u.as_ptr(), 2) }, VERBSS_OK);
         let i = info(d);
@@ -337,6 +350,7 @@ fn the_accelerated_solve_is_selectable_and_gives_the_direct_solution() {
         VERBSS_OK
     );
     let amg = VerbssSettings {
+        method: VERBSS_METHOD_VERBSS,
         accel: VERBSS_ACCEL_AMG,
         tolerance: 1e-12,
         ..VerbssSettings::default()

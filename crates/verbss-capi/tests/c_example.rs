@@ -1,14 +1,13 @@
 //! `examples/c/deform.c` compiles against `include/verbss.h` and the shared
 //! library cargo built, runs on the repository's meshes, and ends with the
-//! coordinates of `verbss deform --translate`: the same engine on the same
-//! motion (the library path the command takes), bit for bit.
+//! coordinates the library computes for the same positions with the same
+//! (default, robust) settings, bit for bit.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use verbss::deform::{Deformer, Reference, Settings};
-use verbss::motion::{Attachment, Motion};
-use verbss::solve::Method;
+use verbss::motion::{Attachment, Motion, PositionSource};
 use verbss_capi::VerbssSettings;
 
 const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
@@ -53,26 +52,36 @@ fn compile(dir: &Path) -> PathBuf {
     program
 }
 
-/// What `verbss deform MESH --moving MARKER --translate SHIFT --steps STEPS
-/// --tolerance TOLERANCE` computes, with the C API's other default settings.
+/// What the library computes when MARKER's nodes are put at their input
+/// positions plus `n/steps × shift` at step `n` (as the C example does), with
+/// the C API's default settings and TOLERANCE.
 fn library_result(mesh: &str, marker: &str, steps: usize, shift: &[f64]) -> Vec<f64> {
     let mesh = verbss_mesh(mesh);
     let c = VerbssSettings::default();
-    let mut settings = Settings::new(steps);
+    let mut settings = Settings::robust(steps);
     settings.reference = Reference::Updated;
-    settings.solve.method = Method::Verbss;
     settings.solve.omega = c.omega;
     settings.solve.tolerance = TOLERANCE;
     settings.solve.max_iterations = c.max_iterations;
     settings.solve.threads = c.threads;
-    let mut displacement = [0.0; 3];
-    displacement[..shift.len()].copy_from_slice(shift);
+    let marker_nodes = mesh.group(marker).unwrap().nodes();
+    let at = |f: f64| {
+        let table = marker_nodes
+            .iter()
+            .map(|&i| {
+                let x = mesh.point(i);
+                (i, (0..mesh.dim).map(|d| x[d] + f * shift[d]).collect())
+            })
+            .collect();
+        Motion::Positions(PositionSource::Given(table))
+    };
     let attachment = Attachment {
         groups: vec![marker.into()],
-        motion: Motion::Translation { displacement },
+        motion: at(0.0),
     };
     let mut deformer = Deformer::new(&mesh, &[attachment], settings).unwrap();
     for n in 1..=steps {
+        deformer.set_motion(0, at(n as f64 / steps as f64)).unwrap();
         deformer.step(n).unwrap();
     }
     deformer.current().coords.clone()
@@ -143,13 +152,18 @@ fn c_example_reports_the_api_error_and_its_status() {
         .unwrap();
     assert_eq!(out.status.code(), Some(3));
     let mesh = verbss_mesh("mesh_NACA0012_inv.su2");
+    let table = mesh
+        .group("airfoil")
+        .unwrap()
+        .nodes()
+        .into_iter()
+        .map(|i| (i, vec![mesh.point(i)[0] + 1000.0, mesh.point(i)[1]]))
+        .collect();
     let attachment = Attachment {
         groups: vec!["airfoil".into()],
-        motion: Motion::Translation {
-            displacement: [1000.0, 0.0, 0.0],
-        },
+        motion: Motion::Positions(PositionSource::Given(table)),
     };
-    let mut settings = Settings::new(1);
+    let mut settings = Settings::robust(1);
     settings.solve.tolerance = VerbssSettings::default().tolerance;
     settings.solve.max_iterations = VerbssSettings::default().max_iterations;
     let message = Deformer::new(&mesh, &[attachment], settings)

@@ -10,12 +10,12 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::bail;
-use clap::{ArgGroup, Args, ValueEnum};
-use verbss::deform::{Predictor, Reference, Settings};
+use clap::{ArgGroup, Args};
+use verbss::deform::{Predictor, Preset, Reference};
 use verbss::io::{self, Format};
 use verbss::motion::{Attachment, Motion, PositionSource};
-use verbss::robust::{Layer, Robust};
-use verbss::solve::{Accel, Method, Solver};
+use verbss::robust::Layer;
+use verbss::solve::{Accel, Solver};
 
 use crate::overwrite::refuse_input_as_output;
 use crate::render::{PictureArgs, Recorder};
@@ -74,36 +74,38 @@ pub struct DeformArgs {
     /// blend on);
     /// verbss is the paper's method exactly.
     #[arg(long, value_enum, default_value = "robust")]
-    method: MethodArg,
+    method: Preset,
     /// The global solver of `--method ball-vertex` [default: sor]. Given
     /// explicitly (as --accel and --omega), it is the only solver used: no
     /// escalation when it stalls or diverges.
     #[arg(long, value_enum)]
-    solver: Option<SolverArg>,
+    solver: Option<Solver>,
     /// Plain VerBSS sweeps (none), the multigrid-accelerated solve (amg), or
     /// amg on large meshes of mostly triangles/tetrahedra (auto) [default:
     /// none, escalating to the multigrid and the direct solve when needed].
     #[arg(long, value_enum)]
-    accel: Option<AccelArg>,
+    accel: Option<Accel>,
     /// Number of equal increments.
     #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     steps: usize,
-    /// Springs on the current mesh each step (updated) or on the input mesh (initial).
+    /// Springs on the current mesh each step (updated) or on the input mesh
+    /// (fixed, also spelled initial).
     #[arg(long, value_enum, default_value = "updated")]
-    reference: ReferenceArg,
+    reference: Reference,
     /// Each step's initial guess: the previous step's solution, or extrapolated
     /// linearly from the two previous steps (fewer sweeps for smooth motions).
     #[arg(long, value_enum, default_value = "previous")]
-    predictor: PredictorArg,
-    /// Eq.-8 stop, relative to the step's largest prescribed displacement.
-    #[arg(long, default_value_t = 1e-6, allow_hyphen_values = true)]
-    tolerance: f64,
+    predictor: Predictor,
+    /// Eq.-8 stop, relative to the step's largest prescribed displacement
+    /// [default: 1e-6].
+    #[arg(long, allow_hyphen_values = true)]
+    tolerance: Option<f64>,
     /// Use --tolerance as the paper's absolute eq.-8 threshold.
     #[arg(long)]
     absolute_tolerance: bool,
-    /// Maximum sweeps per step.
-    #[arg(long, default_value_t = 2000, allow_hyphen_values = true)]
-    max_iterations: usize,
+    /// Maximum sweeps per step [default: 2000].
+    #[arg(long, allow_hyphen_values = true)]
+    max_iterations: Option<usize>,
     /// Over-relaxation factor ω [default: 1.6].
     #[arg(long, allow_hyphen_values = true)]
     omega: Option<f64>,
@@ -121,40 +123,6 @@ pub struct DeformArgs {
     overwrite: bool,
     #[command(flatten)]
     pictures: PictureArgs,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum MethodArg {
-    Robust,
-    Verbss,
-    BallVertex,
-    Spring,
-    Laplacian,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum AccelArg {
-    None,
-    Amg,
-    Auto,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum SolverArg {
-    Sor,
-    Direct,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum PredictorArg {
-    Previous,
-    Linear,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum ReferenceArg {
-    Updated,
-    Initial,
 }
 
 /// `off`, `auto` or a positive wall distance.
@@ -245,44 +213,21 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
     } else {
         unreachable!("clap requires one motion")
     };
-    let mut settings = Settings::new(args.steps);
-    settings.reference = match args.reference {
-        ReferenceArg::Updated => Reference::Updated,
-        ReferenceArg::Initial => Reference::Fixed,
-    };
-    settings.predictor = match args.predictor {
-        PredictorArg::Previous => Predictor::Previous,
-        PredictorArg::Linear => Predictor::Linear,
-    };
-    let mut robust = match args.method {
-        MethodArg::Robust => Robust::recommended(),
-        _ => Robust::off(),
-    };
+    let mut settings = args.method.settings(args.steps);
+    settings.reference = args.reference;
+    settings.predictor = args.predictor;
+    let robust = &mut settings.robust;
     robust.layer = args.rigid_layer.unwrap_or(robust.layer);
     robust.substeps = args.substeps.unwrap_or(robust.substeps);
     robust.stiffening = args.stiffening.unwrap_or(robust.stiffening);
     robust.blend = args.blend.unwrap_or(robust.blend);
-    settings.robust = robust;
     let s = &mut settings.solve;
-    s.method = match args.method {
-        MethodArg::Robust | MethodArg::Verbss => Method::Verbss,
-        MethodArg::BallVertex => Method::BallVertex,
-        MethodArg::Spring => Method::Spring,
-        MethodArg::Laplacian => Method::Laplacian,
-    };
-    s.solver = match args.solver {
-        None | Some(SolverArg::Sor) => Solver::Sor,
-        Some(SolverArg::Direct) => Solver::Direct,
-    };
-    s.accel = match args.accel {
-        None | Some(AccelArg::None) => Accel::None,
-        Some(AccelArg::Amg) => Accel::Amg,
-        Some(AccelArg::Auto) => Accel::Auto,
-    };
+    s.solver = args.solver.unwrap_or(s.solver);
+    s.accel = args.accel.unwrap_or(s.accel);
     s.escalate = args.solver.is_none() && args.accel.is_none() && args.omega.is_none();
-    s.tolerance = args.tolerance;
+    s.tolerance = args.tolerance.unwrap_or(s.tolerance);
     s.absolute_tolerance = args.absolute_tolerance;
-    s.max_iterations = args.max_iterations;
+    s.max_iterations = args.max_iterations.unwrap_or(s.max_iterations);
     s.omega = args.omega.unwrap_or(s.omega);
     s.threads = args.threads;
     let dir = match args.output.parent() {

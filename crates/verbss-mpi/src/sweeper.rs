@@ -262,24 +262,7 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
                     .into(),
             ));
         }
-        if !(params.omega > 0.0 && params.omega < 2.0) {
-            return Err(Error::InvalidSetting(format!(
-                "omega {} is outside (0, 2)",
-                params.omega
-            )));
-        }
-        if !(params.tolerance >= 0.0 && params.tolerance.is_finite()) {
-            return Err(Error::InvalidSetting(format!(
-                "tolerance {} is not a finite number ≥ 0",
-                params.tolerance
-            )));
-        }
-        if params.max_iterations == 0 {
-            return Err(Error::InvalidSetting(
-                "max_iterations is 0 (expected at least 1 sweep)".into(),
-            ));
-        }
-        Ok(())
+        params.validate()
     }
 
     /// Numbers the unknowns, assembles and factors the owned rows and lists

@@ -7,7 +7,6 @@ use serde::Serialize;
 use verbss::case::Case;
 use verbss::deform::{Settings, Snapshot};
 use verbss::mesh::Mesh;
-use verbss::report::{method_name, solver_name};
 
 use crate::cases::{LimitSearch, PaperCase};
 use crate::measure::{self, Means, Run, METHODS};
@@ -175,7 +174,7 @@ pub fn run_case(case: &PaperCase, root: &Path, out: &Path) -> anyhow::Result<Cas
         methods.push(MethodResult {
             method: name,
             solver: if method == verbss::solve::Method::BallVertex {
-                solver_name(solver)
+                solver.name()
             } else {
                 "sweeps"
             },
@@ -320,7 +319,7 @@ fn threads_rows(
     let mut s = settings.clone();
     s.solve.method = verbss::solve::Method::Verbss;
     s.solve.threads = 2;
-    let label = format!("{} {} 2 threads", case.name, method_name(s.solve.method));
+    let label = format!("{} {} 2 threads", case.name, s.solve.method.name());
     let two = measure::run(mesh, attachments, &s, n, &[], &label)?;
     let means = Means::of(&two.steps);
     let reference = kept(one, n).unwrap_or(&one.last);

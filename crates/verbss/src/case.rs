@@ -9,12 +9,12 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use crate::deform::{Predictor, Reference, Settings};
+use crate::deform::{Predictor, Preset, Reference, Settings};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Motion, PositionSource};
-use crate::robust::{Layer, Robust};
-use crate::solve::{Accel, Method, SolveParams, Solver};
+use crate::robust::Layer;
+use crate::solve::{Accel, SolveParams, Solver};
 
 /// A parsed case file.
 #[derive(Debug, Clone, PartialEq)]
@@ -65,7 +65,7 @@ struct CaseFile {
     steps: usize,
     dt: Option<f64>,
     #[serde(default)]
-    reference: ReferenceName,
+    reference: Reference,
     #[serde(default)]
     solver: SolverTable,
     #[serde(default)]
@@ -75,56 +75,12 @@ struct CaseFile {
 }
 
 #[derive(Deserialize, Default)]
-#[serde(rename_all = "kebab-case")]
-enum ReferenceName {
-    #[default]
-    Updated,
-    Fixed,
-}
-
-#[derive(Deserialize, Default, Clone, Copy)]
-#[serde(rename_all = "kebab-case")]
-enum MethodName {
-    #[default]
-    Robust,
-    Verbss,
-    BallVertex,
-    Spring,
-    Laplacian,
-}
-
-#[derive(Deserialize, Default, Clone, Copy)]
-#[serde(rename_all = "kebab-case")]
-enum AccelName {
-    #[default]
-    None,
-    Amg,
-    Auto,
-}
-
-#[derive(Deserialize, Default, Clone, Copy)]
-#[serde(rename_all = "kebab-case")]
-enum PredictorName {
-    #[default]
-    Previous,
-    Linear,
-}
-
-#[derive(Deserialize, Default, Clone, Copy)]
-#[serde(rename_all = "kebab-case")]
-enum SolverName {
-    #[default]
-    Sor,
-    Direct,
-}
-
-#[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 struct SolverTable {
     #[serde(default)]
-    method: MethodName,
-    solver: Option<SolverName>,
-    accel: Option<AccelName>,
+    method: Preset,
+    solver: Option<Solver>,
+    accel: Option<Accel>,
     omega: Option<f64>,
     tolerance: Option<f64>,
     absolute_tolerance: Option<bool>,
@@ -135,7 +91,7 @@ struct SolverTable {
     stiffening: Option<f64>,
     blend: Option<bool>,
     #[serde(default)]
-    predictor: PredictorName,
+    predictor: Predictor,
 }
 
 /// `rigid_layer = "off" | "auto" | THICKNESS`.
@@ -289,25 +245,13 @@ impl Case {
             return Err(at(top("dt"), format!("`dt` must be positive (got {dt})")));
         }
         let s = &file.solver;
+        let preset = s.method.settings(file.steps);
         let mut solve = SolveParams {
-            method: match s.method {
-                MethodName::Robust | MethodName::Verbss => Method::Verbss,
-                MethodName::BallVertex => Method::BallVertex,
-                MethodName::Spring => Method::Spring,
-                MethodName::Laplacian => Method::Laplacian,
-            },
-            solver: match s.solver.unwrap_or_default() {
-                SolverName::Sor => Solver::Sor,
-                SolverName::Direct => Solver::Direct,
-            },
-            accel: match s.accel.unwrap_or_default() {
-                AccelName::None => Accel::None,
-                AccelName::Amg => Accel::Amg,
-                AccelName::Auto => Accel::Auto,
-            },
+            solver: s.solver.unwrap_or_default(),
+            accel: s.accel.unwrap_or_default(),
             // A solver, accel or omega given explicitly means exactly that.
             escalate: s.solver.is_none() && s.accel.is_none() && s.omega.is_none(),
-            ..SolveParams::default()
+            ..preset.solve
         };
         if let Some(omega) = s.omega {
             if !(omega > 0.0 && omega < 2.0) {
@@ -348,10 +292,7 @@ impl Case {
             }
             solve.threads = t;
         }
-        let mut robust = match s.method {
-            MethodName::Robust => Robust::recommended(),
-            _ => Robust::off(),
-        };
+        let mut robust = preset.robust;
         if let Some(spec) = &s.rigid_layer {
             robust.layer = match spec {
                 LayerSpec::Name(n) if n == "off" => Layer::Off,
@@ -409,16 +350,10 @@ impl Case {
             settings: Settings {
                 steps: file.steps,
                 dt,
-                reference: match file.reference {
-                    ReferenceName::Updated => Reference::Updated,
-                    ReferenceName::Fixed => Reference::Fixed,
-                },
+                reference: file.reference,
                 solve,
                 robust,
-                predictor: match file.solver.predictor {
-                    PredictorName::Previous => Predictor::Previous,
-                    PredictorName::Linear => Predictor::Linear,
-                },
+                predictor: file.solver.predictor,
             },
             output: Output {
                 dir: file.output.dir.map(|d| base.join(d)),

@@ -31,77 +31,19 @@ use crate::error::{format_point, Error, Result, Unconverged};
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Clock, Motion};
 use crate::quality::{self, Inversion, Summary};
-use crate::robust::{self, Robust};
-use crate::solve::{Engine, NodeRole, SolveInfo, SolveParams, Stage};
+use crate::robust;
+use crate::solve::{Engine, NodeRole, SolveInfo, Stage};
 
 mod blend;
 mod harmonic;
 mod roles;
+mod settings;
 #[cfg(test)]
 mod tests;
 
 use self::blend::Blend;
 use self::roles::{duplicate_nodes, plan_roles};
-
-/// Which configuration the springs are built on (the paper's options 1 and 2).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Reference {
-    /// Option 1: springs on the current coordinates, solve for the increment.
-    #[default]
-    Updated,
-    /// Option 2: springs on the input mesh, solve for the total displacement.
-    Fixed,
-}
-
-/// How a step's initial guess is made from the steps before it. The guess
-/// only decides where the sweeps start, not the system they solve.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Predictor {
-    /// The previous step's solution (docs/method.md, "Time stepping").
-    #[default]
-    Previous,
-    /// Linear extrapolation `2 u₁ − u₂` from the previous solution `u₁` and
-    /// the one before it `u₂` (per unit step: increments with the updated
-    /// reference, total displacements — the input mesh's `u = 0` counting
-    /// as the first — with the fixed one). For a smooth motion the guess is
-    /// off by the change of the increment rather than by the increment's
-    /// change, so fewer sweeps reach the same stop.
-    Linear,
-}
-
-/// Settings of a run.
-#[derive(Debug, Clone, PartialEq)]
-#[non_exhaustive]
-pub struct Settings {
-    /// The number of steps `N` of the run (the motions' `n/N`).
-    pub steps: usize,
-    /// Time per step (`t = n · dt`, used by undulation).
-    pub dt: f64,
-    /// Updated or fixed reference.
-    pub reference: Reference,
-    /// The solver's settings for every step.
-    pub solve: SolveParams,
-    /// The near-wall treatments (off: the paper's method).
-    pub robust: Robust,
-    /// How each step's initial guess is made.
-    pub predictor: Predictor,
-}
-
-impl Settings {
-    /// `steps` steps of `dt = 1/steps`, updated reference, default solver.
-    pub fn new(steps: usize) -> Settings {
-        Settings {
-            steps,
-            dt: 1.0 / steps.max(1) as f64,
-            reference: Reference::Updated,
-            solve: SolveParams::default(),
-            robust: Robust::off(),
-            predictor: Predictor::Previous,
-        }
-    }
-}
+pub use self::settings::{Predictor, Preset, Reference, Settings};
 
 /// What one step did (one line of `report.json`).
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -198,7 +140,7 @@ pub struct Deformer {
     layer: Vec<(usize, Option<usize>, Option<usize>)>,
     /// The rigid layer's thickness around each body.
     layer_thickness: Vec<f64>,
-    /// The blended rigid motion, when [`Robust::blend`] is on.
+    /// The blended rigid motion, when [`crate::robust::Robust::blend`] is on.
     blend: Option<Blend>,
     orientation: Vec<i8>,
     /// The last solution per unit step fraction (increment, or total
@@ -220,11 +162,7 @@ impl Deformer {
     /// role, builds the solver's topology and checks the input mesh (which
     /// must have no degenerate element and no two nodes at the same position).
     pub fn new(mesh: &Mesh, attachments: &[Attachment], settings: Settings) -> Result<Deformer> {
-        if settings.steps == 0 {
-            return Err(Error::InvalidSetting(
-                "the number of steps must be at least 1".into(),
-            ));
-        }
+        settings.validate()?;
         let motions: Vec<Motion> = attachments.iter().map(|a| a.motion.clone()).collect();
         for m in &motions {
             m.validate(mesh.dim)?;

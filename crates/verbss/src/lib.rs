@@ -67,6 +67,7 @@ pub mod html_report;
 pub mod io;
 pub mod mesh;
 pub mod motion;
+mod names;
 pub mod quality;
 pub mod render;
 pub mod report;

@@ -21,7 +21,7 @@ use crate::error::Result;
 use crate::io::write_atomic;
 use crate::mesh::Mesh;
 use crate::robust::{Layer, Robust};
-use crate::solve::{Accel, Method, Solver};
+use crate::solve::Method;
 
 /// The settings header of a report.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -73,11 +73,11 @@ impl Header {
         let method = if s.method == Method::Verbss && *robust == Robust::recommended() {
             "robust"
         } else {
-            method_name(s.method)
+            s.method.name()
         };
         Header {
             method,
-            solver: solver_name(s.solver),
+            solver: s.solver.name(),
             reference: settings.reference,
             steps: settings.steps,
             dt: settings.dt,
@@ -86,11 +86,7 @@ impl Header {
             absolute_tolerance: s.absolute_tolerance,
             max_iterations: s.max_iterations,
             threads: s.threads,
-            accel: match s.accel {
-                Accel::None => "none",
-                Accel::Amg => "amg",
-                Accel::Auto => "auto",
-            },
+            accel: s.accel.name(),
             escalate: s.escalate,
             predictor: settings.predictor,
             rigid_layer: match robust.layer {
@@ -148,24 +144,6 @@ impl Report {
             serde_json::to_writer_pretty(&mut *w, self)?;
             w.write_all(b"\n")
         })
-    }
-}
-
-/// The case-file and report name of a method.
-pub fn method_name(m: Method) -> &'static str {
-    match m {
-        Method::Verbss => "verbss",
-        Method::BallVertex => "ball-vertex",
-        Method::Spring => "spring",
-        Method::Laplacian => "laplacian",
-    }
-}
-
-/// The case-file and report name of a global solver.
-pub fn solver_name(s: Solver) -> &'static str {
-    match s {
-        Solver::Sor => "sor",
-        Solver::Direct => "direct",
     }
 }
 

@@ -82,6 +82,31 @@ pub struct Robust {
 }
 
 impl Robust {
+    /// Checks the treatments: a stiffening exponent ≥ 0, a positive layer
+    /// thickness, at most 30 sub-step halvings.
+    pub fn validate(&self) -> Result<()> {
+        let p = self.stiffening;
+        if !(p >= 0.0 && p.is_finite()) {
+            return Err(Error::InvalidSetting(format!(
+                "the stiffening exponent must be zero or positive (got {p})"
+            )));
+        }
+        if let Layer::Thickness(t) = self.layer {
+            if !(t > 0.0 && t.is_finite()) {
+                return Err(Error::InvalidSetting(format!(
+                    "the rigid layer's thickness must be positive (got {t})"
+                )));
+            }
+        }
+        if self.substeps > 30 {
+            return Err(Error::InvalidSetting(format!(
+                "substeps must be at most 30 (got {})",
+                self.substeps
+            )));
+        }
+        Ok(())
+    }
+
     /// The paper's method: no treatment.
     pub fn off() -> Robust {
         Robust::default()
@@ -124,21 +149,12 @@ pub fn prepare(
     moving: &[(usize, Vec<usize>)],
     robust: &Robust,
 ) -> Result<Treatment> {
+    robust.validate()?;
     let p = robust.stiffening;
-    if !(p >= 0.0 && p.is_finite()) {
-        return Err(Error::InvalidSetting(format!(
-            "the stiffening exponent must be zero or positive (got {p})"
-        )));
-    }
     let given = match robust.layer {
         Layer::Off if p == 0.0 => return Ok(Treatment::default()),
         Layer::Off | Layer::Auto => None,
-        Layer::Thickness(t) if t > 0.0 && t.is_finite() => Some(t),
-        Layer::Thickness(t) => {
-            return Err(Error::InvalidSetting(format!(
-                "the rigid layer's thickness must be positive (got {t})"
-            )))
-        }
+        Layer::Thickness(t) => Some(t),
     };
     let n = mesh.node_count();
     let edges = topology::edges(&mesh.cells);

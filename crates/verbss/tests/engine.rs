@@ -668,7 +668,7 @@ fn bad_input_is_reported() {
     let e = engine.solve(&mesh.coords, &mut u, &laplace).unwrap_err();
     assert_eq!(
         e.to_string(),
-        "invalid setting: --accel amg solves the block systems of --method verbss and spring \
+        "invalid setting: accel amg solves the block systems of method verbss and spring \
          (not ball-vertex or laplacian)"
     );
     let mut flat = mesh.coords.clone();

@@ -105,7 +105,9 @@ pub enum NodeRole {
 }
 
 /// Which system to build.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum Method {
     /// Edge + ball-vertex springs, solved node by node (block SOR with per-node LDLᵀ).
     #[default]
@@ -119,7 +121,9 @@ pub enum Method {
 }
 
 /// How `ball-vertex` solves its global system.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum Solver {
     /// Scalar SOR over all D·N unknowns (the paper's baseline).
     #[default]
@@ -129,7 +133,9 @@ pub enum Solver {
 }
 
 /// How the block systems of [`Method::Verbss`] and [`Method::Spring`] are solved.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum Accel {
     /// Plain VerBSS sweeps (block SOR) until the eq.-8 test: the paper's method.
     #[default]
@@ -145,6 +151,15 @@ pub enum Accel {
     /// solve it cannot finish falls back to plain sweeps.
     Auto,
 }
+
+crate::names::named!(Method, "method", [
+    Verbss => "verbss",
+    BallVertex => "ball-vertex",
+    Spring => "spring",
+    Laplacian => "laplacian",
+]);
+crate::names::named!(Solver, "solver", [Sor => "sor", Direct => "direct"]);
+crate::names::named!(Accel, "accel", [None => "none", Amg => "amg", Auto => "auto"]);
 
 /// The size from which [`Accel::Auto`] uses the multigrid in 2D: where a
 /// first step, setup included, stops being slower than plain sweeps.
@@ -230,6 +245,38 @@ impl Default for SolveParams {
             accel: Accel::None,
             escalate: true,
         }
+    }
+}
+
+impl SolveParams {
+    /// Checks the settings: ω in (0, 2), a finite tolerance ≥ 0, at least
+    /// one sweep, and the multigrid only for the block systems.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.omega > 0.0 && self.omega < 2.0) {
+            return Err(Error::InvalidSetting(format!(
+                "omega {} is outside (0, 2)",
+                self.omega
+            )));
+        }
+        if !(self.tolerance >= 0.0 && self.tolerance.is_finite()) {
+            return Err(Error::InvalidSetting(format!(
+                "tolerance {} is not a finite number ≥ 0",
+                self.tolerance
+            )));
+        }
+        if self.accel == Accel::Amg && !matches!(self.method, Method::Verbss | Method::Spring) {
+            return Err(Error::InvalidSetting(
+                "accel amg solves the block systems of method verbss and spring \
+                 (not ball-vertex or laplacian)"
+                    .into(),
+            ));
+        }
+        if self.max_iterations == 0 {
+            return Err(Error::InvalidSetting(
+                "max_iterations is 0 (expected at least 1 sweep)".into(),
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -587,30 +634,7 @@ impl Engine {
                 )));
             }
         }
-        if !(params.omega > 0.0 && params.omega < 2.0) {
-            return Err(Error::InvalidSetting(format!(
-                "omega {} is outside (0, 2)",
-                params.omega
-            )));
-        }
-        if !(params.tolerance >= 0.0 && params.tolerance.is_finite()) {
-            return Err(Error::InvalidSetting(format!(
-                "tolerance {} is not a finite number ≥ 0",
-                params.tolerance
-            )));
-        }
-        if params.accel == Accel::Amg && !matches!(params.method, Method::Verbss | Method::Spring) {
-            return Err(Error::InvalidSetting(
-                "--accel amg solves the block systems of --method verbss and spring \
-                 (not ball-vertex or laplacian)"
-                    .into(),
-            ));
-        }
-        if params.max_iterations == 0 {
-            return Err(Error::InvalidSetting(
-                "max_iterations is 0 (expected at least 1 sweep)".into(),
-            ));
-        }
+        params.validate()?;
         Ok(())
     }
 
