@@ -206,10 +206,12 @@ impl<'c, C: Communicator> Stepper<'c, C> {
         targets: &[(usize, Vec<f64>)],
         fraction: f64,
     ) -> Result<(Vec<f64>, Vec<f64>, SolveInfo, Vec<Inversion>)> {
+        let start = self.deformer.blended(coords, targets);
+        let nothing_left = self.deformer.nothing_left(&start, targets);
         let mesh = self.deformer.initial();
         let dim = mesh.dim;
         let base: &[f64] = match self.deformer.settings().reference {
-            Reference::Updated => coords,
+            Reference::Updated => &start,
             Reference::Fixed => &mesh.coords,
         };
         let roles = self.deformer.roles();
@@ -230,8 +232,21 @@ impl<'c, C: Communicator> Stepper<'c, C> {
         }
         for (node, p) in targets {
             for d in 0..dim {
-                u[dim * node + d] = p[d] - base[dim * node + d];
+                u[dim * node + d] = p[d] - start[dim * node + d];
             }
+        }
+        if nothing_left {
+            // The blend put every prescribed node on its target: every rank
+            // knows it and skips the solve.
+            u.fill(0.0);
+            let mut info = SolveInfo::default();
+            info.converged = true;
+            let mut next = start;
+            for (node, p) in targets {
+                next[dim * node..dim * (node + 1)].copy_from_slice(p);
+            }
+            let inversions = quality::inversions(mesh, &next, &self.orientation);
+            return Ok((next, u, info, inversions));
         }
         if self.colouring.as_ref().is_none_or(|(x, _)| x != base) {
             let normals = unit_normals(self.deformer.normals(), dim);
@@ -262,7 +277,7 @@ impl<'c, C: Communicator> Stepper<'c, C> {
             .sweeper
             .solve(&local_base, &local_colours, &mut local_u, &params)?;
         self.gather(&local_u, &mut u);
-        let mut next: Vec<f64> = base.iter().zip(&u).map(|(x, d)| x + d).collect();
+        let mut next: Vec<f64> = start.iter().zip(&u).map(|(x, d)| x + d).collect();
         for (node, p) in targets {
             next[dim * node..dim * (node + 1)].copy_from_slice(p);
         }

@@ -464,8 +464,10 @@ impl Deformer {
 
     /// Where a (sub-)step from `coords` towards `targets` starts: the
     /// reference configuration (`coords`, or the input mesh with the fixed
-    /// reference) moved by the blended rigid motion when it is on.
-    fn blended(&mut self, coords: &[f64], targets: &[(usize, Vec<f64>)]) -> Vec<f64> {
+    /// reference) moved by the blended rigid motion when it is on
+    /// (docs/method.md, "Blended rigid motion"). A stepper that solves the
+    /// springs elsewhere (over MPI) starts from here too.
+    pub fn blended(&mut self, coords: &[f64], targets: &[(usize, Vec<f64>)]) -> Vec<f64> {
         let reference = match self.settings.reference {
             Reference::Updated => coords,
             Reference::Fixed => &self.mesh.coords,
@@ -482,6 +484,18 @@ impl Deformer {
             &mut moved,
         );
         moved
+    }
+
+    /// Whether `start` ([`Deformer::blended`]) already puts every
+    /// prescribed node at its target, to round-off: the springs have
+    /// nothing to solve (a rigid body under the blend).
+    pub fn nothing_left(&self, start: &[f64], targets: &[(usize, Vec<f64>)]) -> bool {
+        let dim = self.mesh.dim;
+        let left = targets
+            .iter()
+            .flat_map(|(node, p)| (0..dim).map(move |d| (p[d] - start[dim * node + d]).abs()))
+            .fold(0.0, f64::max);
+        self.blend.as_ref().is_some_and(|b| b.leaves_nothing(left))
     }
 
     /// One solve from `start` ([`Deformer::blended`]) with the prescribed
@@ -526,15 +540,12 @@ impl Deformer {
                 }
             }
         }
-        let mut left: f64 = 0.0;
         for (node, p) in targets {
             for d in 0..dim {
-                let v = p[d] - start[dim * node + d];
-                u[dim * node + d] = v;
-                left = left.max(v.abs());
+                u[dim * node + d] = p[d] - start[dim * node + d];
             }
         }
-        let info = if self.blend.as_ref().is_some_and(|b| b.leaves_nothing(left)) {
+        let info = if self.nothing_left(start, targets) {
             u.fill(0.0);
             SolveInfo {
                 converged: true,
