@@ -496,6 +496,8 @@ fn vector(key: &str, x: &[f64], dim: usize) -> std::result::Result<[f64; 3], Str
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::robust::Robust;
+    use crate::solve::Method;
 
     fn parse(text: &str) -> Result<Case> {
         Case::parse(text, Path::new("cases/c.toml"))

@@ -6,6 +6,7 @@ use std::path::Path;
 use super::*;
 use crate::mesh::{CellKind, Cells, Group};
 use crate::motion::PositionSource;
+use crate::robust::Robust;
 
 const NACA: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
