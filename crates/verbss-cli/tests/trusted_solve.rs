@@ -46,12 +46,28 @@ fn pitch_cgrid(dir: &Path, extra: &[&str]) -> (Output, serde_json::Value) {
 }
 
 #[test]
-fn the_default_escalates_where_the_sweeps_diverge_and_records_what_ran() {
+fn the_default_blends_a_rigid_pitch_and_solves_nothing() {
     let dir = tempfile::tempdir().unwrap();
     let (o, r) = pitch_cgrid(dir.path(), &[]);
     assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(r["settings"]["method"], "robust");
+    assert_eq!(r["settings"]["blend"], true);
+    for step in &r["steps"].as_array().unwrap()[1..] {
+        assert_eq!(step["stages"].as_array().unwrap().len(), 0, "{step}");
+        assert_eq!(step["iterations"], 0);
+        assert_eq!(step["inverted"], 0);
+    }
+}
+
+/// The springs' solve on its own: the default without the blend.
+#[test]
+fn the_default_escalates_where_the_sweeps_diverge_and_records_what_ran() {
+    let dir = tempfile::tempdir().unwrap();
+    let (o, r) = pitch_cgrid(dir.path(), &["--blend", "off"]);
+    assert!(o.status.success(), "{}", stderr(&o));
     let s = &r["settings"];
-    assert_eq!(s["method"], "robust");
+    assert_eq!(s["method"], "verbss");
+    assert_eq!(s["blend"], false);
     assert_eq!(s["escalate"], true);
     assert_eq!(s["accel"], "none");
     assert_eq!(s["predictor"], "previous");
@@ -83,7 +99,10 @@ fn the_default_escalates_where_the_sweeps_diverge_and_records_what_ran() {
 #[test]
 fn an_explicit_omega_means_that_solver_only_and_a_diverged_solve_is_exit_4() {
     let dir = tempfile::tempdir().unwrap();
-    let (o, r) = pitch_cgrid(dir.path(), &["--omega", "1.6", "--substeps", "0"]);
+    let (o, r) = pitch_cgrid(
+        dir.path(),
+        &["--omega", "1.6", "--substeps", "0", "--blend", "off"],
+    );
     assert_eq!(o.status.code(), Some(4), "{}", stderr(&o));
     let e = stderr(&o);
     assert!(
@@ -138,6 +157,8 @@ fn a_step_is_rejected_for_an_inversion_only_after_its_exact_solve() {
             "30,0",
             "--substeps",
             "0",
+            "--blend",
+            "off",
         ],
     );
     assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));

@@ -20,8 +20,7 @@ use crate::deform::{Predictor, Reference, Settings, StepReport};
 use crate::error::Result;
 use crate::io::write_atomic;
 use crate::mesh::Mesh;
-use crate::robust::{Layer, Robust};
-use crate::solve::Method;
+use crate::robust::Layer;
 
 /// The settings header of a report.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -70,11 +69,7 @@ impl Header {
     pub fn new(settings: &Settings) -> Header {
         let s = &settings.solve;
         let robust = &settings.robust;
-        let method = if s.method == Method::Verbss && *robust == Robust::recommended() {
-            "robust"
-        } else {
-            s.method.name()
-        };
+        let method = settings.preset().name();
         Header {
             method,
             solver: s.solver.name(),
