@@ -1,0 +1,244 @@
+//! The settings of one solve and what it reports: node roles, methods,
+//! solvers, the multigrid choice, [`SolveParams`] and [`SolveInfo`].
+
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+use crate::topology;
+
+/// What a node's displacement is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NodeRole {
+    /// An unknown: moved by the springs.
+    Free,
+    /// Prescribed: the displacement given on entry is kept.
+    Fixed,
+    /// Slides within a plane with this unit normal (index into [`Engine::new`]'s `normals`):
+    /// the normal component of the displacement is prescribed, the tangential ones are unknowns.
+    Slide(usize),
+}
+
+/// Which system to build.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
+pub enum Method {
+    /// Edge + ball-vertex springs, solved node by node (block SOR with per-node LDLᵀ).
+    #[default]
+    Verbss,
+    /// Edge + ball-vertex springs, solved as one global system ([`Solver`]).
+    BallVertex,
+    /// Edge springs only (Batina), solved node by node.
+    Spring,
+    /// Component-wise Laplacian with `k = 1/L`, solved node by node.
+    Laplacian,
+}
+
+/// How `ball-vertex` solves its global system.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
+pub enum Solver {
+    /// Scalar SOR over all D·N unknowns (the paper's baseline).
+    #[default]
+    Sor,
+    /// Exact sparse LU (the reference).
+    Direct,
+}
+
+/// How the block systems of [`Method::Verbss`] and [`Method::Spring`] are solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
+pub enum Accel {
+    /// Plain VerBSS sweeps (block SOR) until the eq.-8 test: the paper's method.
+    #[default]
+    None,
+    /// GMRES preconditioned by a smoothed-aggregation multigrid V-cycle with
+    /// the VerBSS sweep as its finest smoother; stops when the estimated
+    /// root-mean-square error of the unknowns is below the threshold
+    /// (`docs/acceleration.md`).
+    Amg,
+    /// [`Accel::Amg`] for meshes of mostly triangles or tetrahedra with at
+    /// least [`AUTO_AMG_NODES_2D`] (2D) or [`AUTO_AMG_NODES_3D`] (3D) unknown
+    /// nodes, [`Accel::None`] otherwise; a multigrid that cannot be built or a
+    /// solve it cannot finish falls back to plain sweeps.
+    Auto,
+}
+
+crate::names::named!(Method, "method", [
+    Verbss => "verbss",
+    BallVertex => "ball-vertex",
+    Spring => "spring",
+    Laplacian => "laplacian",
+]);
+crate::names::named!(Solver, "solver", [Sor => "sor", Direct => "direct"]);
+crate::names::named!(Accel, "accel", [None => "none", Amg => "amg", Auto => "auto"]);
+
+/// The size from which [`Accel::Auto`] uses the multigrid in 2D: where a
+/// first step, setup included, stops being slower than plain sweeps.
+pub const AUTO_AMG_NODES_2D: usize = 3_000;
+/// The same in 3D, where plain sweeps need fewer sweeps for the same size
+/// and each setup costs more.
+pub const AUTO_AMG_NODES_3D: usize = 100_000;
+
+/// Settings of one solve (one time step).
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct SolveParams {
+    /// The system and its solution strategy.
+    pub method: Method,
+    /// The global solver of [`Method::BallVertex`].
+    pub solver: Solver,
+    /// Over-relaxation factor ω of the sweeps (paper: 1.5–1.7).
+    pub omega: f64,
+    /// Stop when the eq.-8 value (mean absolute change of all unknown components
+    /// in one sweep) is below `tolerance × max |prescribed displacement of the step|`,
+    /// or below `tolerance` itself when `absolute_tolerance` is set.
+    pub tolerance: f64,
+    /// Use `tolerance` as the paper's absolute eq.-8 threshold.
+    pub absolute_tolerance: bool,
+    /// Maximum number of sweeps k_max.
+    pub max_iterations: usize,
+    /// Worker threads of the sweeps (1: serial; 0: one per available core).
+    /// Results do not depend on it.
+    pub threads: usize,
+    /// Record the eq.-8 value of every sweep in [`SolveInfo::history`].
+    pub record_history: bool,
+    /// Plain sweeps or the multigrid-accelerated solve.
+    pub accel: Accel,
+    /// Watch the solve and escalate when it stalls, grows or leaves a node's
+    /// estimated error above [`ERROR_FRACTION`] of its local cell height
+    /// (sweeps → multigrid GMRES → sparse direct solve; `solve/escalate.rs`).
+    /// Off: the configured solver alone, stopped by the eq.-8 test.
+    pub escalate: bool,
+}
+
+/// A step is accepted (under [`SolveParams::escalate`]) only when every
+/// unknown node's estimated error `|K_ii⁻¹ r_i|` is below this fraction of
+/// its smallest adjacent cell height (docs/method.md, "Accepting a step").
+pub const ERROR_FRACTION: f64 = 0.01;
+
+/// One solver tried on a step, in the order tried.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Stage {
+    /// The configured sweeps (or the configured multigrid solve).
+    Sweeps,
+    /// GMRES preconditioned by the multigrid V-cycle.
+    Multigrid,
+    /// Sweeps with ω = 1 (where no multigrid applies).
+    SafeSweeps,
+    /// The sparse direct (LU) solve.
+    Direct,
+}
+
+impl Stage {
+    /// The name reports and messages use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Sweeps => "sweeps",
+            Stage::Multigrid => "multigrid",
+            Stage::SafeSweeps => "safe-sweeps",
+            Stage::Direct => "direct",
+        }
+    }
+}
+
+impl Default for SolveParams {
+    fn default() -> Self {
+        SolveParams {
+            method: Method::Verbss,
+            solver: Solver::Sor,
+            omega: 1.6,
+            tolerance: 1e-6,
+            absolute_tolerance: false,
+            max_iterations: 2000,
+            threads: 1,
+            record_history: false,
+            accel: Accel::None,
+            escalate: true,
+        }
+    }
+}
+
+impl SolveParams {
+    /// Checks the settings: ω in (0, 2), a finite tolerance ≥ 0, at least
+    /// one sweep, and the multigrid only for the block systems.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.omega > 0.0 && self.omega < 2.0) {
+            return Err(Error::InvalidSetting(format!(
+                "omega {} is outside (0, 2)",
+                self.omega
+            )));
+        }
+        if !(self.tolerance >= 0.0 && self.tolerance.is_finite()) {
+            return Err(Error::InvalidSetting(format!(
+                "tolerance {} is not a finite number ≥ 0",
+                self.tolerance
+            )));
+        }
+        if self.accel == Accel::Amg && !matches!(self.method, Method::Verbss | Method::Spring) {
+            return Err(Error::InvalidSetting(
+                "accel amg solves the block systems of method verbss and spring \
+                 (not ball-vertex or laplacian)"
+                    .into(),
+            ));
+        }
+        if self.max_iterations == 0 {
+            return Err(Error::InvalidSetting(
+                "max_iterations is 0 (expected at least 1 sweep)".into(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// What a solve did.
+#[derive(Debug, Clone, Default, PartialEq)]
+#[non_exhaustive]
+pub struct SolveInfo {
+    /// Sweeps done (1 for the direct solver).
+    pub iterations: usize,
+    /// The final eq.-8 value (mean absolute change in the last sweep; 0 for the direct solver).
+    pub residual: f64,
+    /// Whether the stop test was met (always true for the direct solver).
+    pub converged: bool,
+    /// Seconds forming the system (springs, factors), paper's "Part I".
+    pub form_seconds: f64,
+    /// Seconds solving, paper's "Part II".
+    pub solve_seconds: f64,
+    /// Total seconds.
+    pub seconds: f64,
+    /// Eq.-8 value after each sweep, when asked for.
+    pub history: Vec<f64>,
+    /// Whether this call (re)built the springs and factors.
+    pub rebuilt: bool,
+    /// Levels of the multigrid of an accelerated solve (0: plain sweeps or direct).
+    pub levels: usize,
+    /// Whether this call (re)built the multigrid hierarchy.
+    pub hierarchy_built: bool,
+    /// Seconds building the multigrid hierarchy (part of `form_seconds`).
+    pub hierarchy_seconds: f64,
+    /// Whether the configured solver's iterates grew (ω too large for the mesh).
+    pub diverged: bool,
+    /// The solvers tried, in order (the last one gave the result).
+    pub stages: Vec<Stage>,
+    /// Root-mean-square of the true residual `r_i = c_i + Σ_j B_ij u_j − K_ii u_i`
+    /// over the unknown nodes.
+    pub true_residual: f64,
+    /// The largest estimated error of a node relative to its local cell
+    /// height, `max_i |K_ii⁻¹ r_i| / h_i`.
+    pub error_ratio: f64,
+    /// The node (mesh index) where [`SolveInfo::error_ratio`] is largest.
+    pub worst_node: usize,
+}
+
+/// The default roles of a mesh: [`NodeRole::Fixed`] on every boundary node
+/// ([`topology::boundary_nodes`]: nodes of boundary facets and of named
+/// groups), [`NodeRole::Free`] elsewhere.
+pub fn default_roles(mesh: &Mesh) -> Vec<NodeRole> {
+    topology::boundary_nodes(mesh)
+        .into_iter()
+        .map(|b| if b { NodeRole::Fixed } else { NodeRole::Free })
+        .collect()
+}
