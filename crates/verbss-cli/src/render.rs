@@ -9,11 +9,11 @@ use anyhow::Context;
 use clap::Args;
 use std::path::Path;
 use verbss::deform::Snapshot;
-use verbss::html_report::{self, Picture};
 use verbss::mesh::Mesh;
 use verbss::quality;
-use verbss::render::{self, Camera, Gif, Image, Options, Scene, Section, State};
 use verbss::report::Report;
+use verbss_render::html_report::{self, Picture};
+use verbss_render::{Camera, Gif, Image, Layout, Options, Scene, Section, State};
 
 /// Arguments of `verbss render`.
 #[derive(Args)]
@@ -122,8 +122,8 @@ pub fn run(args: RenderArgs) -> anyhow::Result<ExitCode> {
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default()
     });
-    render::write(&args.output, &scene, &options)?;
-    let layout = render::Layout::new(&scene, &options)?;
+    verbss_render::write(&args.output, &scene, &options)?;
+    let layout = Layout::new(&scene, &options)?;
     println!(
         "{}: {} × {} px, {} polygons, min quality {:.4}, {} inverted",
         args.output.display(),
@@ -217,8 +217,8 @@ impl Recorder {
         options.width = width;
         options.view = view;
         options.title = title;
-        let window = render::Layout::new(&scene, &options)?.window;
-        Ok((render::png(&scene, &options)?, window))
+        let window = Layout::new(&scene, &options)?.window;
+        Ok((verbss_render::png(&scene, &options)?, window))
     }
 
     fn picture(&self, s: &Snapshot, title: String, width: u32) -> anyhow::Result<Image> {

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use verbss::deform::Snapshot;
 use verbss::mesh::Mesh;
-use verbss::render::{self, Camera, Options, Scene, Section, State};
+use verbss_render::{Camera, Options, Scene, Section, State};
 
 use crate::cases::{PaperCase, View};
 
@@ -53,6 +53,6 @@ pub fn write(
     options.view = window;
     options.title = title.to_string();
     let name = format!("{}-{what}.png", case.name);
-    render::png(&scene, &options)?.write_png(&out.join(&name))?;
+    verbss_render::png(&scene, &options)?.write_png(&out.join(&name))?;
     Ok(name)
 }

@@ -72,7 +72,8 @@ pub enum Error {
         /// The mesh's spatial dimension (2 or 3).
         dim: usize,
     },
-    /// A picture or chart could not be drawn or encoded.
+    /// A picture or chart could not be drawn or encoded (by the
+    /// `verbss-render` crate).
     #[error("cannot draw the picture: {0}")]
     Render(String),
     /// A step inverted elements (relative to the input mesh's orientation).

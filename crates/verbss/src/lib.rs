@@ -22,9 +22,10 @@
 //! | [`deform`] | the stepper: motion → system → solve → update → inversion check |
 //! | [`case`], [`report`] | the TOML case file and `report.json` |
 //! | [`generate`] | built-in meshes (the demo's NACA0012 O-grid) |
-//! | [`render`], [`html_report`] | pictures of meshes coloured by quality; the self-contained run report |
 //!
-//! The maths is stated in `docs/method.md`.
+//! Pictures of meshes coloured by quality and the self-contained HTML run
+//! report are in the `verbss-render` crate, so this library draws nothing and
+//! depends on no picture crate. The maths is stated in `docs/method.md`.
 //!
 //! # Once per time step, from a flow solver
 //!
@@ -63,13 +64,11 @@ pub mod deform;
 pub mod error;
 pub mod generate;
 pub mod geometry;
-pub mod html_report;
 pub mod io;
 pub mod mesh;
 pub mod motion;
 mod names;
 pub mod quality;
-pub mod render;
 pub mod report;
 pub mod robust;
 pub mod solve;

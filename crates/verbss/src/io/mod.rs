@@ -105,8 +105,10 @@ pub fn write(path: &Path, mesh: &Mesh, options: &WriteOptions) -> Result<()> {
 }
 
 /// The temporary file beside `path` that an atomic write fills first
-/// (`.NAME.PID.tmp`).
-pub(crate) fn temp_path(path: &Path) -> PathBuf {
+/// (`.NAME.PID.tmp`). With [`is_special`] and [`link_target`] it serves
+/// writers that fill the temporary file themselves and rename it when done,
+/// such as the GIF animation of the `verbss-render` crate.
+pub fn temp_path(path: &Path) -> PathBuf {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
@@ -158,13 +160,13 @@ pub fn write_atomic(
 }
 
 /// Whether `path` (links followed) is a device, FIFO or socket.
-pub(crate) fn is_special(path: &Path) -> bool {
+pub fn is_special(path: &Path) -> bool {
     std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir())
 }
 
 /// The final target of `path` when it is a symbolic link (a chain of at most
 /// 40), else `path`.
-pub(crate) fn link_target(path: &Path) -> PathBuf {
+pub fn link_target(path: &Path) -> PathBuf {
     let mut p = path.to_path_buf();
     for _ in 0..40 {
         let Ok(next) = std::fs::read_link(&p) else {

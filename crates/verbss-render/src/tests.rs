@@ -1,8 +1,9 @@
 use std::path::Path;
 
+use verbss::mesh::Mesh;
+use verbss::quality;
+
 use super::*;
-use crate::mesh::Mesh;
-use crate::quality;
 
 /// Red pixels of the legend's inverted swatch at 1600 px: 30 × 30 with a black border.
 const SWATCH: usize = 29 * 29;
@@ -10,7 +11,7 @@ const SWATCH: usize = 29 * 29;
 const SU2: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/meshes/su2/");
 
 fn read(name: &str) -> Mesh {
-    crate::io::read(Path::new(&format!("{SU2}{name}"))).unwrap()
+    verbss::io::read(Path::new(&format!("{SU2}{name}"))).unwrap()
 }
 
 /// Quality of every cell on its own orientation, with `bad` flagged inverted.

@@ -15,7 +15,7 @@
 //! - solver sweeps and wall seconds per step;
 //! - the eq.-8 value (mean absolute change of the interior components) of
 //!   every sweep of the slowest step (most seconds), when the run recorded
-//!   it ([`crate::solve::SolveParams::record_history`]).
+//!   it ([`verbss::solve::SolveParams::record_history`]).
 
 use std::fmt::Write as _;
 use std::io::Write;
@@ -26,12 +26,13 @@ use base64::Engine as _;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::deform::StepReport;
-use crate::error::{Error, Result};
-use crate::io::write_atomic;
-use crate::quality::BIN_EDGES;
-use crate::render::{colour, Image};
-use crate::report::Report;
+use verbss::deform::StepReport;
+use verbss::error::{Error, Result};
+use verbss::io::write_atomic;
+use verbss::quality::BIN_EDGES;
+use verbss::report::Report;
+
+use crate::{colour, Image};
 
 /// A picture of the mesh with its caption.
 #[derive(Debug, Clone)]
@@ -166,7 +167,7 @@ fn escape(text: &str) -> String {
 fn svg_chart(
     draw: impl FnOnce(&DrawingArea<SVGBackend, Shift>) -> std::result::Result<(), String>,
 ) -> Result<String> {
-    crate::render::register_font();
+    crate::register_font();
     let mut doc = String::new();
     {
         let root = SVGBackend::with_string(&mut doc, CHART).into_drawing_area();
@@ -395,8 +396,8 @@ fn convergence(steps: &[StepReport]) -> Result<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::deform::Settings;
-    use crate::mesh::{CellKind, Cells, Mesh};
+    use verbss::deform::Settings;
+    use verbss::mesh::{CellKind, Cells, Mesh};
 
     fn report() -> Report {
         let mut cells = Cells::new();
@@ -404,23 +405,23 @@ mod tests {
         let mesh = Mesh::new(2, vec![0., 0., 1., 0., 0., 1.], cells, vec![]).unwrap();
         let mut report = Report::new("tri<1>.su2", &mesh, &Settings::new(2));
         for (n, q) in [(0, 0.9), (1, 0.61), (2, 0.3333333333333333)] {
-            report.steps.push(StepReport {
-                step: n,
-                iterations: 10 * n,
-                residual: 1e-7,
-                seconds: 0.001 * n as f64 + 1e-9,
-                min_quality: q,
-                mean_quality: q,
-                bins: [
-                    0,
-                    0,
-                    usize::from(q < 0.4),
-                    usize::from((0.4..0.7).contains(&q)),
-                    usize::from(q >= 0.7),
-                ],
-                history: (1..=10 * n).map(|k| 0.5f64.powi(k as i32)).collect(),
-                ..StepReport::default()
-            });
+            // `StepReport` is non-exhaustive outside the core: set its fields.
+            let mut s = StepReport::default();
+            s.step = n;
+            s.iterations = 10 * n;
+            s.residual = 1e-7;
+            s.seconds = 0.001 * n as f64 + 1e-9;
+            s.min_quality = q;
+            s.mean_quality = q;
+            s.bins = [
+                0,
+                0,
+                usize::from(q < 0.4),
+                usize::from((0.4..0.7).contains(&q)),
+                usize::from(q >= 0.7),
+            ];
+            s.history = (1..=10 * n).map(|k| 0.5f64.powi(k as i32)).collect();
+            report.steps.push(s);
         }
         report.outcome = "completed".into();
         report

@@ -2,7 +2,7 @@
 //! NACA0012 O-grid at 500 × 101 nodes): building the scene, the PNG at 1600 px
 //! (plotters' frame + scanline fill + edges), its encoding, and the SVG.
 //!
-//! `cargo run --release -p verbss --example render_timing [-- OUT_DIR]`
+//! `cargo run --release -p verbss-render --example render_timing [-- OUT_DIR]`
 //! writes `timing.png` and `timing.svg` to OUT_DIR (default: the system's
 //! temporary folder).
 
@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use verbss::generate::{naca0012, AirfoilGrid};
 use verbss::quality;
-use verbss::render::{self, Camera, Options, Scene, Section, State};
+use verbss_render::{Camera, Options, Scene, Section, State};
 
 fn main() -> verbss::Result<()> {
     let out = std::env::args()
@@ -40,7 +40,7 @@ fn main() -> verbss::Result<()> {
         let mut options = Options::default();
         options.view = view;
         let t = Instant::now();
-        let image = render::png(&scene, &options)?;
+        let image = verbss_render::png(&scene, &options)?;
         time(&format!("png 1600 px, {name}"), t);
         let t = Instant::now();
         let bytes = image.png_bytes()?;
@@ -48,7 +48,7 @@ fn main() -> verbss::Result<()> {
         image.write_png(&out.join(format!("timing_{name}.png")))?;
     }
     let t = Instant::now();
-    let doc = render::svg(&scene, &Options::default())?;
+    let doc = verbss_render::svg(&scene, &Options::default())?;
     time(&format!("svg ({} MB)", doc.len() / (1 << 20)), t);
     std::fs::write(out.join("timing.svg"), doc).map_err(|source| verbss::Error::Io {
         path: out.join("timing.svg"),

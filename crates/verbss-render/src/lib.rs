@@ -1,4 +1,9 @@
-//! Pictures of a mesh coloured by element quality: PNG, SVG and GIF.
+//! # verbss-render — pictures of verbss meshes and the HTML run report
+//!
+//! The drawing half of verbss, kept out of the core library (which Python, C
+//! and MPI link, none of which draws): pictures of a mesh coloured by element
+//! quality as PNG, SVG and GIF, and the self-contained HTML report of a run
+//! ([`html_report`]).
 //!
 //! A [`Scene`] turns one state of a mesh (coordinates, per-cell quality and
 //! inversion flags) into coloured polygons: every cell of a 2D mesh, the
@@ -7,28 +12,32 @@
 //! quality with viridis (0 dark purple → 1 yellow) and inverted cells in a
 //! loud red ([`colour::INVERTED`]); the element edges are drawn over them.
 //!
-//! [`png`] rasterises the polygons itself (a scanline fill with a depth
+//! [`png`](fn@png) rasterises the polygons itself (a scanline fill with a depth
 //! buffer, [`raster`]: about 10 ms for 100,000 triangles at 1600 px) and lets
 //! plotters draw the header, the axes and the colour bar onto the same pixels,
-//! with an embedded font (DejaVu Sans, `assets/fonts/`), so no system font is
-//! needed. [`svg`] writes the same picture as SVG (cells with their float
-//! coordinates, so a zoom in a browser stays exact). [`Gif`] collects frames
-//! into an animation.
+//! with an embedded font (DejaVu Sans, this crate's `fonts/`), so no system
+//! font is needed. [`svg`] writes the same picture as SVG (cells with their
+//! float coordinates, so a zoom in a browser stays exact). [`Gif`] collects
+//! frames into an animation.
 //!
 //! ```no_run
-//! use verbss::render::{self, Camera, Options, Scene, Section, State};
+//! use verbss_render::{Camera, Options, Scene, Section, State};
 //! let mesh = verbss::io::read("wing.su2".as_ref())?;
 //! let orientation = verbss::quality::orientation(&mesh);
 //! let quality = verbss::quality::qualities(&mesh, &mesh.coords, &orientation);
 //! let inverted = vec![false; mesh.cell_count()];
 //! let state = State { coords: &mesh.coords, quality: &quality, inverted: &inverted };
 //! let scene = Scene::new(&mesh, state, &Section::All, Camera::default())?;
-//! render::png(&scene, &Options::default())?.write_png("wing.png".as_ref())?;
+//! verbss_render::png(&scene, &Options::default())?.write_png("wing.png".as_ref())?;
 //! # Ok::<(), verbss::Error>(())
 //! ```
 
+#![warn(missing_docs)]
+#![forbid(unsafe_code)]
+
 pub mod colour;
 mod frame;
+pub mod html_report;
 pub mod raster;
 mod scene;
 
@@ -41,8 +50,8 @@ use std::sync::Once;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
-use crate::error::{Error, Result};
-use crate::io::{is_special, link_target, temp_path, write_atomic};
+use verbss::error::{Error, Result};
+use verbss::io::{is_special, link_target, temp_path, write_atomic};
 
 pub use frame::Layout;
 pub use scene::{Camera, Scene, Section, State};
@@ -50,10 +59,10 @@ pub use scene::{Camera, Scene, Section, State};
 use raster::Canvas;
 
 /// The embedded font of the pictures' text.
-const FONT: &[u8] = include_bytes!("../../../../assets/fonts/DejaVuSans-subset.ttf");
+const FONT: &[u8] = include_bytes!("../fonts/DejaVuSans-subset.ttf");
 
 /// Registers the embedded font as plotters' `sans-serif` (once).
-pub(crate) fn register_font() {
+fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         // The font is a fixed, valid file: a failure would show as missing text.

@@ -13,11 +13,11 @@
 
 use std::collections::HashMap;
 
-use crate::error::{Error, Result};
-use crate::mesh::{Cells, Mesh};
-use crate::topology;
+use verbss::error::{Error, Result};
+use verbss::mesh::{Cells, Mesh};
+use verbss::topology;
 
-use super::colour::{self, Rgb};
+use crate::colour::{self, Rgb};
 
 /// The part of the mesh a picture shows.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -57,7 +57,7 @@ impl Default for Camera {
 }
 
 /// One state of a mesh: coordinates and the per-cell quality and inversion
-/// flags (as [`crate::deform::Snapshot`] holds them).
+/// flags (as [`verbss::deform::Snapshot`] holds them).
 #[derive(Debug, Clone, Copy)]
 pub struct State<'a> {
     /// Node coordinates, `mesh.dim` per node.

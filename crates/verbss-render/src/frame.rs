@@ -11,11 +11,11 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use crate::error::{Error, Result};
+use verbss::error::{Error, Result};
 
-use super::colour::{self, Rgb};
-use super::scene::Scene;
-use super::Options;
+use crate::colour::{self, Rgb};
+use crate::scene::Scene;
+use crate::Options;
 
 /// Pixel layout of a picture and the window it shows.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -153,7 +153,7 @@ fn draw_inner<DB: DrawingBackend>(
     scene: &Scene,
     title: &str,
 ) -> std::result::Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-    super::register_font();
+    crate::register_font();
     let l = layout;
     root.fill(&WHITE)?;
     let header = format!(

@@ -9,7 +9,7 @@
 //! interpolated on the triangle's plane; a pixel is written when its depth is
 //! `≤` the stored one (in 2D every depth is 0 and the last cell drawn wins).
 
-use super::colour::Rgb;
+use crate::colour::Rgb;
 
 /// An RGB buffer with a depth buffer and a clip rectangle.
 pub struct Canvas<'a> {
