@@ -376,23 +376,37 @@ struct Moving {
 ///   V-cycle whose smoother is the VerBSS sweep; tolerance then bounds the
 ///   estimated RMS error) or "auto" (amg on large meshes of mostly
 ///   triangles/tetrahedra), for the methods verbss and spring.
+/// - keyword only, as `verbss deform`'s options of the same names (None: what
+///   `method` implies): slide (groups whose nodes slide in their own plane),
+///   rigid_layer ("off", "auto" or a wall distance), stiffening (exponent
+///   ≥ 0), substeps (halvings of a step, at most 30), blend (True/False: the
+///   blended rigid motion), predictor ("previous" or "linear").
 #[pyclass(module = "verbss")]
 struct Deformer {
     mesh: verbss::Mesh,
     settings: Settings,
+    /// Groups whose nodes slide in their own plane.
+    slide: Vec<String>,
     moving: Option<Moving>,
 }
 
 impl Deformer {
     /// Builds the library's deformer for the groups of the first step.
     fn start(&mut self, py: Python<'_>, names: &[String]) -> PyResult<()> {
-        let attachments: Vec<Attachment> = names
+        // The moving groups first: attachment k is the k-th name.
+        let mut attachments: Vec<Attachment> = names
             .iter()
             .map(|name| Attachment {
                 groups: vec![name.clone()],
                 motion: Motion::Positions(PositionSource::Given(HashMap::new())),
             })
             .collect();
+        if !self.slide.is_empty() {
+            attachments.push(Attachment {
+                groups: self.slide.clone(),
+                motion: Motion::Slide { normal: None },
+            });
+        }
         let (mesh, settings) = (&self.mesh, &self.settings);
         let deformer = py
             .detach(|| verbss::deform::Deformer::new(mesh, &attachments, settings.clone()))
@@ -472,6 +486,13 @@ impl Deformer {
         reference = "updated",
         solver = None,
         accel = None,
+        *,
+        slide = None,
+        rigid_layer = None,
+        stiffening = None,
+        substeps = None,
+        blend = None,
+        predictor = None,
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -484,6 +505,12 @@ impl Deformer {
         reference: &str,
         solver: Option<&str>,
         accel: Option<&str>,
+        slide: Option<Vec<String>>,
+        rigid_layer: Option<&Bound<'_, PyAny>>,
+        stiffening: Option<f64>,
+        substeps: Option<i64>,
+        blend: Option<bool>,
+        predictor: Option<&str>,
     ) -> PyResult<Deformer> {
         let count = |name: &str, v: i64| {
             usize::try_from(v)
@@ -506,10 +533,27 @@ impl Deformer {
             s.max_iterations = count("max_iterations", k)?;
         }
         s.threads = count("threads", threads)?;
+        if let Some(p) = predictor {
+            settings.predictor = p.parse().map_err(raise)?;
+        }
+        let robust = &mut settings.robust;
+        if let Some(layer) = rigid_layer {
+            let text = match layer.extract::<f64>() {
+                Ok(t) => t.to_string(),
+                Err(_) => layer.extract::<String>()?,
+            };
+            robust.layer = text.parse().map_err(raise)?;
+        }
+        robust.stiffening = stiffening.unwrap_or(robust.stiffening);
+        if let Some(k) = substeps {
+            robust.substeps = u32::try_from(count("substeps", k)?).unwrap_or(u32::MAX);
+        }
+        robust.blend = blend.unwrap_or(robust.blend);
         settings.validate().map_err(raise)?;
         Ok(Deformer {
             mesh: mesh.inner.clone(),
             settings,
+            slide: slide.unwrap_or_default(),
             moving: None,
         })
     }

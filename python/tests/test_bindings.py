@@ -195,6 +195,27 @@ def test_robust_method_matches_the_command_default(cli, tmp_path):
     assert not np.allclose(got, plain, rtol=0, atol=1e-6)
 
 
+def test_near_wall_settings_and_slides_match_the_command(cli, tmp_path):
+    mesh, group, shift = CASES[3]
+    extra = [
+        "--slide", "y_m,y_p", "--rigid-layer", "0.1", "--stiffening", "2",
+        "--substeps", "3", "--blend", "off", "--predictor", "linear",
+    ]
+    expected = cli_deform(cli, tmp_path, mesh, group, shift, extra=extra, method="robust")
+    d = verbss.Deformer(
+        verbss.read(MESHES / mesh), **dict(SETTINGS, method="robust"), slide=["y_m", "y_p"],
+        rigid_layer=0.1, stiffening=2.0, substeps=3, blend=False, predictor="linear",
+    )
+    for n in range(1, STEPS + 1):
+        got = d.step({group: np.array(shift) * n / STEPS})
+    assert np.allclose(got, expected, rtol=0, atol=1e-12)
+    # The sliding walls' nodes stayed on their planes.
+    start = verbss.read(MESHES / mesh)
+    for name in ("y_m", "y_p"):
+        nodes = start.groups[name]
+        assert np.array_equal(got[nodes, 1], start.points[nodes, 1])
+
+
 def test_rejected_step_keeps_the_last_one_and_can_be_retried():
     mesh = verbss.read(NACA)
     d = verbss.Deformer(mesh, **SETTINGS)
@@ -242,6 +263,10 @@ def test_bad_settings_and_arrays_are_named():
          "invalid setting: omega 2.5 is outside (0, 2)"),
         (lambda: verbss.Deformer(mesh, threads=-1),
          "invalid setting: threads must be zero or positive (got -1)"),
+        (lambda: verbss.Deformer(mesh, rigid_layer="thick"),
+         "invalid setting: the rigid layer must be off, auto or a positive wall distance (got 'thick')"),
+        (lambda: verbss.Deformer(mesh, substeps=40),
+         "invalid setting: substeps must be at most 30 (got 40)"),
         (lambda: verbss.Deformer(mesh, accel="fast"),
          "invalid setting: unknown accel 'fast' (expected none, amg or auto)"),
         (lambda: verbss.Mesh([[0, 0], [1, 0], [0, 1]], {"tri": [[0, 1, 2]]}),

@@ -112,6 +112,13 @@ class Deformer:
       ``"fixed"`` (also spelled ``"initial"``: springs on the input mesh,
       solving for the total displacement).
 
+    - keyword only, as ``verbss deform``'s options of the same names (None:
+      what ``method`` implies): ``slide`` (groups whose nodes slide in their
+      own plane), ``rigid_layer`` (``"off"``, ``"auto"`` or a wall distance),
+      ``stiffening`` (exponent ≥ 0), ``substeps`` (halvings of a step, at
+      most 30), ``blend`` (the blended rigid motion), ``predictor``
+      (``"previous"`` or ``"linear"``).
+
     Invalid settings raise :class:`VerbssError` here, not at the first step.
     - ``accel``: ``"none"`` (plain VerBSS sweeps), ``"amg"`` (GMRES around a
       multigrid V-cycle whose smoother is the VerBSS sweep; ``tolerance`` then
@@ -130,6 +137,13 @@ class Deformer:
         reference: str = "updated",
         solver: Optional[str] = None,
         accel: Optional[str] = None,
+        *,
+        slide: Optional[Sequence[str]] = None,
+        rigid_layer: Union[str, float, None] = None,
+        stiffening: Optional[float] = None,
+        substeps: Optional[int] = None,
+        blend: Optional[bool] = None,
+        predictor: Optional[str] = None,
     ) -> "Deformer": ...
     def step(
         self, displacements: Mapping[str, _Displacement], *, probe: Optional[GilProbe] = None

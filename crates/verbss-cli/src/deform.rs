@@ -127,16 +127,8 @@ pub struct DeformArgs {
 
 /// `off`, `auto` or a positive wall distance.
 fn parse_layer(s: &str) -> Result<Layer, String> {
-    match s {
-        "off" => Ok(Layer::Off),
-        "auto" => Ok(Layer::Auto),
-        _ => match s.parse::<f64>() {
-            Ok(t) if t > 0.0 && t.is_finite() => Ok(Layer::Thickness(t)),
-            _ => Err(format!(
-                "expected off, auto or a positive wall distance, got '{s}'"
-            )),
-        },
-    }
+    s.parse()
+        .map_err(|_| format!("expected off, auto or a positive wall distance, got '{s}'"))
 }
 
 /// A finite exponent ≥ 0.

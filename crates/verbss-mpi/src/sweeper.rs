@@ -483,21 +483,10 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
 
     /// `c_p = Σ_{j prescribed} B_pj u_j`, minus `d K_pp n` for a sliding node.
     fn constants<const D: usize>(&self, b: &Built, displacement: &[f64]) -> Vec<f64> {
-        let s = packed_len(D);
-        let blocks = &b.blocks;
         let owned = b.slide_of.len();
         let mut constant = vec![0.0; D * owned];
         for p in 0..owned {
-            let mut c = [0.0; D];
-            for e in blocks.fixed_offsets[p]..blocks.fixed_offsets[p + 1] {
-                let v = packed_mul::<D>(
-                    &blocks.fixed_blocks[s * e..],
-                    &point(displacement, blocks.fixed_nodes[e]),
-                );
-                for k in 0..D {
-                    c[k] += v[k];
-                }
-            }
+            let mut c = b.blocks.prescribed_pull::<D>(p, displacement);
             if let Some(r) = frame::<D>(&b.slide_of, &b.frames, p) {
                 let slot = b.slide_of[p] as usize;
                 let u = point::<D>(displacement, b.order[p]);

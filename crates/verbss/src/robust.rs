@@ -62,6 +62,24 @@ pub enum Layer {
     Thickness(f64),
 }
 
+impl std::str::FromStr for Layer {
+    type Err = Error;
+
+    /// `off`, `auto` or a positive wall distance.
+    fn from_str(s: &str) -> Result<Layer> {
+        match s {
+            "off" => Ok(Layer::Off),
+            "auto" => Ok(Layer::Auto),
+            _ => match s.parse::<f64>() {
+                Ok(t) if t > 0.0 && t.is_finite() => Ok(Layer::Thickness(t)),
+                _ => Err(Error::InvalidSetting(format!(
+                    "the rigid layer must be off, auto or a positive wall distance (got '{s}')"
+                ))),
+            },
+        }
+    }
+}
+
 /// The near-wall treatments of a run.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[non_exhaustive]

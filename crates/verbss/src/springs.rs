@@ -26,7 +26,7 @@ use rayon::prelude::*;
 
 use crate::geometry::{
     add_outer, morton_keys, nearest_on_quad, nearest_on_segment, nearest_on_triangle, norm,
-    packed_len, point, sub,
+    packed_len, packed_mul, point, sub,
 };
 use crate::mesh::{Cells, Mesh};
 use crate::topology::{self, Csr};
@@ -146,6 +146,24 @@ pub struct NodeBlocks {
     pub fixed_nodes: Vec<usize>,
     /// `B_ij` of each prescribed coupling.
     pub fixed_blocks: Vec<f64>,
+}
+
+impl NodeBlocks {
+    /// Row `r`'s pull from the prescribed nodes, `Σ_{j prescribed} B_rj u_j`.
+    pub fn prescribed_pull<const D: usize>(&self, r: usize, displacement: &[f64]) -> [f64; D] {
+        let s = packed_len(D);
+        let mut c = [0.0; D];
+        for e in self.fixed_offsets[r]..self.fixed_offsets[r + 1] {
+            let v = packed_mul::<D>(
+                &self.fixed_blocks[s * e..],
+                &point(displacement, self.fixed_nodes[e]),
+            );
+            for k in 0..D {
+                c[k] += v[k];
+            }
+        }
+        c
+    }
 }
 
 /// Assembles the rows of the nodes `order` (position → node) at coordinates

@@ -7,7 +7,7 @@ use super::{
     SolveParams, Stage, System,
 };
 use crate::error::Result;
-use crate::geometry::{packed_len, packed_mul, point};
+use crate::geometry::point;
 use crate::springs::NodeBlocks;
 
 /// The largest prescribed displacement: `|u_i|` of fixed nodes, `|n·u_i|` of
@@ -188,18 +188,8 @@ pub(super) fn block_constants<const D: usize>(
     displacement: &[f64],
     constant: &mut [f64],
 ) {
-    let s = packed_len(D);
     for p in 0..layout.len() {
-        let mut c = [0.0; D];
-        for e in blocks.fixed_offsets[p]..blocks.fixed_offsets[p + 1] {
-            let v = packed_mul::<D>(
-                &blocks.fixed_blocks[s * e..],
-                &point(displacement, blocks.fixed_nodes[e]),
-            );
-            for k in 0..D {
-                c[k] += v[k];
-            }
-        }
+        let mut c = blocks.prescribed_pull::<D>(p, displacement);
         if let Some(r) = layout.frame::<D>(p) {
             let slot = layout.slide_of[p] as usize;
             let u = point::<D>(displacement, layout.order[p]);
