@@ -103,6 +103,9 @@ fn distributed(np: usize, mesh: &str, group: &str, dim: usize, nodes: usize) -> 
     let o = Command::new("mpirun")
         .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
         .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        // A session directory of its own: two mpiruns started at once race
+        // for the shared one under /tmp.
+        .env("OMPI_MCA_orte_tmpdir_base", dir.path())
         .env("VERBSS_MPI_MESH", mesh)
         .env("VERBSS_MPI_GROUP", group)
         .env("VERBSS_MPI_OUT", &out)

@@ -12,11 +12,15 @@ use verbss::motion::{Attachment, Motion};
 use verbss::robust::Robust;
 use verbss::Mesh;
 
-/// `mpirun --oversubscribe -np N verbss-mpi ARGS…` (root allowed, as in containers).
+/// `mpirun --oversubscribe -np N verbss-mpi ARGS…` (root allowed, as in
+/// containers). Each run has a session directory of its own: two mpiruns started at
+/// once race for the shared one under /tmp.
 fn mpirun(np: usize, args: &[&str]) -> Output {
+    let session = tempfile::tempdir().unwrap();
     Command::new("mpirun")
         .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
         .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .env("OMPI_MCA_orte_tmpdir_base", session.path())
         .args(["--oversubscribe", "-np", &np.to_string()])
         .arg(env!("CARGO_BIN_EXE_verbss-mpi"))
         .args(args)
