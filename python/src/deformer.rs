@@ -1,0 +1,368 @@
+//! The `Deformer` class: a mesh in motion, stepped by a flow solver.
+
+use std::collections::HashMap;
+use std::str::FromStr;
+
+use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use verbss::deform::{Preset, Settings, StepReport};
+use verbss::motion::{Attachment, Motion, PositionSource};
+
+use crate::{asarray, invalid_setting, pairs, points_array, raise, shape_text, GilProbe, Mesh};
+
+/// The library's deformer and its moving groups, fixed by the first step.
+struct Moving {
+    deformer: verbss::deform::Deformer,
+    /// The moving groups, in the order of the first step (attachment `k`
+    /// moves group `names[k]`).
+    names: Vec<String>,
+}
+
+/// A mesh in motion, stepped by a flow solver (see `Deformer.step`).
+///
+/// Deformer(mesh, method="robust", omega=None, tolerance=None,
+///          max_iterations=None, threads=0, reference="updated", solver=None,
+///          accel=None)
+///
+/// - method: "robust" (the default, as on the command line: verbss with the
+///   near-wall treatments and the blended rigid motion of
+///   docs/robustness.md), "verbss" (the paper's method: edge + ball-vertex
+///   springs, node by node), "ball-vertex"
+///   (the same system solved globally by `solver`, "sor" or "direct"),
+///   "spring" (edge springs only) or "laplacian".
+/// - omega: the over-relaxation factor of the sweeps (1.6 when None).
+///   omega, solver and accel all None: a step whose sweeps stall or diverge,
+///   or leave a node's estimated error above 1% of its cell height,
+///   escalates to the multigrid and the direct solve (docs/method.md); any
+///   of them given: exactly that solver.
+/// - tolerance: the sweeps stop when the mean absolute change of one sweep is
+///   below tolerance × the step's largest prescribed displacement (1e-6
+///   when None).
+/// - max_iterations: the most sweeps per step (2000 when None).
+/// Invalid settings raise VerbssError here, not at the first step.
+/// - threads: worker threads, 0 for one per core; results do not depend on it.
+/// - reference: "updated" (springs on the current mesh each step) or
+///   "fixed" (also spelled "initial": springs on the input mesh, solving for
+///   the total displacement).
+/// - accel: "none" (plain VerBSS sweeps), "amg" (GMRES around a multigrid
+///   V-cycle whose smoother is the VerBSS sweep; tolerance then bounds the
+///   estimated RMS error) or "auto" (amg on large meshes of mostly
+///   triangles/tetrahedra), for the methods verbss and spring.
+/// - keyword only, as `verbss deform`'s options of the same names (None: what
+///   `method` implies): slide (groups whose nodes slide in their own plane),
+///   rigid_layer ("off", "auto" or a wall distance), stiffening (exponent
+///   ≥ 0), substeps (halvings of a step, at most 30), blend (True/False: the
+///   blended rigid motion), predictor ("previous" or "linear").
+#[pyclass(module = "verbss")]
+pub(crate) struct Deformer {
+    mesh: verbss::Mesh,
+    settings: Settings,
+    /// Groups whose nodes slide in their own plane.
+    slide: Vec<String>,
+    moving: Option<Moving>,
+}
+
+impl Deformer {
+    /// Builds the library's deformer for the groups of the first step.
+    fn start(&mut self, py: Python<'_>, names: &[String]) -> PyResult<()> {
+        // The moving groups first: attachment k is the k-th name.
+        let mut attachments: Vec<Attachment> = names
+            .iter()
+            .map(|name| Attachment {
+                groups: vec![name.clone()],
+                motion: Motion::Positions(PositionSource::Given(HashMap::new())),
+            })
+            .collect();
+        if !self.slide.is_empty() {
+            attachments.push(Attachment {
+                groups: self.slide.clone(),
+                motion: Motion::Slide { normal: None },
+            });
+        }
+        let (mesh, settings) = (&self.mesh, &self.settings);
+        let deformer = py
+            .detach(|| verbss::deform::Deformer::new(mesh, &attachments, settings.clone()))
+            .map_err(raise)?;
+        self.moving = Some(Moving {
+            deformer,
+            names: names.to_vec(),
+        });
+        Ok(())
+    }
+}
+
+/// The (N, D) displacement of a group from `value`: an (N, D) or (D,) array,
+/// or a callable given the group's input coordinates and the step number.
+fn displacement(
+    value: &Bound<'_, PyAny>,
+    name: &str,
+    x0: &Bound<'_, PyArray2<f64>>,
+    step: usize,
+) -> PyResult<Vec<f64>> {
+    let value = if value.is_callable() {
+        value.call1((x0, step))?
+    } else {
+        value.clone()
+    };
+    let array = asarray(&value, "float64")?;
+    let shape: Vec<usize> = array.getattr("shape")?.extract()?;
+    let (n, dim) = (x0.shape()[0], x0.shape()[1]);
+    let u: Vec<f64> = if shape == [n, dim] {
+        let a: PyReadonlyArray2<f64> = array.extract()?;
+        a.as_array().iter().copied().collect()
+    } else if shape == [dim] {
+        let a: PyReadonlyArray1<f64> = array.extract()?;
+        let row = a.as_array().to_vec();
+        row.iter().copied().cycle().take(n * dim).collect()
+    } else {
+        return Err(invalid_setting(format!(
+            "the displacement of group '{name}' has shape {}, expected ({n}, {dim}) or ({dim},)",
+            shape_text(&shape)
+        )));
+    };
+    if let Some(k) = u.iter().position(|x| !x.is_finite()) {
+        return Err(invalid_setting(format!(
+            "the displacement of group '{name}' is not finite at row {}",
+            k / dim
+        )));
+    }
+    Ok(u)
+}
+
+fn report_dict<'py>(py: Python<'py>, r: &StepReport) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("step", r.step)?;
+    d.set_item("iterations", r.iterations)?;
+    d.set_item("residual", r.residual)?;
+    d.set_item("converged", r.converged)?;
+    d.set_item("seconds", r.seconds)?;
+    d.set_item("form_seconds", r.form_seconds)?;
+    d.set_item("solve_seconds", r.solve_seconds)?;
+    d.set_item("min_quality", r.min_quality)?;
+    d.set_item("mean_quality", r.mean_quality)?;
+    d.set_item("inverted", r.inverted)?;
+    d.set_item("bins", PyList::new(py, r.bins)?)?;
+    Ok(d)
+}
+
+#[pymethods]
+impl Deformer {
+    #[new]
+    #[pyo3(signature = (
+        mesh,
+        method = "robust",
+        omega = None,
+        tolerance = None,
+        max_iterations = None,
+        threads = 0,
+        reference = "updated",
+        solver = None,
+        accel = None,
+        *,
+        slide = None,
+        rigid_layer = None,
+        stiffening = None,
+        substeps = None,
+        blend = None,
+        predictor = None,
+    ))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        mesh: &Mesh,
+        method: &str,
+        omega: Option<f64>,
+        tolerance: Option<f64>,
+        max_iterations: Option<i64>,
+        threads: i64,
+        reference: &str,
+        solver: Option<&str>,
+        accel: Option<&str>,
+        slide: Option<Vec<String>>,
+        rigid_layer: Option<&Bound<'_, PyAny>>,
+        stiffening: Option<f64>,
+        substeps: Option<i64>,
+        blend: Option<bool>,
+        predictor: Option<&str>,
+    ) -> PyResult<Deformer> {
+        let count = |name: &str, v: i64| {
+            usize::try_from(v)
+                .map_err(|_| invalid_setting(format!("{name} must be zero or positive (got {v})")))
+        };
+        let mut settings = Preset::from_str(method).map_err(raise)?.settings(1);
+        settings.reference = reference.parse().map_err(raise)?;
+        let s = &mut settings.solve;
+        // A solver, accel or omega given means exactly that solver.
+        s.escalate = solver.is_none() && accel.is_none() && omega.is_none();
+        if let Some(solver) = solver {
+            s.solver = solver.parse().map_err(raise)?;
+        }
+        if let Some(accel) = accel {
+            s.accel = accel.parse().map_err(raise)?;
+        }
+        s.omega = omega.unwrap_or(s.omega);
+        s.tolerance = tolerance.unwrap_or(s.tolerance);
+        if let Some(k) = max_iterations {
+            s.max_iterations = count("max_iterations", k)?;
+        }
+        s.threads = count("threads", threads)?;
+        if let Some(p) = predictor {
+            settings.predictor = p.parse().map_err(raise)?;
+        }
+        let robust = &mut settings.robust;
+        if let Some(layer) = rigid_layer {
+            let text = match layer.extract::<f64>() {
+                Ok(t) => t.to_string(),
+                Err(_) => layer.extract::<String>()?,
+            };
+            robust.layer = text.parse().map_err(raise)?;
+        }
+        robust.stiffening = stiffening.unwrap_or(robust.stiffening);
+        if let Some(k) = substeps {
+            robust.substeps = u32::try_from(count("substeps", k)?).unwrap_or(u32::MAX);
+        }
+        robust.blend = blend.unwrap_or(robust.blend);
+        settings.validate().map_err(raise)?;
+        Ok(Deformer {
+            mesh: mesh.inner.clone(),
+            settings,
+            slide: slide.unwrap_or_default(),
+            moving: None,
+        })
+    }
+
+    /// Takes the next time step and returns the new node coordinates, an
+    /// (N, D) float64 array.
+    ///
+    /// `displacements` maps each moving group's name to its displacement from
+    /// the input mesh at this step: an (n, D) array (rows in the order of
+    /// `mesh.groups[name]`), a (D,) array (the same for every node), or a
+    /// callable `f(points, step)` given the group's input coordinates (an
+    /// (n, D) array, same order) and the step number (1 for the first step),
+    /// returning either. Each node of a group goes exactly to its input
+    /// position plus its displacement; a node in several moving groups
+    /// follows the first one named. Every other boundary node stays where it
+    /// is, the interior nodes follow by the springs. The first step fixes
+    /// which groups move: every later step names the same groups.
+    ///
+    /// The solve runs with the GIL released (`probe`, a [`GilProbe`], shows
+    /// it). Raises VerbssError when a group
+    /// is unknown, a displacement has the wrong shape or is not finite, or the
+    /// step inverted an element: the step is then rejected and the deformer
+    /// keeps the last accepted step (so the same step can be retried).
+    #[pyo3(signature = (displacements, *, probe = None))]
+    fn step<'py>(
+        &mut self,
+        py: Python<'py>,
+        displacements: &Bound<'py, PyAny>,
+        probe: Option<&Bound<'py, GilProbe>>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let given = pairs(displacements)?;
+        let names: Vec<String> = given.iter().map(|(n, _)| n.clone()).collect();
+        match &self.moving {
+            None if names.is_empty() => {
+                return Err(invalid_setting(
+                    "the first step names no group to move".into(),
+                ))
+            }
+            Some(m) => {
+                let (mut asked, mut moved) = (names.clone(), m.names.clone());
+                asked.sort();
+                moved.sort();
+                if asked != moved {
+                    return Err(invalid_setting(format!(
+                        "the step moves {} but the deformer moves {} (the groups of its first step)",
+                        names.join(", "),
+                        moved.join(", ")
+                    )));
+                }
+            }
+            None => {}
+        }
+        let step = self
+            .moving
+            .as_ref()
+            .map_or(1, |m| m.deformer.current_step() + 1);
+        let mesh = &self.mesh;
+        let dim = mesh.dim;
+        let mut positions = Vec::with_capacity(given.len());
+        for (name, value) in &given {
+            let nodes = mesh.group(name).map_err(raise)?.nodes();
+            let coords: Vec<f64> = nodes.iter().flat_map(|&i| mesh.point(i).to_vec()).collect();
+            let u = displacement(value, name, &points_array(py, &coords, dim), step)?;
+            let targets: HashMap<usize, Vec<f64>> = nodes
+                .iter()
+                .zip(u.chunks(dim))
+                .map(|(&i, d)| (i, mesh.point(i).iter().zip(d).map(|(x, d)| x + d).collect()))
+                .collect();
+            positions.push(targets);
+        }
+        if self.moving.is_none() {
+            self.start(py, &names)?;
+        }
+        let moving = self.moving.as_mut().expect("started above");
+        for (k, name) in moving.names.iter().enumerate() {
+            let at = names.iter().position(|n| n == name).expect("same names");
+            let targets = std::mem::take(&mut positions[at]);
+            moving
+                .deformer
+                .set_motion(k, Motion::Positions(PositionSource::Given(targets)))
+                .map_err(raise)?;
+        }
+        let deformer = &mut moving.deformer;
+        let probe = probe.map(|p| p.get().state.clone());
+        py.detach(|| {
+            if let Some(state) = probe {
+                GilProbe::signal_and_wait(&state)?;
+            }
+            deformer.advance()
+        })
+        .map_err(raise)?;
+        Ok(points_array(py, &deformer.current().coords, dim))
+    }
+
+    /// The current node coordinates, an (N, D) float64 array (a copy).
+    #[getter]
+    fn points<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        let coords = match &self.moving {
+            Some(m) => &m.deformer.current().coords,
+            None => &self.mesh.coords,
+        };
+        points_array(py, coords, self.mesh.dim)
+    }
+
+    /// The input mesh with the current coordinates.
+    #[getter]
+    fn mesh(&self) -> Mesh {
+        let inner = match &self.moving {
+            Some(m) => m.deformer.mesh(),
+            None => self.mesh.clone(),
+        };
+        Mesh { inner }
+    }
+
+    /// What the last accepted step did, or None before the first step: a dict
+    /// with step, iterations, residual, converged, seconds (form_seconds and
+    /// solve_seconds of it), min_quality, mean_quality, inverted and bins
+    /// (element counts in the quality bins 0–0.02, 0.02–0.1, 0.1–0.4, 0.4–0.7,
+    /// 0.7–1).
+    #[getter]
+    fn info<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        self.moving
+            .as_ref()
+            .map(|m| report_dict(py, &m.deformer.current().report))
+            .transpose()
+    }
+
+    fn __repr__(&self) -> String {
+        let step = self
+            .moving
+            .as_ref()
+            .map_or(0, |m| m.deformer.current_step());
+        format!(
+            "<verbss.Deformer {}D, {} nodes, step {step}>",
+            self.mesh.dim,
+            self.mesh.node_count()
+        )
+    }
+}
