@@ -20,7 +20,7 @@ use mpi::traits::*;
 use verbss::deform::{Deformer, Reference, Settings, Snapshot, StepReport};
 use verbss::motion::Attachment;
 use verbss::quality::{self, Inversion, Summary};
-use verbss::solve::{NodeRole, SolveInfo};
+use verbss::solve::{clear_prescribed, SolveInfo};
 use verbss::topology::{self, Csr};
 use verbss::{Error, Mesh, Result};
 
@@ -207,53 +207,49 @@ impl<'c, C: Communicator> Stepper<'c, C> {
         fraction: f64,
     ) -> Result<(Vec<f64>, Vec<f64>, SolveInfo, Vec<Inversion>)> {
         let start = self.deformer.blended(coords, targets);
-        let nothing_left = self.deformer.nothing_left(&start, targets);
-        let mesh = self.deformer.initial();
-        let dim = mesh.dim;
-        let base: &[f64] = match self.deformer.settings().reference {
-            Reference::Updated => &start,
-            Reference::Fixed => &mesh.coords,
-        };
-        let roles = self.deformer.roles();
+        let dim = self.deformer.initial().dim;
         let mut u: Vec<f64> = self.guess.iter().map(|v| v * fraction).collect();
-        for (i, role) in roles.iter().enumerate() {
-            let ui = &mut u[dim * i..dim * (i + 1)];
-            match *role {
-                NodeRole::Free => {}
-                NodeRole::Fixed => ui.fill(0.0),
-                NodeRole::Slide(k) => {
-                    let nrm = &self.deformer.normals()[k];
-                    let along: f64 = (0..dim).map(|d| ui[d] * nrm[d]).sum();
-                    for d in 0..dim {
-                        ui[d] -= along * nrm[d];
-                    }
-                }
-            }
-        }
+        clear_prescribed(dim, self.deformer.roles(), self.deformer.normals(), &mut u);
         for (node, p) in targets {
             for d in 0..dim {
                 u[dim * node + d] = p[d] - start[dim * node + d];
             }
         }
-        if nothing_left {
+        let info = if self.deformer.nothing_left(&start, targets) {
             // The blend put every prescribed node on its target: every rank
             // knows it and skips the solve.
             u.fill(0.0);
             let mut info = SolveInfo::default();
             info.converged = true;
-            let mut next = start;
-            for (node, p) in targets {
-                next[dim * node..dim * (node + 1)].copy_from_slice(p);
-            }
-            let inversions = quality::inversions(mesh, &next, &self.orientation);
-            return Ok((next, u, info, inversions));
+            info
+        } else {
+            self.solve_distributed(&start, &mut u)?
+        };
+        let mut next: Vec<f64> = start.iter().zip(&u).map(|(x, d)| x + d).collect();
+        for (node, p) in targets {
+            next[dim * node..dim * (node + 1)].copy_from_slice(p);
         }
+        let inversions = quality::inversions(self.deformer.initial(), &next, &self.orientation);
+        Ok((next, u, info, inversions))
+    }
+
+    /// Solves for the unknowns of `u` over the ranks, the springs built on
+    /// `start` (on the input mesh with the fixed reference), and gives every
+    /// rank the whole solution.
+    fn solve_distributed(&mut self, start: &[f64], u: &mut [f64]) -> Result<SolveInfo> {
+        let mesh = self.deformer.initial();
+        let dim = mesh.dim;
+        let base: &[f64] = match self.deformer.settings().reference {
+            Reference::Updated => start,
+            Reference::Fixed => &mesh.coords,
+        };
+        let roles = self.deformer.roles();
         if self.colouring.as_ref().is_none_or(|(x, _)| x != base) {
             let normals = unit_normals(self.deformer.normals(), dim);
             let seeds: Vec<usize> = (0..roles.len())
                 .filter(|&i| match dim {
-                    2 => is_seed::<2>(roles[i], &normals, &u, i),
-                    _ => is_seed::<3>(roles[i], &normals, &u, i),
+                    2 => is_seed::<2>(roles[i], &normals, u, i),
+                    _ => is_seed::<3>(roles[i], &normals, u, i),
                 })
                 .collect();
             let colours = engine_colours(&self.graph, roles, &seeds);
@@ -270,19 +266,14 @@ impl<'c, C: Communicator> Stepper<'c, C> {
             out
         };
         let local_base = pick(base, dim);
-        let mut local_u = pick(&u, dim);
+        let mut local_u = pick(u, dim);
         let local_colours: Vec<u32> = part.global.iter().map(|&g| colours[g as usize]).collect();
         let params = self.deformer.settings().solve.clone();
         let info = self
             .sweeper
             .solve(&local_base, &local_colours, &mut local_u, &params)?;
-        self.gather(&local_u, &mut u);
-        let mut next: Vec<f64> = start.iter().zip(&u).map(|(x, d)| x + d).collect();
-        for (node, p) in targets {
-            next[dim * node..dim * (node + 1)].copy_from_slice(p);
-        }
-        let inversions = quality::inversions(mesh, &next, &self.orientation);
-        Ok((next, u, info, inversions))
+        self.gather(&local_u, u);
+        Ok(info)
     }
 
     /// Every rank's owned values of `local` (`D` per local node) into the

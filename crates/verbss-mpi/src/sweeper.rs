@@ -121,12 +121,7 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
             dim,
             node_cells: topology::node_cells(&part.cells, n),
             graph: topology::node_graph(&part.cells, n),
-            edge_graph: topology::Csr::from_pairs(
-                n,
-                edges
-                    .iter()
-                    .flat_map(|&[a, b]| [(a, b), (b, a)].into_iter()),
-            ),
+            edge_graph: topology::edge_graph(n, &edges),
             cells: part.cells.clone(),
             node_tags: part.node_tags.clone(),
             cell_tags: part.cell_tags.clone(),

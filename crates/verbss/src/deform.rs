@@ -28,11 +28,12 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::error::{format_point, Error, Result, Unconverged};
+use crate::geometry::keep_in_plane;
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Clock, Motion};
 use crate::quality::{self, Inversion, Summary};
 use crate::robust;
-use crate::solve::{Engine, NodeRole, SolveInfo, Stage};
+use crate::solve::{clear_prescribed, Engine, NodeRole, SolveInfo, Stage};
 
 mod blend;
 mod harmonic;
@@ -451,11 +452,7 @@ impl Deformer {
             }
             if let Some(plane) = plane {
                 let x = &self.current.coords[dim * node..dim * (node + 1)];
-                let nrm = &self.normals[plane];
-                let off: f64 = (0..dim).map(|d| (p[d] - x[d]) * nrm[d]).sum();
-                for d in 0..dim {
-                    p[d] -= off * nrm[d];
-                }
+                keep_in_plane(&mut p, x, &self.normals[plane]);
             }
             targets.push((node, p));
         }
@@ -526,20 +523,7 @@ impl Deformer {
                 .collect(),
             None => self.guess.iter().map(|v| v * fraction).collect(),
         };
-        for (i, role) in self.roles.iter().enumerate() {
-            let ui = &mut u[dim * i..dim * (i + 1)];
-            match *role {
-                NodeRole::Free => {}
-                NodeRole::Fixed => ui.fill(0.0),
-                NodeRole::Slide(k) => {
-                    let nrm = &self.normals[k];
-                    let along: f64 = (0..dim).map(|d| ui[d] * nrm[d]).sum();
-                    for d in 0..dim {
-                        ui[d] -= along * nrm[d];
-                    }
-                }
-            }
-        }
+        clear_prescribed(dim, &self.roles, &self.normals, &mut u);
         for (node, p) in targets {
             for d in 0..dim {
                 u[dim * node + d] = p[d] - start[dim * node + d];

@@ -77,12 +77,7 @@ impl Connectivity {
     pub fn new(mesh: &Mesh) -> Connectivity {
         let n = mesh.node_count();
         let edges = topology::edges(&mesh.cells);
-        let edge_graph = Csr::from_pairs(
-            n,
-            edges
-                .iter()
-                .flat_map(|&[a, b]| [(a, b), (b, a)].into_iter()),
-        );
+        let edge_graph = topology::edge_graph(n, &edges);
         let by_curve = curve_order(mesh);
         let mut rank = vec![0; by_curve.len()];
         let mut cells = Cells::new();

@@ -84,6 +84,16 @@ pub fn node_graph(cells: &Cells, nodes: usize) -> Csr {
     )
 }
 
+/// The graph of `edges` ([`edges`]) in both directions over `nodes` nodes.
+pub fn edge_graph(nodes: usize, edges: &[[usize; 2]]) -> Csr {
+    Csr::from_pairs(
+        nodes,
+        edges
+            .iter()
+            .flat_map(|&[a, b]| [(a, b), (b, a)].into_iter()),
+    )
+}
+
 /// The unique element edges `(i, j)` with `i < j`, sorted (never face or cell diagonals).
 pub fn edges(cells: &Cells) -> Vec<[usize; 2]> {
     let mut edges: Vec<[usize; 2]> = cells

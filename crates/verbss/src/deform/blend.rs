@@ -32,9 +32,9 @@
 //! rigid body, its deformation otherwise.
 
 use super::harmonic::Laplace;
-use crate::geometry::{cross, dot, norm};
+use crate::geometry::{cross, dot, keep_in_plane, norm};
 use crate::mesh::Mesh;
-use crate::robust::nearest_seed;
+use crate::robust::{self, nearest_seed};
 use crate::solve::NodeRole;
 use crate::topology::Csr;
 
@@ -116,7 +116,7 @@ impl Blend {
             let l = norm(&m);
             [m[0] / l, m[1] / l, m[2] / l]
         });
-        let extent = diagonal(mesh.dim, &mesh.coords, &(0..n).collect::<Vec<_>>());
+        let extent = robust::size(mesh, &(0..n).collect::<Vec<_>>());
         let bodies = bodies
             .into_iter()
             .map(|(fitted, held)| {
@@ -129,7 +129,7 @@ impl Blend {
                     .collect();
                 let wall: Vec<usize> = held[..fitted.len()].to_vec();
                 Body {
-                    radius: 0.5 * diagonal(mesh.dim, &mesh.coords, &wall),
+                    radius: 0.5 * robust::size(mesh, &wall),
                     fitted,
                     held,
                     others,
@@ -142,7 +142,7 @@ impl Blend {
             unknown: roles.iter().map(|r| *r == NodeRole::Free).collect(),
             unknown_slides: roles.iter().map(|r| *r != NodeRole::Fixed).collect(),
             slide_normal,
-            graph: laplace.graph(n),
+            graph: laplace.graph(),
             laplace,
             dim: mesh.dim,
             extent,
@@ -275,13 +275,8 @@ pub(super) fn keep_in_planes(
 ) {
     for (i, role) in roles.iter().enumerate() {
         if let NodeRole::Slide(k) = *role {
-            let nrm = &normals[k];
-            let off: f64 = (0..dim)
-                .map(|d| (moved[dim * i + d] - reference[dim * i + d]) * nrm[d])
-                .sum();
-            for d in 0..dim {
-                moved[dim * i + d] -= off * nrm[d];
-            }
+            let span = dim * i..dim * (i + 1);
+            keep_in_plane(&mut moved[span.clone()], &reference[span], &normals[k]);
         }
     }
 }
@@ -302,19 +297,6 @@ fn angle_weights(graph: &Csr, dim: usize, coords: &[f64], body: &Body, rho: f64)
             }
         })
         .collect()
-}
-
-/// The diagonal of the bounding box of `nodes`.
-fn diagonal(dim: usize, coords: &[f64], nodes: &[usize]) -> f64 {
-    (0..dim)
-        .map(|d| {
-            let axis = nodes.iter().map(|&i| coords[dim * i + d]);
-            let lo = axis.clone().fold(f64::INFINITY, f64::min);
-            let hi = axis.fold(f64::NEG_INFINITY, f64::max);
-            (hi - lo).powi(2)
-        })
-        .sum::<f64>()
-        .sqrt()
 }
 
 /// The rigid motion that best maps the nodes `fitted` (indices into

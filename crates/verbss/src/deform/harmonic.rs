@@ -38,13 +38,8 @@ impl Laplace {
     }
 
     /// The edges as a graph (both directions).
-    pub(super) fn graph(&self, nodes: usize) -> Csr {
-        Csr::from_pairs(
-            nodes,
-            self.edges
-                .iter()
-                .flat_map(|&[a, b]| [(a, b), (b, a)].into_iter()),
-        )
+    pub(super) fn graph(&self) -> Csr {
+        crate::topology::edge_graph(self.on_edge.len(), &self.edges)
     }
 
     /// Solves for `w` on `coords` with unknowns where `unknown` is set (and

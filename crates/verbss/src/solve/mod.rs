@@ -84,8 +84,8 @@ mod verbss;
 mod verify;
 pub use self::escalate::{DIRECT_NODES_2D, DIRECT_NODES_3D};
 pub use self::params::{
-    default_roles, Accel, Method, NodeRole, SolveInfo, SolveParams, Solver, Stage,
-    AUTO_AMG_NODES_2D, AUTO_AMG_NODES_3D, ERROR_FRACTION,
+    clear_prescribed, default_roles, Accel, Method, NodeRole, SolveInfo, SolveParams, Solver,
+    Stage, AUTO_AMG_NODES_2D, AUTO_AMG_NODES_3D, ERROR_FRACTION,
 };
 use self::pass::{gather, prescribed_scale, run};
 pub use self::verbss::relax;

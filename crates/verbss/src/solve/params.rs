@@ -2,6 +2,7 @@
 //! solvers, the multigrid choice, [`SolveParams`] and [`SolveInfo`].
 
 use crate::error::{Error, Result};
+use crate::geometry::keep_in_plane;
 use crate::mesh::Mesh;
 use crate::topology;
 
@@ -241,4 +242,18 @@ pub fn default_roles(mesh: &Mesh) -> Vec<NodeRole> {
         .into_iter()
         .map(|b| if b { NodeRole::Fixed } else { NodeRole::Free })
         .collect()
+}
+
+/// Clears the prescribed parts of the displacement `u` (`dim` per node):
+/// fixed nodes whole, sliding nodes their component along their plane's
+/// normal (`normals`, unit) — what is left of a guess for the unknowns.
+pub fn clear_prescribed(dim: usize, roles: &[NodeRole], normals: &[[f64; 3]], u: &mut [f64]) {
+    for (i, role) in roles.iter().enumerate() {
+        let ui = &mut u[dim * i..dim * (i + 1)];
+        match *role {
+            NodeRole::Free => {}
+            NodeRole::Fixed => ui.fill(0.0),
+            NodeRole::Slide(k) => keep_in_plane(ui, &[0.0; 3], &normals[k]),
+        }
+    }
 }
