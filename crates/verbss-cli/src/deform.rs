@@ -19,7 +19,7 @@ use verbss::solve::{Accel, Solver};
 
 use crate::overwrite::refuse_input_as_output;
 use crate::render::{PictureArgs, Recorder};
-use crate::run::{execute, file_stem, Job};
+use crate::run::{file_stem, run_here, Job, Prepared};
 
 /// Arguments of `verbss deform`.
 #[derive(Args)]
@@ -174,6 +174,12 @@ fn point3(name: &str, v: &[f64], dim: usize) -> anyhow::Result<[f64; 3]> {
 
 /// Runs `verbss deform`.
 pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
+    run_here(prepare(args)?)
+}
+
+/// The job of `verbss deform`: reads the mesh, checks the groups and the
+/// output path, and decides the motion and the settings.
+pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
     let format = Format::from_path(&args.output)?;
     refuse_input_as_output(&args.mesh, &args.output, args.overwrite)?;
     let mesh = io::read(&args.mesh)?;
@@ -249,9 +255,12 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
         ),
         dir,
     };
-    let mut recorder = Recorder::new(&args.pictures, &job.mesh, job.settings.steps, None);
-    let summary = execute(&job, args.quiet, &mut recorder)?;
-    Ok(summary.print(&job))
+    let recorder = Recorder::new(&args.pictures, &job.mesh, job.settings.steps, None);
+    Ok(Prepared {
+        job,
+        quiet: args.quiet,
+        recorder,
+    })
 }
 
 /// The `--slide` groups, each sliding in its own plane.

@@ -13,7 +13,7 @@ use verbss::generate::{naca0012, AirfoilGrid};
 use verbss::motion::{Attachment, Motion};
 
 use crate::render::{PictureArgs, Recorder};
-use crate::run::{execute, Job};
+use crate::run::{run_here, Job, Prepared};
 
 /// Arguments of `verbss demo`.
 #[derive(Args)]
@@ -76,12 +76,15 @@ pub fn run(args: DemoArgs) -> anyhow::Result<ExitCode> {
         job.mesh.node_count(),
         job.mesh.cell_count()
     );
-    let mut recorder = Recorder::new(
+    let recorder = Recorder::new(
         &args.pictures,
         &job.mesh,
         job.settings.steps,
         Some(AIRFOIL_VIEW),
     );
-    let summary = execute(&job, args.quiet, &mut recorder)?;
-    Ok(summary.print(&job))
+    run_here(Prepared {
+        job,
+        quiet: args.quiet,
+        recorder,
+    })
 }

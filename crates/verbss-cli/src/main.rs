@@ -6,18 +6,10 @@
 
 #![forbid(unsafe_code)]
 
-mod convert;
-mod deform;
-mod demo;
-mod overwrite;
-mod progress;
-mod quality;
-mod render;
-mod run;
-
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use verbss_cli::{convert, deform, demo, quality, render, run};
 
 /// Mesh motion for unstructured 2D/3D hybrid meshes by Vertex-Ball Spring Smoothing.
 #[derive(Parser)]

@@ -7,6 +7,11 @@
 //! inverts an element the run stops with exit code 3 (4 when no solver
 //! converged): `NAME.EXT` holds the last valid mesh and `NAME.failed.vtu`
 //! the failed state.
+//!
+//! The runner ([`execute`]) is shared: `verbss run`, `verbss deform` and
+//! `verbss demo` prepare a [`Prepared`] job and run it here
+//! ([`run_here`]); `verbss-mpi deform` runs the same job with its
+//! distributed stepper.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -20,6 +25,7 @@ use verbss::io::{self, vtu, WriteOptions};
 use verbss::mesh::Mesh;
 use verbss::motion::Attachment;
 use verbss::report::Report;
+use verbss::solve::SpringSolver;
 use verbss::Error;
 
 use crate::overwrite::{note_lost_su2_blocks, refuse_input_as_output};
@@ -76,9 +82,41 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         extension,
         dir,
     };
-    let mut recorder = Recorder::new(&args.pictures, &job.mesh, job.settings.steps, None);
-    let summary = execute(&job, args.quiet, &mut recorder)?;
-    Ok(summary.print(&job))
+    let recorder = Recorder::new(&args.pictures, &job.mesh, job.settings.steps, None);
+    run_here(Prepared {
+        job,
+        quiet: args.quiet,
+        recorder,
+    })
+}
+
+/// A job ready to run: what to compute and write, whether to print
+/// progress, and the pictures to keep.
+pub struct Prepared {
+    /// The job.
+    pub job: Job,
+    /// No progress output.
+    pub quiet: bool,
+    /// The states kept for `--html` and `--gif`.
+    pub recorder: Recorder,
+}
+
+/// Runs a prepared job in this process and prints its summary.
+pub fn run_here(mut prepared: Prepared) -> anyhow::Result<ExitCode> {
+    let job = &prepared.job;
+    let mut deformer = Deformer::new(
+        &job.mesh,
+        &job.attachments,
+        job.deformer_settings(&prepared.recorder),
+    )?;
+    let summary = execute(
+        job,
+        &mut deformer,
+        prepared.quiet,
+        true,
+        &mut prepared.recorder,
+    )?;
+    Ok(summary.print(job, true))
 }
 
 /// The file name without its extension (`mesh` when there is none).
@@ -119,6 +157,14 @@ impl Job {
     pub fn final_path(&self) -> PathBuf {
         self.dir.join(format!("{}.{}", self.name, self.extension))
     }
+
+    /// The settings the deformer runs with: the job's, with the sweep
+    /// history recorded when the pictures want it.
+    pub fn deformer_settings(&self, recorder: &Recorder) -> Settings {
+        let mut settings = self.settings.clone();
+        settings.solve.record_history |= recorder.wants_history();
+        settings
+    }
 }
 
 /// What a run did.
@@ -127,6 +173,10 @@ pub struct Summary {
     pub steps: usize,
     /// Wall seconds of all steps.
     pub seconds: f64,
+    /// Seconds forming and solving the spring systems.
+    pub solve_seconds: f64,
+    /// The number of MPI ranks the steps were solved on (none: one process).
+    pub ranks: Option<usize>,
     /// The smallest element quality over all accepted steps, and its step.
     pub min_quality: (f64, usize),
     /// Total solver sweeps.
@@ -137,12 +187,25 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// Prints the summary (or the failure) and gives the exit code: 0, 3
-    /// when a step inverted an element, 4 when no solver converged.
-    pub fn print(&self, job: &Job) -> ExitCode {
+    /// Prints the summary (or the failure) when `printer` and gives the
+    /// exit code: 0, 3 when a step inverted an element, 4 when no solver
+    /// converged.
+    pub fn print(&self, job: &Job, printer: bool) -> ExitCode {
+        let code = match &self.failure {
+            None => ExitCode::SUCCESS,
+            Some((Error::NotConverged { .. }, ..)) => ExitCode::from(4),
+            Some(_) => ExitCode::from(3),
+        };
+        if !printer {
+            return code;
+        }
         let per_step = self.seconds / self.steps.max(1) as f64;
+        let ranks = match self.ranks {
+            Some(n) => format!("; {:.2} s solving on {n} ranks", self.solve_seconds),
+            None => String::new(),
+        };
         println!(
-            "{} steps in {:.2} s ({:.1} ms per step, {:.1} sweeps per step); min quality {:.4} (step {}); outputs in {}",
+            "{} steps in {:.2} s ({:.1} ms per step, {:.1} sweeps per step{ranks}); min quality {:.4} (step {}); outputs in {}",
             self.steps,
             self.seconds,
             1e3 * per_step,
@@ -151,63 +214,67 @@ impl Summary {
             self.min_quality.1,
             job.dir.display()
         );
-        match &self.failure {
-            None => ExitCode::SUCCESS,
-            Some((e, last, failed)) => {
-                eprintln!("error: {e}");
-                let k = job.settings.robust.substeps;
-                if k > 0 && job.settings.reference == Reference::Updated {
-                    eprintln!(
-                        "the step was also tried in increments down to 1/{} of it (--substeps {k})",
-                        1u64 << k
-                    );
-                }
+        if let Some((e, last, failed)) = &self.failure {
+            eprintln!("error: {e}");
+            let k = job.settings.robust.substeps;
+            if k > 0 && job.settings.reference == Reference::Updated {
                 eprintln!(
-                    "the last valid mesh (step {}) is in {}; the failed state in {}",
-                    self.steps,
-                    last.display(),
-                    failed.display()
+                    "the step was also tried in increments down to 1/{} of it (--substeps {k})",
+                    1u64 << k
                 );
-                match e {
-                    Error::NotConverged { .. } => ExitCode::from(4),
-                    _ => ExitCode::from(3),
-                }
             }
+            eprintln!(
+                "the last valid mesh (step {}) is in {}; the failed state in {}",
+                self.steps,
+                last.display(),
+                failed.display()
+            );
         }
+        code
     }
 }
 
-/// Runs a job: steps `1..=N`, writing the outputs as it goes (every file
-/// atomically), and stops at the first inverted element; `recorder` keeps
-/// the states for the `--html` report and the `--gif`.
-pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Result<Summary> {
+/// Runs a job with `deformer` (made for it, with
+/// [`Job::deformer_settings`]): steps `1..=N`, writing the outputs as it
+/// goes (every file atomically), and stops at the first inverted element;
+/// `recorder` keeps the states for the `--html` report and the `--gif`.
+/// Only a `writer` writes the files and keeps pictures (over MPI: rank 0;
+/// the other ranks step along).
+pub fn execute<S: SpringSolver>(
+    job: &Job,
+    deformer: &mut Deformer<S>,
+    quiet: bool,
+    writer: bool,
+    recorder: &mut Recorder,
+) -> anyhow::Result<Summary> {
     std::fs::create_dir_all(&job.dir)
         .with_context(|| format!("cannot create the output folder {}", job.dir.display()))?;
-    if job.final_mesh && !quiet {
+    if writer && job.final_mesh && !quiet {
         note_lost_su2_blocks(&job.mesh, &job.final_path());
     }
-    let mut settings = job.settings.clone();
-    settings.solve.record_history |= recorder.wants_history();
-    let mut deformer = Deformer::new(&job.mesh, &job.attachments, settings)?;
     let steps = job.settings.steps;
     let mut report = Report::new(&job.source, &job.mesh, &job.settings);
     let mut series = Vec::new();
     let initial = deformer.current().clone();
     report.steps.push(initial.report.clone());
-    // Outcome "running" until this run ends: an earlier run's report never
-    // outlives a failure of this one (a FIFO or device gets one report only).
-    if let Some(path) = job.report.as_ref().filter(|p| p.is_file()) {
-        report.write(path)?;
-    }
-    recorder.step(&initial);
-    if job.series {
-        write_step(job, &initial, &mut series)?;
+    if writer {
+        // Outcome "running" until this run ends: an earlier run's report never
+        // outlives a failure of this one (a FIFO or device gets one report only).
+        if let Some(path) = job.report.as_ref().filter(|p| p.is_file()) {
+            report.write(path)?;
+        }
+        recorder.step(&initial);
+        if job.series {
+            write_step(job, &initial, &mut series)?;
+        }
     }
     let progress = Progress::new(steps, quiet);
     let start = Instant::now();
     let mut summary = Summary {
         steps: 0,
         seconds: 0.0,
+        solve_seconds: 0.0,
+        ranks: None,
         min_quality: (initial.report.min_quality, 0),
         iterations: 0,
         failure: None,
@@ -218,13 +285,16 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
                 progress.step(&r);
                 summary.steps = n;
                 summary.iterations += r.iterations;
+                summary.solve_seconds += r.form_seconds + r.solve_seconds;
                 if r.min_quality < summary.min_quality.0 {
                     summary.min_quality = (r.min_quality, n);
                 }
                 report.steps.push(r);
-                recorder.step(deformer.current());
-                if job.series && (n % job.every == 0 || n == steps) {
-                    write_step(job, deformer.current(), &mut series)?;
+                if writer {
+                    recorder.step(deformer.current());
+                    if job.series && (n % job.every == 0 || n == steps) {
+                        write_step(job, deformer.current(), &mut series)?;
+                    }
                 }
             }
             Err(e @ (Error::Inverted { .. } | Error::NotConverged { .. })) => {
@@ -232,16 +302,18 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
                 let failed = deformer.failed().expect("a failed step keeps its state");
                 report.steps.push(failed.report.clone());
                 let failed_path = job.dir.join(format!("{}.failed.vtu", job.name));
-                let mut mesh = job.mesh.clone();
-                mesh.coords.clone_from(&failed.coords);
-                vtu::write(&failed_path, &mesh, &fields(&job.mesh, failed))?;
                 let last = job.final_path();
-                io::write(&last, &deformer.mesh(), &WriteOptions::default())?;
-                report.outcome = e.to_string();
-                if let Some(path) = &job.report {
-                    report.write(path)?;
+                if writer {
+                    let mut mesh = job.mesh.clone();
+                    mesh.coords.clone_from(&failed.coords);
+                    vtu::write(&failed_path, &mesh, &fields(&job.mesh, failed))?;
+                    io::write(&last, &deformer.mesh(), &WriteOptions::default())?;
+                    report.outcome = e.to_string();
+                    if let Some(path) = &job.report {
+                        report.write(path)?;
+                    }
+                    recorder.finish(&report, deformer.current(), Some(failed))?;
                 }
-                recorder.finish(&report, deformer.current(), Some(failed))?;
                 summary.seconds = start.elapsed().as_secs_f64();
                 summary.failure = Some((e, last, failed_path));
                 return Ok(summary);
@@ -251,15 +323,17 @@ pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Resul
     }
     progress.finish();
     summary.seconds = start.elapsed().as_secs_f64();
-    if job.final_mesh {
-        let path = job.final_path();
-        io::write(&path, &deformer.mesh(), &WriteOptions::default())?;
+    if writer {
+        if job.final_mesh {
+            let path = job.final_path();
+            io::write(&path, &deformer.mesh(), &WriteOptions::default())?;
+        }
+        report.outcome = "completed".into();
+        if let Some(path) = &job.report {
+            report.write(path)?;
+        }
+        recorder.finish(&report, deformer.current(), None)?;
     }
-    report.outcome = "completed".into();
-    if let Some(path) = &job.report {
-        report.write(path)?;
-    }
-    recorder.finish(&report, deformer.current(), None)?;
     Ok(summary)
 }
 

@@ -1,10 +1,11 @@
 //! `mpirun -np N verbss-mpi deform MESH -o OUT …`: `verbss deform` with the
 //! sweeps spread over N MPI ranks.
 //!
-//! The arguments are those of `verbss deform`, parsed by the very same
-//! source file (`crates/verbss-cli/src/deform.rs`, compiled into this binary
-//! too), so every option of `verbss deform` is an option here. Only the
-//! running of the job differs ([`run::execute`]): the steps go through
+//! The arguments are those of `verbss deform`, parsed and prepared by the
+//! command line's library ([`verbss_cli::deform`]), so every option of
+//! `verbss deform` is an option here (settings the distributed sweeps cannot
+//! do are refused with exit 2 before the first step). Only the stepper
+//! differs ([`run::run_distributed`]): the steps go through
 //! [`verbss_mpi::stepper::Stepper`]. Rank 0 prints and writes OUT and the
 //! report; every rank writes its piece `OUT-STEM_RANK.vtu` beside OUT, and
 //! rank 0 the `OUT-STEM.pvtu` joining them.
@@ -13,22 +14,12 @@
 
 #![forbid(unsafe_code)]
 
-#[path = "../../verbss-cli/src/deform.rs"]
-mod deform;
-#[path = "../../verbss-cli/src/overwrite.rs"]
-mod overwrite;
-#[path = "../../verbss-cli/src/progress.rs"]
-mod progress;
-// Only the picture recorder of `--html`/`--gif` is used here, not the
-// `verbss render` command that shares its file.
-#[allow(dead_code)]
-#[path = "../../verbss-cli/src/render.rs"]
-mod render;
 mod run;
 
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use verbss_cli::deform;
 
 /// Mesh motion by Vertex-Ball Spring Smoothing over MPI ranks (run under mpirun).
 #[derive(Parser)]
@@ -41,7 +32,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Move groups by a translation, a rotation or given positions, in N steps.
-    Deform(deform::DeformArgs),
+    Deform(Box<deform::DeformArgs>),
 }
 
 fn main() -> ExitCode {
@@ -51,7 +42,7 @@ fn main() -> ExitCode {
     };
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Deform(args) => deform::run(args),
+        Command::Deform(args) => deform::prepare(*args).and_then(run::run_distributed),
     };
     let code = match result {
         Ok(code) => code,

@@ -1,26 +1,23 @@
-//! The stepper of `verbss-mpi deform`: [`verbss::deform::Deformer`]'s steps
-//! with the solve distributed.
+//! The stepper of `verbss-mpi deform`: [`verbss::deform::Deformer`] itself,
+//! its springs solved over the ranks by [`Distributed`].
 //!
 //! Every rank reads the whole mesh and builds the same
-//! [`Deformer`](verbss::deform::Deformer), which resolves the node roles,
-//! the slide planes, the rigid layer and each step's boundary targets
-//! exactly as `verbss deform` does. Rank 0 cuts the nodes with METIS and
-//! broadcasts the cut; each rank keeps its [`Part`] and sweeps its rows
-//! ([`Sweeper`]) with the engine's colours ([`engine_colours`], computed
-//! from the whole graph on every rank), so the solution is the
-//! single-process one. After each solve one all-gather gives every rank the
-//! whole displacement, from which the new coordinates, the inversion check
-//! and the adaptive sub-steps follow as in the single-process stepper. The
-//! near-wall treatments come along: rigid-layer nodes are prescribed nodes
-//! with targets, and the stiffened springs are the Deformer's factors.
-
-use std::time::Instant;
+//! [`Deformer`], which resolves the node roles, the slide planes, the rigid
+//! layer, each step's boundary targets, the sub-steps, the predictor and
+//! the inversion guard exactly as `verbss deform` does: the step loop exists
+//! once, in the library. Only the solve differs. Rank 0 cuts the nodes with
+//! METIS and broadcasts the cut; each rank keeps its [`Part`] and sweeps its
+//! rows ([`Sweeper`]) with the engine's colours ([`engine_colours`],
+//! computed from the whole graph on every rank), so the solution is the
+//! single-process one; one all-gather then gives every rank the whole
+//! displacement. The exact solve (the step loop's last word before it
+//! rejects a step, and where the sweeps do not converge) is rank 0's
+//! [`Engine`], its solution broadcast.
 
 use mpi::traits::*;
-use verbss::deform::{Deformer, Reference, Settings, Snapshot, StepReport};
+use verbss::deform::{Deformer, Settings};
 use verbss::motion::Attachment;
-use verbss::quality::{self, Inversion, Summary};
-use verbss::solve::{clear_prescribed, SolveInfo};
+use verbss::solve::{Engine, NodeRole, SolveInfo, SolveParams, SolverSetup, SpringSolver, Stage};
 use verbss::topology::{self, Csr};
 use verbss::{Error, Mesh, Result};
 
@@ -30,34 +27,48 @@ use crate::part::Part;
 use crate::partition::partition;
 use crate::sweeper::Sweeper;
 
-/// A mesh in motion over the ranks of a communicator (see the module documentation).
-pub struct Stepper<'c, C: Communicator> {
+/// A mesh in motion over the ranks of a communicator.
+pub type Stepper<'c, C> = Deformer<Distributed<'c, C>>;
+
+/// Prepares `mesh` for `attachments` on every rank of `comm` (collective;
+/// every rank passes the same arguments). Settings the distributed sweeps
+/// cannot do are refused here, before any step.
+pub fn stepper<'c, C: Communicator>(
     comm: &'c C,
-    deformer: Deformer,
+    mesh: &Mesh,
+    attachments: &[Attachment],
+    settings: Settings,
+) -> Result<Stepper<'c, C>> {
+    Sweeper::<C>::supports(&settings.solve)?;
+    Deformer::with_solver(mesh, attachments, settings, |setup| {
+        Distributed::new(comm, setup)
+    })
+}
+
+/// The spring system of a step solved over the ranks of a communicator
+/// (see the module documentation).
+pub struct Distributed<'c, C: Communicator> {
+    comm: &'c C,
     sweeper: Sweeper<'c, C>,
     graph: Csr,
+    dim: usize,
+    roles: Vec<NodeRole>,
+    /// The slide planes' unit normals, as the engine keeps them.
+    normals: Vec<[f64; 3]>,
     /// Global numbers of every rank's owned nodes, rank by rank.
     owned: Vec<Vec<u64>>,
-    orientation: Vec<i8>,
-    /// The last increment per unit step fraction, every node.
-    guess: Vec<f64>,
     /// The reference coordinates the colours were made for, and the colours:
     /// like the engine, a new colouring only with new springs.
     colouring: Option<(Vec<f64>, Vec<u32>)>,
-    current: Snapshot,
-    failed: Option<Snapshot>,
+    /// Rank 0's engine, for the exact solves.
+    exact: Option<Engine>,
 }
 
-impl<'c, C: Communicator> Stepper<'c, C> {
-    /// Prepares `mesh` for `attachments` on every rank of `comm`
-    /// (collective; every rank passes the same arguments).
-    pub fn new(
-        comm: &'c C,
-        mesh: &Mesh,
-        attachments: &[Attachment],
-        settings: Settings,
-    ) -> Result<Stepper<'c, C>> {
-        let deformer = Deformer::new(mesh, attachments, settings)?;
+impl<'c, C: Communicator> Distributed<'c, C> {
+    /// Cuts the mesh of `setup` over the ranks of `comm` and sets up this
+    /// rank's sweeper (collective).
+    pub fn new(comm: &'c C, setup: &SolverSetup) -> Result<Distributed<'c, C>> {
+        let mesh = setup.mesh;
         let mut owner = if comm.rank() == 0 {
             partition(mesh, comm.size() as usize)?
         } else {
@@ -68,32 +79,38 @@ impl<'c, C: Communicator> Stepper<'c, C> {
         let roles = part
             .global
             .iter()
-            .map(|&g| deformer.roles()[g as usize])
+            .map(|&g| setup.roles[g as usize])
             .collect();
         let mine: Vec<u64> = (0..part.node_count())
             .filter(|&i| part.owns(i))
             .map(|i| part.global[i])
             .collect();
         let owned = all_gather_lists(comm, &mine);
-        let stiffness = deformer.stiffness();
-        let factors = if stiffness.is_empty() {
+        let factors = if setup.stiffness.is_empty() {
             Vec::new()
         } else {
-            part.global.iter().map(|&g| stiffness[g as usize]).collect()
+            part.global
+                .iter()
+                .map(|&g| setup.stiffness[g as usize])
+                .collect()
         };
-        let mut sweeper = Sweeper::new(comm, part, roles, deformer.normals())?;
+        let mut sweeper = Sweeper::new(comm, part, roles, setup.normals)?;
         sweeper.set_stiffness(factors);
-        Ok(Stepper {
+        let exact = if comm.rank() == 0 {
+            Some(Engine::from_setup(setup)?)
+        } else {
+            None
+        };
+        Ok(Distributed {
             comm,
-            graph: topology::node_graph(&mesh.cells, mesh.node_count()),
-            owned,
-            orientation: quality::orientation(mesh),
-            guess: vec![0.0; mesh.coords.len()],
-            colouring: None,
-            current: deformer.current().clone(),
-            failed: None,
             sweeper,
-            deformer,
+            graph: topology::node_graph(&mesh.cells, mesh.node_count()),
+            dim: mesh.dim,
+            roles: setup.roles.to_vec(),
+            normals: unit_normals(setup.normals, mesh.dim),
+            owned,
+            colouring: None,
+            exact,
         })
     }
 
@@ -102,158 +119,19 @@ impl<'c, C: Communicator> Stepper<'c, C> {
         self.sweeper.part()
     }
 
-    /// The input mesh.
-    pub fn initial(&self) -> &Mesh {
-        self.deformer.initial()
-    }
-
-    /// The last accepted configuration (the whole mesh, on every rank).
-    pub fn current(&self) -> &Snapshot {
-        &self.current
-    }
-
-    /// The configuration of the step that failed the inversion check, if any.
-    pub fn failed(&self) -> Option<&Snapshot> {
-        self.failed.as_ref()
-    }
-
-    /// The input mesh with the current coordinates.
-    pub fn mesh(&self) -> Mesh {
-        let mut mesh = self.deformer.initial().clone();
-        mesh.coords.clone_from(&self.current.coords);
-        mesh
-    }
-
-    /// [`Deformer::step`] over the ranks (collective): moves the boundary to
-    /// its position at step `n`, the interior with it, in sub-steps when
-    /// [`Settings::robust`] asks for them.
-    pub fn step(&mut self, n: usize) -> Result<StepReport> {
-        let start = Instant::now();
-        let dim = self.deformer.initial().dim;
-        let targets = self.deformer.targets(n)?;
-        let settings = self.deformer.settings().clone();
-        let substeps = match settings.reference {
-            Reference::Updated => settings.robust.substeps.min(30),
-            Reference::Fixed => 0,
-        };
-        let floor = 0.5f64.powi(substeps as i32);
-        let from = self.current.coords.clone();
-        let mut coords = from.clone();
-        let (mut done, mut h) = (0.0, 1.0);
-        let mut report = StepReport::default();
-        report.step = n;
-        report.converged = true;
-        loop {
-            let end = if done + h >= 1.0 { 1.0 } else { done + h };
-            let at: Vec<(usize, Vec<f64>)> = targets
-                .iter()
-                .map(|(i, p)| {
-                    let x0 = &from[dim * i..dim * (i + 1)];
-                    let q = if end == 1.0 {
-                        p.clone()
-                    } else {
-                        x0.iter().zip(p).map(|(a, b)| a + end * (b - a)).collect()
-                    };
-                    (*i, q)
-                })
-                .collect();
-            let (trial, u, info, inversions) = self.attempt(&coords, &at, end - done)?;
-            report.iterations += info.iterations;
-            report.residual = info.residual;
-            report.converged &= info.converged;
-            report.form_seconds += info.form_seconds;
-            report.solve_seconds += info.solve_seconds;
-            report.history = info.history;
-            if let Some(worst) = inversions
-                .iter()
-                .min_by(|a, b| a.volume.total_cmp(&b.volume))
-            {
-                if h * 0.5 >= floor {
-                    h *= 0.5;
-                    continue;
-                }
-                report.substeps += 1;
-                let err = Error::Inverted {
-                    step: n,
-                    count: inversions.len(),
-                    element: self.deformer.initial().cell_tags[worst.cell],
-                    centroid: worst.centroid.clone(),
-                    volume: worst.volume,
-                };
-                self.failed = Some(self.snapshot(trial, &inversions, report, start));
-                return Err(err);
-            }
-            report.substeps += 1;
-            let fraction = end - done;
-            self.guess = u.iter().map(|v| v / fraction).collect();
-            coords = trial;
-            done = end;
-            if done >= 1.0 {
-                self.current = self.snapshot(coords, &inversions, report, start);
-                return Ok(self.current.report.clone());
-            }
-            h = (2.0 * h).min(1.0 - done);
-        }
-    }
-
-    /// One distributed solve from `coords` with the prescribed nodes at
-    /// `targets`, an increment of `fraction` of a step: the new coordinates,
-    /// the solved displacement, the solver's account and the inverted cells.
-    #[allow(clippy::type_complexity)]
-    fn attempt(
-        &mut self,
-        coords: &[f64],
-        targets: &[(usize, Vec<f64>)],
-        fraction: f64,
-    ) -> Result<(Vec<f64>, Vec<f64>, SolveInfo, Vec<Inversion>)> {
-        let start = self.deformer.blended(coords, targets);
-        let dim = self.deformer.initial().dim;
-        let mut u: Vec<f64> = self.guess.iter().map(|v| v * fraction).collect();
-        clear_prescribed(dim, self.deformer.roles(), self.deformer.normals(), &mut u);
-        for (node, p) in targets {
-            for d in 0..dim {
-                u[dim * node + d] = p[d] - start[dim * node + d];
-            }
-        }
-        let info = if self.deformer.nothing_left(&start, targets) {
-            // The blend put every prescribed node on its target: every rank
-            // knows it and skips the solve.
-            u.fill(0.0);
-            let mut info = SolveInfo::default();
-            info.converged = true;
-            info
-        } else {
-            self.solve_distributed(&start, &mut u)?
-        };
-        let mut next: Vec<f64> = start.iter().zip(&u).map(|(x, d)| x + d).collect();
-        for (node, p) in targets {
-            next[dim * node..dim * (node + 1)].copy_from_slice(p);
-        }
-        let inversions = quality::inversions(self.deformer.initial(), &next, &self.orientation);
-        Ok((next, u, info, inversions))
-    }
-
-    /// Solves for the unknowns of `u` over the ranks, the springs built on
-    /// `start` (on the input mesh with the fixed reference), and gives every
-    /// rank the whole solution.
-    fn solve_distributed(&mut self, start: &[f64], u: &mut [f64]) -> Result<SolveInfo> {
-        let mesh = self.deformer.initial();
-        let dim = mesh.dim;
-        let base: &[f64] = match self.deformer.settings().reference {
-            Reference::Updated => start,
-            Reference::Fixed => &mesh.coords,
-        };
-        let roles = self.deformer.roles();
-        if self.colouring.as_ref().is_none_or(|(x, _)| x != base) {
-            let normals = unit_normals(self.deformer.normals(), dim);
-            let seeds: Vec<usize> = (0..roles.len())
+    /// The distributed sweeps: every rank sweeps its rows, then gets the
+    /// whole solution.
+    fn sweep(&mut self, coords: &[f64], u: &mut [f64], params: &SolveParams) -> Result<SolveInfo> {
+        let dim = self.dim;
+        if self.colouring.as_ref().is_none_or(|(x, _)| x != coords) {
+            let seeds: Vec<usize> = (0..self.roles.len())
                 .filter(|&i| match dim {
-                    2 => is_seed::<2>(roles[i], &normals, u, i),
-                    _ => is_seed::<3>(roles[i], &normals, u, i),
+                    2 => is_seed::<2>(self.roles[i], &self.normals, u, i),
+                    _ => is_seed::<3>(self.roles[i], &self.normals, u, i),
                 })
                 .collect();
-            let colours = engine_colours(&self.graph, roles, &seeds);
-            self.colouring = Some((base.to_vec(), colours));
+            let colours = engine_colours(&self.graph, &self.roles, &seeds);
+            self.colouring = Some((coords.to_vec(), colours));
         }
         let colours = &self.colouring.as_ref().expect("coloured above").1;
         let part = self.sweeper.part();
@@ -265,13 +143,12 @@ impl<'c, C: Communicator> Stepper<'c, C> {
             }
             out
         };
-        let local_base = pick(base, dim);
+        let local_coords = pick(coords, dim);
         let mut local_u = pick(u, dim);
         let local_colours: Vec<u32> = part.global.iter().map(|&g| colours[g as usize]).collect();
-        let params = self.deformer.settings().solve.clone();
         let info = self
             .sweeper
-            .solve(&local_base, &local_colours, &mut local_u, &params)?;
+            .solve(&local_coords, &local_colours, &mut local_u, params)?;
         self.gather(&local_u, u);
         Ok(info)
     }
@@ -292,35 +169,78 @@ impl<'c, C: Communicator> Stepper<'c, C> {
             }
         }
     }
+}
 
-    /// The configuration `coords` with its quality, for the step of `report`.
-    fn snapshot(
-        &self,
-        coords: Vec<f64>,
-        inversions: &[Inversion],
-        mut report: StepReport,
-        start: Instant,
-    ) -> Snapshot {
-        let mesh = self.deformer.initial();
-        let quality = quality::qualities(mesh, &coords, &self.orientation);
-        let summary = Summary::new(&quality);
-        report.min_quality = summary.min;
-        report.mean_quality = summary.mean;
-        report.inverted = inversions.len();
-        for (b, bin) in report.bins.iter_mut().zip(&summary.bins) {
-            *b = bin.count;
+impl<C: Communicator> SpringSolver for Distributed<'_, C> {
+    /// The distributed sweeps; where they stop unconverged and the settings
+    /// escalate, the exact solve.
+    fn solve(&mut self, coords: &[f64], u: &mut [f64], params: &SolveParams) -> Result<SolveInfo> {
+        let guess = u.to_vec();
+        let swept = self.sweep(coords, u, params)?;
+        if swept.converged || !params.escalate {
+            return Ok(swept);
         }
-        report.seconds = start.elapsed().as_secs_f64();
-        let mut inverted = vec![false; quality.len()];
-        for inv in inversions {
-            inverted[inv.cell] = true;
+        u.copy_from_slice(&guess);
+        let mut info = self.solve_exact(coords, u, params)?;
+        info.iterations += swept.iterations;
+        info.form_seconds += swept.form_seconds;
+        info.solve_seconds += swept.solve_seconds;
+        info.stages.insert(0, Stage::Sweeps);
+        Ok(info)
+    }
+
+    /// Rank 0's exact solve, broadcast: every rank gets the same solution
+    /// and account, or the same failure.
+    fn solve_exact(
+        &mut self,
+        coords: &[f64],
+        u: &mut [f64],
+        params: &SolveParams,
+    ) -> Result<SolveInfo> {
+        let solved = self
+            .exact
+            .as_mut()
+            .map(|engine| engine.solve_exact(coords, u, params));
+        let root = self.comm.process_at_rank(0);
+        let mut failed = u8::from(matches!(solved, Some(Err(_))));
+        root.broadcast_into(&mut failed);
+        if failed != 0 {
+            return Err(match solved {
+                Some(Err(e)) => e,
+                _ => Error::InvalidMesh("rank 0's exact solve of the step failed".into()),
+            });
         }
-        Snapshot {
-            coords,
-            quality,
-            inverted,
-            report,
-        }
+        let mut info = solved.and_then(Result::ok).unwrap_or_default();
+        root.broadcast_into(u);
+        let mut numbers = [
+            info.iterations as f64,
+            info.residual,
+            f64::from(u8::from(info.converged)),
+            info.form_seconds,
+            info.solve_seconds,
+            info.true_residual,
+            info.error_ratio,
+            info.worst_node as f64,
+        ];
+        root.broadcast_into(&mut numbers[..]);
+        let mut stages: Vec<u8> = info.stages.iter().map(|&s| s as u8).collect();
+        let mut count = stages.len() as u64;
+        root.broadcast_into(&mut count);
+        stages.resize(count as usize, 0);
+        root.broadcast_into(&mut stages[..]);
+        info.iterations = numbers[0] as usize;
+        info.residual = numbers[1];
+        info.converged = numbers[2] != 0.0;
+        info.form_seconds = numbers[3];
+        info.solve_seconds = numbers[4];
+        info.true_residual = numbers[5];
+        info.error_ratio = numbers[6];
+        info.worst_node = numbers[7] as usize;
+        info.stages = stages
+            .into_iter()
+            .map(|k| Stage::ALL[usize::from(k)])
+            .collect();
+        Ok(info)
     }
 }
 

@@ -249,15 +249,23 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
                 colours.len()
             )));
         }
+        Self::supports(params)?;
+        params.validate()
+    }
+
+    /// Whether the distributed sweeps can solve with `params`: the sweeps of
+    /// the methods verbss and spring (the robust preset's is verbss), with
+    /// accel none.
+    pub fn supports(params: &SolveParams) -> Result<()> {
         if !matches!(params.method, Method::Verbss | Method::Spring) || params.accel != Accel::None
         {
-            return Err(Error::InvalidSetting(
-                "over MPI only the sweeps of --method robust, verbss and spring are distributed \
-                 (with --accel none)"
-                    .into(),
-            ));
+            return Err(Error::InvalidSetting(format!(
+                "over MPI only the sweeps of the methods robust, verbss and spring are \
+                 distributed, with accel none (method {}, accel {})",
+                params.method, params.accel
+            )));
         }
-        params.validate()
+        Ok(())
     }
 
     /// Numbers the unknowns, assembles and factors the owned rows and lists

@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use verbss::deform::{Deformer, Settings};
+use verbss::deform::{Deformer, Predictor, Settings};
 use verbss::io::{self, WriteOptions};
 use verbss::motion::{Attachment, Motion};
 use verbss::robust::Robust;
@@ -42,21 +42,32 @@ fn stderr(o: &Output) -> String {
 /// is an error).
 const MAX_SWEEPS: usize = 20_000;
 
+/// The near-wall treatments of `verbss deform`'s default `--method robust`,
+/// and its predictor.
+fn robust(settings: &mut Settings) {
+    settings.robust = Robust::recommended();
+}
+
+/// The paper's method (`--method verbss`): no near-wall treatment.
+fn paper(settings: &mut Settings) {
+    settings.robust = Robust::off();
+}
+
 /// The single-process result: the stepper `verbss deform` runs, with the
-/// near-wall treatments of its default `--method robust` or none (`--method
-/// verbss`), written in the output's format.
+/// settings `configure` gives, written in the output's format.
 fn single(
     input: &Path,
     attachments: &[Attachment],
     steps: usize,
-    robust: Robust,
+    configure: fn(&mut Settings),
     out: &Path,
 ) -> Mesh {
     let mesh = io::read(input).unwrap();
     let mut settings = Settings::new(steps);
-    settings.robust = robust;
-    // The distributed sweeps do not escalate (yet): the single-process
-    // reference is the configured sweeps alone.
+    configure(&mut settings);
+    // The distributed solve escalates only from unconverged sweeps to the
+    // exact solve, which never happens here: the single-process reference
+    // is the configured sweeps alone.
     settings.solve.escalate = false;
     settings.solve.max_iterations = MAX_SWEEPS;
     let mut d = Deformer::new(&mesh, attachments, settings).unwrap();
@@ -86,11 +97,11 @@ fn same_as_single(
     extra: &[&str],
     attachments: &[Attachment],
     steps: usize,
-    robust: Robust,
+    configure: fn(&mut Settings),
 ) {
     let dir = tempfile::tempdir().unwrap();
     let reference = dir.path().join("single.su2");
-    let expected = single(input, attachments, steps, robust, &reference);
+    let expected = single(input, attachments, steps, configure, &reference);
     let whole = io::read(input).unwrap();
     for np in 1..=3 {
         let out = dir.path().join(format!("np{np}.su2"));
@@ -187,7 +198,39 @@ fn naca0012_rotation_matches_one_process() {
         &["--moving", "airfoil", "--rotate", "5", "--center", "0.25,0"],
         &[rotate],
         2,
-        Robust::recommended(),
+        robust,
+    );
+}
+
+/// The linear predictor (`2 u₁ − u₂`) is the one step loop's, over MPI too.
+#[test]
+fn linear_predictor_matches_one_process() {
+    let rotate = Attachment {
+        groups: vec!["airfoil".into()],
+        motion: Motion::Rotation {
+            center: [0.25, 0.0, 0.0],
+            axis: [0.0, 0.0, 1.0],
+            angle: 6f64.to_radians(),
+        },
+    };
+    same_as_single(
+        &mesh("mesh_NACA0012_inv.su2"),
+        &[
+            "--moving",
+            "airfoil",
+            "--rotate",
+            "6",
+            "--center",
+            "0.25,0",
+            "--predictor",
+            "linear",
+        ],
+        &[rotate],
+        3,
+        |settings| {
+            robust(settings);
+            settings.predictor = Predictor::Linear;
+        },
     );
 }
 
@@ -212,7 +255,7 @@ fn rae2822_hybrid_translation_matches_one_process() {
         ],
         &[translate],
         1,
-        Robust::off(),
+        paper,
     );
 }
 
@@ -240,7 +283,7 @@ fn tetrahedral_brick_with_sliding_sides_matches_one_process() {
         ],
         &[slide, lift],
         1,
-        Robust::recommended(),
+        robust,
     );
 }
 
@@ -293,8 +336,8 @@ fn methods_that_are_not_distributed_are_refused() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(
         stderr(&o).contains(
-            "error: invalid setting: over MPI only the sweeps of --method robust, verbss and spring \
-             are distributed (with --accel none)"
+            "error: invalid setting: over MPI only the sweeps of the methods robust, verbss and \
+             spring are distributed, with accel none (method laplacian, accel none)"
         ),
         "{}",
         stderr(&o)

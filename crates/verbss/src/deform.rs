@@ -33,7 +33,9 @@ use crate::mesh::Mesh;
 use crate::motion::{Attachment, Clock, Motion};
 use crate::quality::{self, Inversion, Summary};
 use crate::robust;
-use crate::solve::{clear_prescribed, Engine, NodeRole, SolveInfo, Stage};
+use crate::solve::{
+    clear_prescribed, Engine, NodeRole, SolveInfo, SolverSetup, SpringSolver, Stage,
+};
 
 mod blend;
 mod harmonic;
@@ -125,11 +127,15 @@ pub struct Snapshot {
     pub report: StepReport,
 }
 
-/// A mesh in motion (see the module documentation).
-pub struct Deformer {
+/// A mesh in motion (see the module documentation), its springs solved
+/// by `S`: the [`Engine`] in one process, another [`SpringSolver`] (over
+/// MPI ranks) through [`Deformer::with_solver`].
+pub struct Deformer<S = Engine> {
     mesh: Mesh,
     settings: Settings,
-    engine: Engine,
+    solver: S,
+    /// Per-node spring stiffness factors of the wall-distance stiffening (empty: none).
+    stiffness: Vec<f64>,
     roles: Vec<NodeRole>,
     normals: Vec<[f64; 3]>,
     motions: Vec<Motion>,
@@ -163,6 +169,19 @@ impl Deformer {
     /// role, builds the solver's topology and checks the input mesh (which
     /// must have no degenerate element and no two nodes at the same position).
     pub fn new(mesh: &Mesh, attachments: &[Attachment], settings: Settings) -> Result<Deformer> {
+        Deformer::with_solver(mesh, attachments, settings, Engine::from_setup)
+    }
+}
+
+impl<S: SpringSolver> Deformer<S> {
+    /// [`Deformer::new`] with the springs solved by the solver `make`
+    /// builds once the node roles are decided.
+    pub fn with_solver(
+        mesh: &Mesh,
+        attachments: &[Attachment],
+        settings: Settings,
+        make: impl FnOnce(&SolverSetup) -> Result<S>,
+    ) -> Result<Deformer<S>> {
         settings.validate()?;
         let motions: Vec<Motion> = attachments.iter().map(|a| a.motion.clone()).collect();
         for m in &motions {
@@ -200,8 +219,12 @@ impl Deformer {
         } else {
             None
         };
-        let mut engine = Engine::new(mesh, &plan.roles, &plan.normals)?;
-        engine.set_stiffness(rigid.stiffness);
+        let solver = make(&SolverSetup {
+            mesh,
+            roles: &plan.roles,
+            normals: &plan.normals,
+            stiffness: &rigid.stiffness,
+        })?;
         let orientation = quality::orientation(mesh);
         let start = Instant::now();
         let (quality, inversions) = check(mesh, &mesh.coords, &orientation);
@@ -227,7 +250,8 @@ impl Deformer {
             },
             mesh: mesh.clone(),
             settings,
-            engine,
+            solver,
+            stiffness: rigid.stiffness,
             roles: plan.roles,
             normals: plan.normals,
             motions,
@@ -259,7 +283,12 @@ impl Deformer {
     /// The per-node spring stiffness factors of the wall-distance stiffening
     /// (empty: none).
     pub fn stiffness(&self) -> &[f64] {
-        self.engine.stiffness()
+        &self.stiffness
+    }
+
+    /// The solver of the springs.
+    pub fn solver(&self) -> &S {
+        &self.solver
     }
 
     /// The number of rigid-layer nodes and the layer's thickness around each
@@ -462,9 +491,8 @@ impl Deformer {
     /// Where a (sub-)step from `coords` towards `targets` starts: the
     /// reference configuration (`coords`, or the input mesh with the fixed
     /// reference) moved by the blended rigid motion when it is on
-    /// (docs/method.md, "Blended rigid motion"). A stepper that solves the
-    /// springs elsewhere (over MPI) starts from here too.
-    pub fn blended(&mut self, coords: &[f64], targets: &[(usize, Vec<f64>)]) -> Vec<f64> {
+    /// (docs/method.md, "Blended rigid motion").
+    fn blended(&mut self, coords: &[f64], targets: &[(usize, Vec<f64>)]) -> Vec<f64> {
         let reference = match self.settings.reference {
             Reference::Updated => coords,
             Reference::Fixed => &self.mesh.coords,
@@ -486,7 +514,7 @@ impl Deformer {
     /// Whether `start` ([`Deformer::blended`]) already puts every
     /// prescribed node at its target, to round-off: the springs have
     /// nothing to solve (a rigid body under the blend).
-    pub fn nothing_left(&self, start: &[f64], targets: &[(usize, Vec<f64>)]) -> bool {
+    fn nothing_left(&self, start: &[f64], targets: &[(usize, Vec<f64>)]) -> bool {
         let dim = self.mesh.dim;
         let left = targets
             .iter()
@@ -497,7 +525,7 @@ impl Deformer {
 
     /// One solve from `start` ([`Deformer::blended`]) with the prescribed
     /// nodes at `targets`, an increment of `fraction` of a step; to
-    /// round-off when `exact` ([`Engine::solve_exact`]). The springs are
+    /// round-off when `exact` ([`SpringSolver::solve_exact`]). The springs are
     /// built on `start` (on the input mesh with the fixed reference) and
     /// solve for the move from `start`; where `start` already puts every
     /// prescribed node at its target (a rigid body under the blend) that
@@ -536,10 +564,10 @@ impl Deformer {
                 ..SolveInfo::default()
             }
         } else if exact {
-            self.engine
+            self.solver
                 .solve_exact(springs_at, &mut u, &self.settings.solve)?
         } else {
-            self.engine
+            self.solver
                 .solve(springs_at, &mut u, &self.settings.solve)?
         };
         let mut next: Vec<f64> = start.iter().zip(&u).map(|(x, d)| x + d).collect();

@@ -79,6 +79,7 @@ mod params;
 mod pass;
 mod prefetch;
 mod sor;
+mod spring_solver;
 mod sweep;
 mod verbss;
 mod verify;
@@ -88,6 +89,7 @@ pub use self::params::{
     Stage, AUTO_AMG_NODES_2D, AUTO_AMG_NODES_3D, ERROR_FRACTION,
 };
 use self::pass::{gather, prescribed_scale, run};
+pub use self::spring_solver::{SolverSetup, SpringSolver};
 pub use self::verbss::relax;
 pub(crate) use sweep::{chunked_dot, chunked_sum, sweep};
 

@@ -134,6 +134,14 @@ pub enum Stage {
 }
 
 impl Stage {
+    /// Every stage, in declaration order (`Stage::ALL[s as usize] == s`).
+    pub const ALL: [Stage; 4] = [
+        Stage::Sweeps,
+        Stage::Multigrid,
+        Stage::SafeSweeps,
+        Stage::Direct,
+    ];
+
     /// The name reports and messages use.
     pub fn name(self) -> &'static str {
         match self {
