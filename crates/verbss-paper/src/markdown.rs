@@ -333,7 +333,8 @@ the same tolerance; {what}.\n"
 
 fn settings(w: &mut String, r: &Results) {
     let Some(c) = r.cases.first() else { return };
-    let s = &c.settings;
+    let run = &c.settings.settings;
+    let s = &run.solve;
     let _ = writeln!(w, "## How we measured\n");
     let _ = writeln!(
         w,
@@ -343,7 +344,7 @@ the increment), run once per method: `spring` (edge springs), `laplacian` (compo
 k = 1/L), `ball-vertex` (edge + ball-vertex springs, one global system, scalar SOR over \
 all D·N unknowns: the paper's baseline) and `verbss` (the same system, node by node, \
 block SOR with per-node LDLᵀ).",
-        match s.reference {
+        match run.reference {
             Reference::Updated => "updated",
             Reference::Fixed => "fixed",
         }

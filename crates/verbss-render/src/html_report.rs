@@ -75,7 +75,7 @@ pub fn html(report: &Report, pictures: &[Picture]) -> Result<String> {
         report.nodes,
         report.cells,
         accepted,
-        report.settings.steps,
+        report.settings.settings.steps,
         report.verbss
     );
     if !pictures.is_empty() {
@@ -102,24 +102,31 @@ pub fn html(report: &Report, pictures: &[Picture]) -> Result<String> {
     page.push_str("<h2>Settings</h2>\n<table class=\"settings\">\n");
     let settings = serde_json::to_value(&report.settings)
         .map_err(|e| Error::Render(format!("settings: {e}")))?;
-    if let serde_json::Value::Object(map) = settings {
-        for (k, v) in map {
-            let v = match v {
-                serde_json::Value::String(s) => s,
-                other => other.to_string(),
-            };
-            let _ = writeln!(
-                page,
-                "<tr><th>{}</th><td>{}</td></tr>",
-                escape(&k),
-                escape(&v)
-            );
-        }
+    for (k, v) in settings_rows("", settings) {
+        let _ = writeln!(
+            page,
+            "<tr><th>{}</th><td>{}</td></tr>",
+            escape(&k),
+            escape(&v)
+        );
     }
     page.push_str("</table>\n");
     page.push_str(&table(steps));
     page.push_str("</body>\n</html>\n");
     Ok(page)
+}
+
+/// The settings as table rows, nested groups as `group.key`
+/// (`solve.omega`).
+fn settings_rows(prefix: &str, value: serde_json::Value) -> Vec<(String, String)> {
+    match value {
+        serde_json::Value::Object(map) => map
+            .into_iter()
+            .flat_map(|(k, v)| settings_rows(&format!("{prefix}{k}."), v))
+            .collect(),
+        serde_json::Value::String(s) => vec![(prefix.trim_end_matches('.').into(), s)],
+        other => vec![(prefix.trim_end_matches('.').into(), other.to_string())],
+    }
 }
 
 const STYLE: &str = "body{font-family:sans-serif;margin:1.5em auto;max-width:1500px;color:#222}\

@@ -2,7 +2,10 @@
 //!
 //! ```json
 //! { "verbss": "0.1.0", "mesh": "naca.su2", "dim": 2, "nodes": 4500, "cells": 8700,
-//!   "settings": { "method": "verbss", "reference": "updated", "steps": 160, … },
+//!   "settings": { "method": "robust", "steps": 160, "dt": 0.00625, "reference": "updated",
+//!                 "solve": { "method": "verbss", "omega": 1.6, … },
+//!                 "robust": { "layer": "auto", "substeps": 6, "stiffening": 1.0, "blend": true },
+//!                 "predictor": "previous" },
 //!   "outcome": "completed",
 //!   "steps": [ { "step": 1, "iterations": 41, "residual": 8.9e-6, "seconds": 0.004,
 //!                "min_quality": 0.31, "inverted": 0, "bins": [0, 0, 12, 803, 7885], … } ] }
@@ -16,82 +19,31 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use crate::deform::{Predictor, Reference, Settings, StepReport};
+use crate::deform::{Preset, Settings, StepReport};
 use crate::error::Result;
 use crate::io::write_atomic;
 use crate::mesh::Mesh;
-use crate::robust::Layer;
 
-/// The settings header of a report.
+/// The settings header of a report: the preset the settings are and every
+/// setting of the run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Header {
     /// `robust` (VerBSS with the recommended near-wall treatments),
-    /// `verbss`, `ball-vertex`, `spring` or `laplacian`.
-    pub method: &'static str,
-    /// The global solver of `ball-vertex`: `sor` or `direct`.
-    pub solver: &'static str,
-    /// `updated` (paper option 1) or `fixed` (option 2).
-    pub reference: Reference,
-    /// Steps of the run.
-    pub steps: usize,
-    /// Time per step.
-    pub dt: f64,
-    /// Over-relaxation factor ω.
-    pub omega: f64,
-    /// Stop tolerance ε.
-    pub tolerance: f64,
-    /// Whether ε is the paper's absolute eq.-8 threshold (else relative to the step's largest prescribed displacement).
-    pub absolute_tolerance: bool,
-    /// Maximum sweeps k_max.
-    pub max_iterations: usize,
-    /// Worker threads.
-    pub threads: usize,
-    /// Plain sweeps (`none`), the multigrid (`amg`) or chosen per mesh (`auto`).
-    pub accel: &'static str,
-    /// Whether a stalled, diverging or untrusted solve escalates to the
-    /// multigrid and the direct solve (off when a solver, accel or ω was
-    /// given explicitly).
-    pub escalate: bool,
-    /// Each step's initial guess: `previous` or `linear`.
-    pub predictor: Predictor,
-    /// The rigid layer: `off`, `auto` or its thickness.
-    pub rigid_layer: String,
-    /// The wall-distance stiffening exponent (0: off).
-    pub stiffening: f64,
-    /// Sub-steps: down to `1/2^substeps` of a step (0: off).
-    pub substeps: u32,
-    /// Whether the blended rigid motion moved the mesh before the springs.
-    pub blend: bool,
+    /// `verbss`, `ball-vertex`, `spring` or `laplacian`
+    /// ([`Settings::preset`]).
+    pub method: Preset,
+    /// Every setting: `steps`, `dt`, `reference`, `solve` (the solver's
+    /// settings), `robust` (the near-wall treatments), `predictor`.
+    #[serde(flatten)]
+    pub settings: Settings,
 }
 
 impl Header {
     /// The header of a run with `settings`.
     pub fn new(settings: &Settings) -> Header {
-        let s = &settings.solve;
-        let robust = &settings.robust;
-        let method = settings.preset().name();
         Header {
-            method,
-            solver: s.solver.name(),
-            reference: settings.reference,
-            steps: settings.steps,
-            dt: settings.dt,
-            omega: s.omega,
-            tolerance: s.tolerance,
-            absolute_tolerance: s.absolute_tolerance,
-            max_iterations: s.max_iterations,
-            threads: s.threads,
-            accel: s.accel.name(),
-            escalate: s.escalate,
-            predictor: settings.predictor,
-            rigid_layer: match robust.layer {
-                Layer::Off => "off".into(),
-                Layer::Auto => "auto".into(),
-                Layer::Thickness(t) => t.to_string(),
-            },
-            stiffening: robust.stiffening,
-            substeps: robust.substeps,
-            blend: robust.blend,
+            method: settings.preset(),
+            settings: settings.clone(),
         }
     }
 }
@@ -146,6 +98,7 @@ impl Report {
 mod tests {
     use super::*;
     use crate::mesh::{CellKind, Cells};
+    use crate::robust::Layer;
 
     #[test]
     fn writes_the_step_keys_and_the_header() {
@@ -186,5 +139,31 @@ mod tests {
         assert_eq!(v["settings"]["steps"], 4);
         assert_eq!(v["nodes"], 3);
         assert_eq!(v["outcome"], "completed");
+    }
+
+    /// Every setting is in the header, under the names of [`Settings`].
+    #[test]
+    fn the_header_holds_the_whole_settings() {
+        let mut settings = Settings::robust(10);
+        settings.robust.layer = Layer::Thickness(0.02);
+        let v = serde_json::to_value(Header::new(&settings)).unwrap();
+        assert_eq!(v["method"], "verbss");
+        let expected = serde_json::json!({
+            "method": "verbss",
+            "steps": 10,
+            "dt": 0.1,
+            "reference": "updated",
+            "solve": {
+                "method": "verbss", "solver": "sor", "omega": 1.6, "tolerance": 1e-6,
+                "absolute_tolerance": false, "max_iterations": 2000, "threads": 1,
+                "record_history": false, "accel": "none", "escalate": true
+            },
+            "robust": { "layer": 0.02, "substeps": 6, "stiffening": 1.0, "blend": true },
+            "predictor": "previous"
+        });
+        assert_eq!(v, expected);
+        let v = serde_json::to_value(Header::new(&Settings::robust(10))).unwrap();
+        assert_eq!(v["method"], "robust");
+        assert_eq!(v["robust"]["layer"], "auto");
     }
 }

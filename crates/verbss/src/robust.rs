@@ -62,6 +62,20 @@ pub enum Layer {
     Thickness(f64),
 }
 
+impl serde::Serialize for Layer {
+    /// `"off"`, `"auto"` or the thickness as a number.
+    fn serialize<S: serde::Serializer>(
+        &self,
+        serializer: S,
+    ) -> std::result::Result<S::Ok, S::Error> {
+        match self {
+            Layer::Off => serializer.serialize_str("off"),
+            Layer::Auto => serializer.serialize_str("auto"),
+            Layer::Thickness(t) => serializer.serialize_f64(*t),
+        }
+    }
+}
+
 impl std::str::FromStr for Layer {
     type Err = Error;
 
@@ -81,7 +95,7 @@ impl std::str::FromStr for Layer {
 }
 
 /// The near-wall treatments of a run.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
 #[non_exhaustive]
 pub struct Robust {
     /// The rigid layer.

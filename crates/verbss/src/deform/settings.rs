@@ -93,7 +93,7 @@ impl Preset {
 }
 
 /// Settings of a run.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 #[non_exhaustive]
 pub struct Settings {
     /// The number of steps `N` of the run (the motions' `n/N`).

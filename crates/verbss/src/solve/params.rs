@@ -83,7 +83,7 @@ pub const AUTO_AMG_NODES_2D: usize = 3_000;
 pub const AUTO_AMG_NODES_3D: usize = 100_000;
 
 /// Settings of one solve (one time step).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 #[non_exhaustive]
 pub struct SolveParams {
     /// The system and its solution strategy.
