@@ -7,7 +7,7 @@ use base64::engine::general_purpose::STANDARD;
 use base64::Engine;
 
 use super::*;
-use crate::mesh::{Cells, Group};
+use crate::mesh::{CellKind, Cells, Group};
 
 const FIXTURES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/meshes/vtu/");
 
