@@ -79,7 +79,7 @@ pub fn square_of_triangles(n: usize) -> Mesh {
     Mesh::new(2, coords, cells, groups).expect("a valid square")
 }
 
-/// Two triangles and a quad on [0,2]×[0,1] (nodes row by row from the
+/// Two triangles and a quad on `[0, 2] × [0, 1]` (nodes row by row from the
 /// origin); groups `bottom` (tag 1) and `top` (tag 2) of lines.
 pub fn two_triangles_and_a_quad() -> Mesh {
     let coords = vec![0., 0., 1., 0., 2., 0., 0., 1., 1., 1., 2., 1.];
