@@ -7,9 +7,10 @@
 
 use libfuzzer_sys::fuzz_target;
 use verbss::deform::{Deformer, Reference, Settings};
+use verbss::mesh::samples::jittered_grid;
 use verbss::motion::{Attachment, Motion};
 use verbss::solve::{Method, Solver};
-use verbss_fuzz::{grid, Bytes};
+use verbss_fuzz::Bytes;
 
 fuzz_target!(
     init: {
@@ -37,7 +38,7 @@ fuzz_target!(
     let v = [b.f64(), b.f64(), b.f64()];
     let amount = b.f64();
     let mut jitter = Bytes(b.0);
-    let Some(mesh) = grid(dim, n, kind, || 0.3 * jitter.unit()) else {
+    let Some(mesh) = jittered_grid(dim, n, kind, || 0.3 * jitter.unit()) else {
         return;
     };
     let motion = match which % 4 {

@@ -1,12 +1,10 @@
 //! What the fuzz targets share: the checks every successfully read mesh must
-//! pass, a byte reader for structured inputs, and small generated meshes.
+//! pass and a byte reader for structured inputs (the generated meshes are
+//! [`verbss::mesh::samples`]).
 
 use std::path::Path;
 
 use verbss::Mesh;
-
-mod grid;
-pub use grid::grid;
 
 /// A mesh that a reader accepted must pass `Mesh::validate`, and what the
 /// writer makes of it (when it can store it) must read back.

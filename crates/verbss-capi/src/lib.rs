@@ -261,21 +261,14 @@ unsafe fn handle<'a>(d: *const VerbssDeformer) -> Result<&'a VerbssDeformer, Fai
 }
 
 fn kind_of(code: i32, cell: usize) -> Result<CellKind, Failure> {
-    Ok(match code {
-        VERBSS_TRIANGLE => CellKind::Triangle,
-        VERBSS_QUAD => CellKind::Quad,
-        VERBSS_TETRA => CellKind::Tetra,
-        VERBSS_HEXAHEDRON => CellKind::Hexahedron,
-        VERBSS_WEDGE => CellKind::Wedge,
-        VERBSS_PYRAMID => CellKind::Pyramid,
-        _ => {
-            return Err(Error::InvalidMesh(format!(
-                "cell {cell} has kind {code} (expected 5 triangle, 9 quad, 10 tetra, \
-                 12 hexahedron, 13 wedge or 14 pyramid)"
-            ))
-            .into())
-        }
-    })
+    match CellKind::from_vtk_id(code.into()).filter(|k| k.dim() >= 2) {
+        Some(kind) => Ok(kind),
+        None => Err(Error::InvalidMesh(format!(
+            "cell {cell} has kind {code} (expected 5 triangle, 9 quad, 10 tetra, \
+             12 hexahedron, 13 wedge or 14 pyramid)"
+        ))
+        .into()),
+    }
 }
 
 /// A 0-based node id below `n`.

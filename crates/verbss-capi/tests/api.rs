@@ -409,3 +409,17 @@ fn the_robust_method_is_the_library_with_the_recommended_treatments() {
     assert_eq!(points(d), library.current().coords);
     assert_eq!(unsafe { verbss_deformer_free(d) }, VERBSS_OK);
 }
+
+#[test]
+fn the_kind_constants_are_the_vtk_ids() {
+    for (code, kind) in [
+        (VERBSS_TRIANGLE, CellKind::Triangle),
+        (VERBSS_QUAD, CellKind::Quad),
+        (VERBSS_TETRA, CellKind::Tetra),
+        (VERBSS_HEXAHEDRON, CellKind::Hexahedron),
+        (VERBSS_WEDGE, CellKind::Wedge),
+        (VERBSS_PYRAMID, CellKind::Pyramid),
+    ] {
+        assert_eq!(code, i32::from(kind.vtk_id()), "{kind:?}");
+    }
+}

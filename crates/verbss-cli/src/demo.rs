@@ -42,7 +42,7 @@ pub fn job(out: PathBuf) -> anyhow::Result<Job> {
         period: None,
     };
     // ε = 10⁻⁵ relative to the step's largest boundary displacement. The
-    // paper's absolute ε = 10⁻⁵ on the eq.-8 mean stops after ~10 sweeps
+    // paper's absolute ε = 10⁻⁵ on the eq.-8 mean stops after a few sweeps
     // here (most of the 4,500 nodes barely move, so the mean is small long
     // before the nodes next to the trailing edge have followed it) and the
     // trailing-edge cells invert within a few steps; the exact solution of

@@ -404,12 +404,10 @@ fn convergence(steps: &[StepReport]) -> Result<String> {
 mod tests {
     use super::*;
     use verbss::deform::Settings;
-    use verbss::mesh::{CellKind, Cells, Mesh};
+    use verbss::mesh::samples::one_triangle;
 
     fn report() -> Report {
-        let mut cells = Cells::new();
-        cells.push(CellKind::Triangle, &[0, 1, 2]);
-        let mesh = Mesh::new(2, vec![0., 0., 1., 0., 0., 1.], cells, vec![]).unwrap();
+        let mesh = one_triangle();
         let mut report = Report::new("tri<1>.su2", &mesh, &Settings::new(2));
         for (n, q) in [(0, 0.9), (1, 0.61), (2, 0.3333333333333333)] {
             // `StepReport` is non-exhaustive outside the core: set its fields.

@@ -30,9 +30,7 @@
 //! # Once per time step, from a flow solver
 //!
 //! ```
-//! use verbss::deform::{Deformer, Settings};
-//! use verbss::generate::{naca0012, AirfoilGrid};
-//! use verbss::motion::{Attachment, Motion};
+//! use verbss::prelude::*;
 //!
 //! let mesh = naca0012(&AirfoilGrid::default())?;
 //! let pitch = Attachment {
@@ -53,8 +51,8 @@
 //! # Ok::<(), verbss::Error>(())
 //! ```
 //!
-//! Lower down, [`solve::Engine`] solves one step for given prescribed
-//! displacements.
+//! [`prelude`] holds what this example uses. Lower down, [`solve::Engine`]
+//! solves one step for given prescribed displacements.
 
 #![warn(missing_docs)]
 #![deny(unsafe_code)]
@@ -68,6 +66,7 @@ pub mod io;
 pub mod mesh;
 pub mod motion;
 mod names;
+pub mod prelude;
 pub mod quality;
 pub mod report;
 pub mod robust;
@@ -77,3 +76,8 @@ pub mod topology;
 
 pub use error::{Error, Result};
 pub use mesh::{CellKind, Cells, Group, Mesh};
+
+/// The README's library example, run as a doctest.
+#[doc = include_str!("../../../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

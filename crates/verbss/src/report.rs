@@ -97,14 +97,12 @@ impl Report {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::{CellKind, Cells};
+    use crate::mesh::samples::one_triangle;
     use crate::robust::Layer;
 
     #[test]
     fn writes_the_step_keys_and_the_header() {
-        let mut cells = Cells::new();
-        cells.push(CellKind::Triangle, &[0, 1, 2]);
-        let mesh = Mesh::new(2, vec![0., 0., 1., 0., 0., 1.], cells, vec![]).unwrap();
+        let mesh = one_triangle();
         let mut report = Report::new("tri.su2", &mesh, &Settings::new(4));
         report.steps.push(StepReport {
             step: 1,

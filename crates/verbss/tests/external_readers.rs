@@ -10,78 +10,13 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use verbss::io::{MshVersion, WriteOptions};
-use verbss::{CellKind, Cells, Group, Mesh};
+use verbss::mesh::samples::{hex_wedge_pyramid_tet, two_triangles_and_a_quad};
+use verbss::Mesh;
 
 const SCRIPT: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/../../scripts/check_external_readers.py"
 );
-
-fn cells(list: &[(CellKind, &[usize])]) -> Cells {
-    let mut cells = Cells::new();
-    for (kind, nodes) in list {
-        cells.push(*kind, nodes);
-    }
-    cells
-}
-
-fn group(name: &str, tag: i32, facets: &[(CellKind, &[usize])]) -> Group {
-    Group {
-        name: name.into(),
-        tag: Some(tag),
-        facets: cells(facets),
-    }
-}
-
-/// Two triangles and a quad on [0,2]×[0,1]; bottom and top boundary lines.
-fn mesh_2d() -> Mesh {
-    let coords = vec![0., 0., 1., 0., 2., 0., 0., 1., 1., 1., 2., 1.];
-    let volume = cells(&[
-        (CellKind::Triangle, &[1, 2, 5]),
-        (CellKind::Triangle, &[1, 5, 4]),
-        (CellKind::Quad, &[0, 1, 4, 3]),
-    ]);
-    let groups = vec![
-        group(
-            "bottom",
-            1,
-            &[(CellKind::Line, &[0, 1]), (CellKind::Line, &[1, 2])],
-        ),
-        group(
-            "top",
-            2,
-            &[(CellKind::Line, &[5, 4]), (CellKind::Line, &[4, 3])],
-        ),
-    ];
-    Mesh::new(2, coords, volume, groups).unwrap()
-}
-
-/// A hexahedron, a wedge beside it, a pyramid on top and a tetrahedron;
-/// two boundary groups of quads and triangles.
-fn mesh_3d() -> Mesh {
-    let coords = vec![
-        0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0., 0., 0., 1., 1., 0., 1., 1., 1., 1., 0., 1.,
-        1., 2., 0., 0., 2., 0., 1., 0.5, 0.5, 1.5, 1.5, 0.25, 1.5,
-    ];
-    let volume = cells(&[
-        (CellKind::Hexahedron, &[0, 1, 2, 3, 4, 5, 6, 7]),
-        (CellKind::Wedge, &[1, 8, 2, 5, 9, 6]),
-        (CellKind::Pyramid, &[4, 5, 6, 7, 10]),
-        (CellKind::Tetra, &[5, 9, 6, 11]),
-    ]);
-    let groups = vec![
-        group(
-            "floor",
-            1,
-            &[
-                (CellKind::Quad, &[0, 3, 2, 1]),
-                (CellKind::Triangle, &[1, 2, 8]),
-            ],
-        ),
-        group("roof", 2, &[(CellKind::Triangle, &[4, 5, 10])]),
-    ];
-    Mesh::new(3, coords, volume, groups).unwrap()
-}
 
 /// Whether python3 can import meshio and gmsh; otherwise fails under CI and
 /// says "skipped" elsewhere.
@@ -162,7 +97,7 @@ fn vtu_files_open_in_meshio() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    let (m2, m3) = (mesh_2d(), mesh_3d());
+    let (m2, m3) = (two_triangles_and_a_quad(), hex_wedge_pyramid_tet());
     check(
         dir.path(),
         &[
@@ -178,7 +113,7 @@ fn msh_files_open_in_meshio_and_gmsh() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    let (m2, m3) = (mesh_2d(), mesh_3d());
+    let (m2, m3) = (two_triangles_and_a_quad(), hex_wedge_pyramid_tet());
     let mut files = Vec::new();
     for (version, v) in [(MshVersion::V22, "v22"), (MshVersion::V41, "v41")] {
         for (binary, b) in [(false, "ascii"), (true, "binary")] {
@@ -199,7 +134,7 @@ fn su2_files_open_in_meshio() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    let (m2, m3) = (mesh_2d(), mesh_3d());
+    let (m2, m3) = (two_triangles_and_a_quad(), hex_wedge_pyramid_tet());
     check(
         dir.path(),
         &[

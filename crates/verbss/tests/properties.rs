@@ -2,20 +2,18 @@
 //! (triangles, quads, both) and 3D (hexahedra, prisms, tetrahedra, pyramids,
 //! hexahedra with pyramids): structured grids of `[0, 1]^D` whose nodes are
 //! jittered by up to 0.15 of the spacing (the generator is shared with the
-//! fuzz targets, `fuzz/src/grid.rs`).
+//! fuzz targets: [`verbss::mesh::samples::jittered_grid`]).
 
 use std::path::Path;
 
 use proptest::prelude::*;
 use verbss::deform::{Deformer, Settings};
 use verbss::io::{gmsh, su2, vtu, MshVersion};
+use verbss::mesh::samples::jittered_grid;
 use verbss::motion::{Attachment, Motion};
 use verbss::quality;
 use verbss::solve::{default_roles, Engine, Method, NodeRole, SolveParams, Solver};
 use verbss::Mesh;
-
-#[path = "../../../fuzz/src/grid.rs"]
-mod grid;
 
 /// A random valid mesh: dimension, kind, nodes a side and jitter.
 fn meshes() -> impl Strategy<Value = Mesh> {
@@ -28,7 +26,7 @@ fn meshes() -> impl Strategy<Value = Mesh> {
         .prop_map(|(dim, kind, size, jitter)| {
             let n = if dim == 2 { 3 + size } else { 3 + size % 2 };
             let mut k = jitter.into_iter().cycle();
-            grid::grid(dim, n, kind, || 0.15 * k.next().unwrap_or(0.0))
+            jittered_grid(dim, n, kind, || 0.15 * k.next().unwrap_or(0.0))
                 .expect("the generated grid is valid")
         })
 }
@@ -340,7 +338,7 @@ proptest! {
 /// solver catches it and reports a singular system as an error.
 #[test]
 fn a_singular_direct_system_is_an_error_not_a_panic() {
-    let mesh = grid::grid(3, 2, 0, || 0.0).expect("one hexahedron");
+    let mesh = jittered_grid(3, 2, 0, || 0.0).expect("one hexahedron");
     let mut settings = Settings::new(3);
     settings.solve.method = Method::BallVertex;
     settings.solve.solver = Solver::Direct;

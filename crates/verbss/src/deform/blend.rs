@@ -43,10 +43,9 @@ use crate::topology::Csr;
 const ROUND_OFF: f64 = 1e-12;
 
 /// The angle's weight falls off over `ρ =` this many times the body's
-/// radius about the centre it turns about. Measured on the test set
-/// (docs/robustness.md): 1 left the three-element airfoil pitched 90° at a
-/// minimum quality of 0.18, 2 at 0.28, 3 at 0.28 and 5 at 0.26, the
-/// inviscid NACA0012 at 0.22, 0.23, 0.20 and 0.18; 0.5 inverted both.
+/// radius about the centre it turns about: the best minimum quality of 0.5,
+/// 1, 2, 3 and 5 on two airfoils of the test set of docs/robustness.md
+/// (BENCHMARKS.md, "Recorded in the code's comments").
 const ANGLE_SCALE: f64 = 2.0;
 
 /// A body: the moving nodes its rigid motion is fitted to (indices into the

@@ -4,7 +4,7 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use super::*;
-use crate::mesh::{CellKind, Cells, Group};
+use crate::mesh::samples::square_of_triangles as square;
 use crate::motion::PositionSource;
 use crate::robust::Robust;
 
@@ -16,49 +16,6 @@ const BUMP: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/../../assets/meshes/su2/surface_bump.dat"
 );
-
-/// The unit square as an `n × n` grid of triangles, with groups `left`,
-/// `right`, `bottom` and `top`.
-fn square(n: usize) -> Mesh {
-    let node = |i: usize, j: usize| j * (n + 1) + i;
-    let mut coords = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            coords.extend([i as f64 / n as f64, j as f64 / n as f64]);
-        }
-    }
-    let mut cells = Cells::new();
-    for j in 0..n {
-        for i in 0..n {
-            let (a, b, c, d) = (
-                node(i, j),
-                node(i + 1, j),
-                node(i + 1, j + 1),
-                node(i, j + 1),
-            );
-            cells.push(CellKind::Triangle, &[a, b, c]);
-            cells.push(CellKind::Triangle, &[a, c, d]);
-        }
-    }
-    let side = |name: &str, f: &dyn Fn(usize) -> [usize; 2]| {
-        let mut facets = Cells::new();
-        for k in 0..n {
-            facets.push(CellKind::Line, &f(k));
-        }
-        Group {
-            name: name.into(),
-            tag: None,
-            facets,
-        }
-    };
-    let groups = vec![
-        side("left", &|k| [node(0, k), node(0, k + 1)]),
-        side("right", &|k| [node(n, k), node(n, k + 1)]),
-        side("bottom", &|k| [node(k, 0), node(k + 1, 0)]),
-        side("top", &|k| [node(k, n), node(k + 1, n)]),
-    ];
-    Mesh::new(2, coords, cells, groups).unwrap()
-}
 
 fn attach(groups: &[&str], motion: Motion) -> Attachment {
     Attachment {

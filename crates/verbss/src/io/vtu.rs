@@ -53,7 +53,7 @@
 use std::path::Path;
 
 use crate::error::{Error, Result};
-use crate::mesh::{CellKind, Mesh};
+use crate::mesh::Mesh;
 
 mod binary;
 mod read;
@@ -94,27 +94,6 @@ pub struct VtuData {
     pub mesh: Mesh,
     /// Its point and cell data.
     pub fields: Fields,
-}
-
-/// The VTK cell-type number of a kind.
-fn vtk_type(kind: CellKind) -> u8 {
-    match kind {
-        CellKind::Vertex => 1,
-        CellKind::Line => 3,
-        CellKind::Triangle => 5,
-        CellKind::Quad => 9,
-        CellKind::Tetra => 10,
-        CellKind::Hexahedron => 12,
-        CellKind::Wedge => 13,
-        CellKind::Pyramid => 14,
-    }
-}
-
-/// The kind with VTK cell-type number `t`, if verbss supports it.
-fn kind_of_vtk(t: i64) -> Option<CellKind> {
-    CellKind::ALL
-        .into_iter()
-        .find(|&k| i64::from(vtk_type(k)) == t)
 }
 
 /// Reads a `.vtu` file.

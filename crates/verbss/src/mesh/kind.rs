@@ -95,6 +95,29 @@ impl CellKind {
         CellKind::ALL.into_iter().find(|k| k.name() == name)
     }
 
+    /// The VTK cell type id of the kind (1 vertex, 3 line, 5 triangle, 9 quad,
+    /// 10 tetra, 12 hexahedron, 13 wedge, 14 pyramid), which SU2 files and the
+    /// C API use too.
+    pub fn vtk_id(self) -> u8 {
+        match self {
+            CellKind::Vertex => 1,
+            CellKind::Line => 3,
+            CellKind::Triangle => 5,
+            CellKind::Quad => 9,
+            CellKind::Tetra => 10,
+            CellKind::Hexahedron => 12,
+            CellKind::Wedge => 13,
+            CellKind::Pyramid => 14,
+        }
+    }
+
+    /// The kind with VTK cell type id `id`, if verbss has it.
+    pub fn from_vtk_id(id: i64) -> Option<CellKind> {
+        CellKind::ALL
+            .into_iter()
+            .find(|k| i64::from(k.vtk_id()) == id)
+    }
+
     /// Local node `i` of a cell numbered as VTK and SU2 number it is local
     /// node `vtk_local(i)` of the same cell numbered as verbss (and Gmsh) do,
     /// and back (the map is its own inverse). They differ only for the wedge,
@@ -139,6 +162,7 @@ mod tests {
                 assert!(c[..=t.dim].iter().all(|&n| n < t.nodes), "{kind:?}");
             }
             assert_eq!(CellKind::from_name(t.name), Some(kind));
+            assert_eq!(CellKind::from_vtk_id(kind.vtk_id().into()), Some(kind));
         }
     }
 

@@ -3,6 +3,7 @@
 
 mod kind;
 pub mod kinds;
+pub mod samples;
 
 pub use kind::{CellKind, KindTable};
 

@@ -105,8 +105,8 @@ use crate::topology;
 /// changes on its own and the chunks are added in order, whatever the threads.
 /// Small enough that the colours of a small mesh still split evenly over the
 /// threads: with 256, a colour of 1,200 nodes made 5 chunks, 3 for one
-/// thread and 2 for the other (two-thread sweeps 15 % faster with 64 on
-/// 12,931 unknowns in 11 colours, no change on larger meshes; BENCHMARKS.md).
+/// thread and 2 for the other (BENCHMARKS.md, "The coupling loop and the
+/// chunks").
 pub(crate) const CHUNK: usize = 64;
 
 /// [`chunked_sum`] and [`chunked_dot`] add up fixed pieces of this many numbers.
@@ -219,8 +219,8 @@ pub(crate) fn unrotate<const D: usize>(r: &[[f64; D]; D], a: &[f64; D]) -> [f64;
 /// `c_p + Σ_j B_pj u_j` over the unknown neighbours of position `p`
 /// (`constant` and `work` hold `D` numbers per position).
 // The counter `e` beside the zip: zipping `a..` in as clippy suggests
-// compiles to a loop that keeps its state in memory: 15-28 % slower sweeps
-// (12,931 unknown nodes, 3D).
+// compiles to a loop that keeps its state in memory, with slower sweeps
+// (BENCHMARKS.md, "The coupling loop and the chunks").
 #[allow(clippy::explicit_counter_loop)]
 #[inline(always)]
 pub fn coupled<const D: usize>(

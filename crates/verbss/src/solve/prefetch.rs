@@ -16,8 +16,8 @@
 #![allow(unsafe_code)]
 
 /// How many couplings ahead of the one being added (in the sweep's order,
-/// about three nodes) the neighbour's displacement is asked for: 40 was
-/// fastest of 20, 40, 64 and 100 on 12,931–418,879 unknowns (BENCHMARKS.md).
+/// about three nodes) the neighbour's displacement is asked for: the fastest
+/// of 20, 40, 64 and 100 (BENCHMARKS.md, "Software prefetch").
 const AHEAD: usize = 40;
 
 /// Asks for the displacement (`D` numbers per position in `work`) of the
@@ -32,8 +32,7 @@ pub(crate) fn ahead<const D: usize>(work: &[f64], neighbours: &[u32], e: usize) 
 /// Asks for the coupling blocks 1.5 KB (192 numbers: 32 couplings in 3D, 64
 /// in 2D) after the start of `block`, the one being added. The blocks are
 /// read in order, but the processor's own look-ahead comes too late for the
-/// sweep (3–11 % faster sweeps on 48,581–418,879 unknowns with it,
-/// BENCHMARKS.md).
+/// sweep (BENCHMARKS.md, "Software prefetch").
 #[inline(always)]
 pub(crate) fn block(block: &[f64]) {
     prefetch(block, 192);

@@ -45,26 +45,18 @@ use std::path::Path;
 use crate::error::Result;
 use crate::mesh::{CellKind, Mesh};
 
-/// The SU2 (VTK) element type ids, their kinds and the names used in messages.
-const TYPES: [(u32, CellKind, &str); 8] = [
-    (1, CellKind::Vertex, "vertex"),
-    (3, CellKind::Line, "line"),
-    (5, CellKind::Triangle, "triangle"),
-    (9, CellKind::Quad, "quadrilateral"),
-    (10, CellKind::Tetra, "tetrahedron"),
-    (12, CellKind::Hexahedron, "hexahedron"),
-    (13, CellKind::Wedge, "prism"),
-    (14, CellKind::Pyramid, "pyramid"),
+/// The kinds an SU2 file holds and the names used in messages; their SU2 type
+/// ids are VTK's ([`CellKind::vtk_id`]).
+const NAMES: [(CellKind, &str); 8] = [
+    (CellKind::Vertex, "vertex"),
+    (CellKind::Line, "line"),
+    (CellKind::Triangle, "triangle"),
+    (CellKind::Quad, "quadrilateral"),
+    (CellKind::Tetra, "tetrahedron"),
+    (CellKind::Hexahedron, "hexahedron"),
+    (CellKind::Wedge, "prism"),
+    (CellKind::Pyramid, "pyramid"),
 ];
-
-/// The SU2 type id of a kind.
-fn type_id(kind: CellKind) -> u32 {
-    TYPES
-        .iter()
-        .find(|t| t.1 == kind)
-        .map(|t| t.0)
-        .expect("every kind has an SU2 type id")
-}
 
 /// Parses an SU2 file's bytes; `path` is only used in error messages.
 ///
@@ -106,10 +98,10 @@ pub enum Anchor {
 
 /// The SU2/VTK name of a kind, as used in messages.
 fn kind_name(kind: CellKind) -> &'static str {
-    TYPES
+    NAMES
         .iter()
-        .find(|t| t.1 == kind)
-        .map(|t| t.2)
+        .find(|t| t.0 == kind)
+        .map(|t| t.1)
         .expect("every kind has an SU2 name")
 }
 

@@ -3,7 +3,7 @@
 use std::collections::HashMap;
 use std::io::Write;
 
-use super::{type_id, Anchor};
+use super::Anchor;
 use crate::mesh::{CellKind, Mesh};
 
 /// Writes `mesh` in SU2 format: `NDIME=`, `NELEM=` (elements with their index),
@@ -81,7 +81,7 @@ pub fn write_to(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
 
 /// Writes `type n1 … nk` without the end of line, in SU2's (VTK's) node order.
 fn write_element(w: &mut dyn Write, kind: CellKind, nodes: &[usize]) -> std::io::Result<()> {
-    write!(w, "{}", type_id(kind))?;
+    write!(w, "{}", kind.vtk_id())?;
     for i in 0..nodes.len() {
         write!(w, "\t{}", nodes[kind.vtk_local(i)])?;
     }

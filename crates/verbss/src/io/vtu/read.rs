@@ -5,11 +5,9 @@ use std::path::Path;
 
 use super::binary::{decode_base64, BlockError, Layout, Ty, Values};
 use super::xml::{collect_offsets, parse_tree, Appended, Ctx, Element};
-use super::{
-    kind_of_vtk, Fields, VtuData, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY, UNNAMED_GROUP,
-};
+use super::{Fields, VtuData, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY, UNNAMED_GROUP};
 use crate::error::Result;
-use crate::mesh::{Cells, Group, Mesh};
+use crate::mesh::{CellKind, Cells, Group, Mesh};
 
 /// Parses a `.vtu` file's bytes; `path` is only used in error messages.
 ///
@@ -372,7 +370,7 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         let mut cells = Cells::new();
         let mut start = 0;
         for (c, (&end, &t)) in ends.iter().zip(kinds).enumerate() {
-            let kind = kind_of_vtk(t).ok_or_else(|| {
+            let kind = CellKind::from_vtk_id(t).ok_or_else(|| {
                 at(
                     types,
                     format!(

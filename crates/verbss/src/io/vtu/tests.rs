@@ -7,7 +7,7 @@ use base64::engine::general_purpose::STANDARD;
 use base64::Engine;
 
 use super::*;
-use crate::mesh::{Cells, Group};
+use crate::mesh::{samples, CellKind, Cells, Group};
 
 const FIXTURES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/meshes/vtu/");
 
@@ -27,34 +27,25 @@ fn group(name: &str, tag: Option<i32>, facets: &[(CellKind, &[usize])]) -> Group
     }
 }
 
-/// Two triangles and a quad on [0,2]×[0,1] scaled by 0.1, as in
-/// scripts/make_vtu_fixtures.py.
+/// [`samples::two_triangles_and_a_quad`] without its groups, scaled: the
+/// mesh of scripts/make_vtu_fixtures.py at 0.1.
 fn mesh_2d(scale: f64) -> Mesh {
-    let coords = [0., 0., 1., 0., 2., 0., 0., 1., 1., 1., 2., 1.];
-    let cells = cells(&[
-        (CellKind::Triangle, &[1, 2, 5]),
-        (CellKind::Triangle, &[1, 5, 4]),
-        (CellKind::Quad, &[0, 1, 4, 3]),
-    ]);
-    let coords = coords.iter().map(|x| x * scale).collect();
-    Mesh::new(2, coords, cells, Vec::new()).unwrap()
+    scaled(samples::two_triangles_and_a_quad(), scale)
 }
 
-/// A hexahedron, a wedge, a pyramid and a tetrahedron, as in
+/// [`samples::hex_wedge_pyramid_tet`] without its groups, scaled, as in
 /// scripts/make_vtu_fixtures.py.
 fn mesh_3d(scale: f64) -> Mesh {
-    let coords = [
-        0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0., 0., 0., 1., 1., 0., 1., 1., 1., 1., 0., 1.,
-        1., 2., 0., 0., 2., 0., 1., 0.5, 0.5, 1.5, 1.5, 0.25, 1.5,
-    ];
-    let cells = cells(&[
-        (CellKind::Hexahedron, &[0, 1, 2, 3, 4, 5, 6, 7]),
-        (CellKind::Wedge, &[1, 8, 2, 5, 9, 6]),
-        (CellKind::Pyramid, &[4, 5, 6, 7, 10]),
-        (CellKind::Tetra, &[5, 9, 6, 11]),
-    ]);
-    let coords = coords.iter().map(|x| x * scale).collect();
-    Mesh::new(3, coords, cells, Vec::new()).unwrap()
+    scaled(samples::hex_wedge_pyramid_tet(), scale)
+}
+
+/// `mesh` without groups, every coordinate times `scale`.
+fn scaled(mut mesh: Mesh, scale: f64) -> Mesh {
+    mesh.groups.clear();
+    for x in &mut mesh.coords {
+        *x *= scale;
+    }
+    mesh
 }
 
 fn round_trip(mesh: &Mesh, fields: &Fields) -> VtuData {

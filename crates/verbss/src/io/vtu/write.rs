@@ -5,7 +5,7 @@ use std::io::Write;
 use base64::engine::general_purpose::STANDARD;
 use base64::Engine;
 
-use super::{vtk_type, Fields, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY};
+use super::{Fields, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY};
 use crate::mesh::{CellKind, Mesh};
 
 /// Writes `mesh` and `fields` as a `.vtu` file (layout in the module doc).
@@ -59,7 +59,7 @@ pub fn write_to(w: &mut dyn Write, mesh: &Mesh, fields: &Fields) -> std::io::Res
         Some(*end)
     });
     data_array(w, "offsets", 1, total, ends)?;
-    data_array(w, "types", 1, total, all_cells().map(|(k, _)| vtk_type(k)))?;
+    data_array(w, "types", 1, total, all_cells().map(|(k, _)| k.vtk_id()))?;
     writeln!(w, "      </Cells>")?;
 
     writeln!(w, "      <PointData>")?;

@@ -2,7 +2,7 @@
 
 use super::{MaxRef, Parser};
 use crate::error::Result;
-use crate::io::su2::{kind_name, shown, type_id, TYPES};
+use crate::io::su2::{kind_name, shown, NAMES};
 use crate::mesh::{CellKind, Cells};
 
 impl Parser<'_> {
@@ -81,10 +81,10 @@ impl Parser<'_> {
     fn element_kind(&self, text: &str, allowed: impl Fn(CellKind) -> bool) -> Result<CellKind> {
         let first = text.split_whitespace().next().unwrap_or("");
         let expected = || {
-            let names: Vec<String> = TYPES
+            let names: Vec<String> = NAMES
                 .iter()
-                .filter(|t| allowed(t.1))
-                .map(|t| format!("{} {}", t.0, t.2))
+                .filter(|t| allowed(t.0))
+                .map(|t| format!("{} {}", t.0.vtk_id(), t.1))
                 .collect();
             let (last, rest) = names.split_last().expect("every place allows a kind");
             if rest.is_empty() {
@@ -103,13 +103,14 @@ impl Parser<'_> {
                 ),
             ));
         };
-        match TYPES.iter().find(|t| t.0 == id) {
-            Some(&(_, kind, _)) if allowed(kind) => Ok(kind),
-            Some(&(_, _, name)) => Err(self.err(
+        match CellKind::from_vtk_id(id.into()) {
+            Some(kind) if allowed(kind) => Ok(kind),
+            Some(kind) => Err(self.err(
                 self.line,
                 format!(
-                    "SU2 element type {id} ({name}) does not belong in the {} of a {}D mesh \
+                    "SU2 element type {id} ({}) does not belong in the {} of a {}D mesh \
                      (expected {})",
+                    kind_name(kind),
                     self.open_what(),
                     self.dim(),
                     expected()
@@ -145,7 +146,7 @@ impl Parser<'_> {
                     format!(
                         "{} (type {}) needs {n} node indices, found {k}",
                         kind_name(kind),
-                        type_id(kind)
+                        kind.vtk_id()
                     ),
                 ));
             };

@@ -1,8 +1,135 @@
-//! Small structured meshes of every element kind, for the fuzz targets and
-//! the property tests (`crates/verbss/tests/properties.rs` includes this file).
+//! Small meshes for tests, examples and fuzzing, each named for what it holds.
+//!
+//! ```
+//! use verbss::mesh::samples;
+//!
+//! let square = samples::square_of_triangles(4);
+//! assert_eq!((square.node_count(), square.cell_count()), (25, 32));
+//! assert_eq!(square.group_names(), ["left", "right", "bottom", "top"]);
+//! ```
 
-use verbss::mesh::{CellKind, Cells, Group, Mesh};
-use verbss::{quality, topology};
+use super::{CellKind, Cells, Group, Mesh};
+use crate::{quality, topology};
+
+/// The cells of `list`, in order.
+fn cells(list: &[(CellKind, &[usize])]) -> Cells {
+    let mut cells = Cells::new();
+    for (kind, nodes) in list {
+        cells.push(*kind, nodes);
+    }
+    cells
+}
+
+/// A group named `name` with physical tag `tag` and the facets of `list`.
+fn group(name: &str, tag: Option<i32>, list: &[(CellKind, &[usize])]) -> Group {
+    Group {
+        name: name.into(),
+        tag,
+        facets: cells(list),
+    }
+}
+
+/// One triangle, (0, 0), (1, 0), (0, 1); no groups.
+pub fn one_triangle() -> Mesh {
+    let cells = cells(&[(CellKind::Triangle, &[0, 1, 2])]);
+    Mesh::new(2, vec![0., 0., 1., 0., 0., 1.], cells, vec![]).expect("a valid triangle")
+}
+
+/// The unit square as an `n × n` grid of triangles: node `j (n + 1) + i` at
+/// `(i / n, j / n)`, each square cut along its diagonal from `(i, j)` to
+/// `(i + 1, j + 1)`; groups `left`, `right`, `bottom` and `top` of lines.
+pub fn square_of_triangles(n: usize) -> Mesh {
+    let node = |i: usize, j: usize| j * (n + 1) + i;
+    let mut coords = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            coords.extend([i as f64 / n as f64, j as f64 / n as f64]);
+        }
+    }
+    let mut cells = Cells::new();
+    for j in 0..n {
+        for i in 0..n {
+            let (a, b, c, d) = (
+                node(i, j),
+                node(i + 1, j),
+                node(i + 1, j + 1),
+                node(i, j + 1),
+            );
+            cells.push(CellKind::Triangle, &[a, b, c]);
+            cells.push(CellKind::Triangle, &[a, c, d]);
+        }
+    }
+    let side = |name: &str, f: &dyn Fn(usize) -> [usize; 2]| {
+        let mut facets = Cells::new();
+        for k in 0..n {
+            facets.push(CellKind::Line, &f(k));
+        }
+        Group {
+            name: name.into(),
+            tag: None,
+            facets,
+        }
+    };
+    let groups = vec![
+        side("left", &|k| [node(0, k), node(0, k + 1)]),
+        side("right", &|k| [node(n, k), node(n, k + 1)]),
+        side("bottom", &|k| [node(k, 0), node(k + 1, 0)]),
+        side("top", &|k| [node(k, n), node(k + 1, n)]),
+    ];
+    Mesh::new(2, coords, cells, groups).expect("a valid square")
+}
+
+/// Two triangles and a quad on `[0, 2] × [0, 1]` (nodes row by row from the
+/// origin); groups `bottom` (tag 1) and `top` (tag 2) of lines.
+pub fn two_triangles_and_a_quad() -> Mesh {
+    let coords = vec![0., 0., 1., 0., 2., 0., 0., 1., 1., 1., 2., 1.];
+    let volume = cells(&[
+        (CellKind::Triangle, &[1, 2, 5]),
+        (CellKind::Triangle, &[1, 5, 4]),
+        (CellKind::Quad, &[0, 1, 4, 3]),
+    ]);
+    let groups = vec![
+        group(
+            "bottom",
+            Some(1),
+            &[(CellKind::Line, &[0, 1]), (CellKind::Line, &[1, 2])],
+        ),
+        group(
+            "top",
+            Some(2),
+            &[(CellKind::Line, &[5, 4]), (CellKind::Line, &[4, 3])],
+        ),
+    ];
+    Mesh::new(2, coords, volume, groups).expect("a valid 2D mesh")
+}
+
+/// A unit-cube hexahedron, a wedge beside it, a pyramid on the cube and a
+/// tetrahedron on the wedge; groups `floor` (tag 1: a quad and a triangle)
+/// and `roof` (tag 2: a triangle).
+pub fn hex_wedge_pyramid_tet() -> Mesh {
+    let coords = vec![
+        0., 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0., 0., 0., 1., 1., 0., 1., 1., 1., 1., 0., 1.,
+        1., 2., 0., 0., 2., 0., 1., 0.5, 0.5, 1.5, 1.5, 0.25, 1.5,
+    ];
+    let volume = cells(&[
+        (CellKind::Hexahedron, &[0, 1, 2, 3, 4, 5, 6, 7]),
+        (CellKind::Wedge, &[1, 8, 2, 5, 9, 6]),
+        (CellKind::Pyramid, &[4, 5, 6, 7, 10]),
+        (CellKind::Tetra, &[5, 9, 6, 11]),
+    ]);
+    let groups = vec![
+        group(
+            "floor",
+            Some(1),
+            &[
+                (CellKind::Quad, &[0, 3, 2, 1]),
+                (CellKind::Triangle, &[1, 2, 8]),
+            ],
+        ),
+        group("roof", Some(2), &[(CellKind::Triangle, &[4, 5, 10])]),
+    ];
+    Mesh::new(3, coords, volume, groups).expect("a valid 3D mesh")
+}
 
 /// A structured mesh of `[0, 1]^dim` with `n` nodes a side, cells of the kind
 /// chosen by `kind` (2D: triangles, quads, both; 3D: hexahedra, prisms,
@@ -10,7 +137,12 @@ use verbss::{quality, topology};
 /// oriented. Groups: `left` (boundary facets on `x = 0`) and `walls` (the
 /// other boundary facets). Each coordinate is then moved by `jitter()` times
 /// the spacing (which may tangle cells).
-pub fn grid(dim: usize, n: usize, kind: u8, mut jitter: impl FnMut() -> f64) -> Option<Mesh> {
+pub fn jittered_grid(
+    dim: usize,
+    n: usize,
+    kind: u8,
+    mut jitter: impl FnMut() -> f64,
+) -> Option<Mesh> {
     let h = 1.0 / (n - 1) as f64;
     let sides = if dim == 2 { [n, n, 1] } else { [n, n, n] };
     let id = |i: usize, j: usize, k: usize| i + n * (j + n * k);

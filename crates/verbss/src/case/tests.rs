@@ -1,0 +1,187 @@
+use super::*;
+use crate::robust::Robust;
+use crate::solve::Method;
+
+fn parse(text: &str) -> Result<Case> {
+    Case::parse(text, Path::new("cases/c.toml"))
+}
+
+fn err(text: &str) -> String {
+    parse(text).unwrap_err().to_string()
+}
+
+#[test]
+fn parses_a_full_case() {
+    let c = parse(
+        r#"
+mesh = "../m/naca.su2"
+steps = 160
+reference = "fixed"
+[solver]
+method = "ball-vertex"
+solver = "direct"
+accel = "auto"
+omega = 1.5
+tolerance = 1e-5
+absolute_tolerance = true
+max_iterations = 300
+threads = 2
+[[motion]]
+kind = "pitch-plunge"
+groups = ["airfoil"]
+center = [0.25, 0.0]
+pitch_deg = 40
+plunge = [0.0, 0.2]
+[[motion]]
+kind = "fixed"
+groups = ["farfield"]
+[output]
+dir = "out/naca"
+every = 4
+final = false
+"#,
+    )
+    .unwrap();
+    assert_eq!(c.mesh, PathBuf::from("cases/../m/naca.su2"));
+    assert_eq!(c.settings.steps, 160);
+    assert_eq!(c.settings.dt, 1.0 / 160.0);
+    assert_eq!(c.settings.reference, Reference::Fixed);
+    let s = &c.settings.solve;
+    assert_eq!(s.method, Method::BallVertex);
+    assert_eq!(s.solver, Solver::Direct);
+    assert_eq!(s.accel, Accel::Auto);
+    assert_eq!(
+        (s.omega, s.tolerance, s.max_iterations, s.threads),
+        (1.5, 1e-5, 300, 2)
+    );
+    assert!(s.absolute_tolerance);
+    assert_eq!(c.motions.len(), 2);
+    assert_eq!(c.motions[0].0, 14);
+    assert_eq!(c.output.dir, Some(PathBuf::from("cases/out/naca")));
+    assert_eq!(c.output.every, 4);
+    assert!(!c.output.final_mesh && c.output.series && c.output.report);
+}
+
+#[test]
+fn unknown_top_level_key() {
+    assert_eq!(
+        err("mesh = \"m.su2\"\nsteps = 3\nstep = 4\n"),
+        "cases/c.toml:3: unknown field `step`, expected one of `mesh`, `steps`, `dt`, `reference`, `solver`, `motion`, `output`"
+    );
+}
+
+#[test]
+fn missing_mesh() {
+    assert_eq!(err("steps = 3\n"), "cases/c.toml:1: missing field `mesh`");
+}
+
+#[test]
+fn wrong_type() {
+    assert_eq!(
+        err("mesh = \"m.su2\"\nsteps = \"ten\"\n"),
+        "cases/c.toml:2: invalid type: string \"ten\", expected usize"
+    );
+}
+
+#[test]
+fn unknown_method() {
+    assert_eq!(
+        err("mesh = \"m.su2\"\nsteps = 3\n[solver]\nmethod = \"fem\"\n"),
+        "cases/c.toml:4: unknown variant `fem`, expected one of `robust`, `verbss`, `ball-vertex`, `spring`, `laplacian`"
+    );
+}
+
+#[test]
+fn near_wall_treatments_follow_the_method_unless_given() {
+    let head = "mesh = \"m.su2\"\nsteps = 3\n";
+    let robust = parse(head).unwrap().settings.robust;
+    assert_eq!(robust, Robust::recommended());
+    let paper = parse(&format!("{head}[solver]\nmethod = \"verbss\"\n"))
+        .unwrap()
+        .settings
+        .robust;
+    assert_eq!(paper, Robust::off());
+    let mixed = parse(&format!(
+        "{head}[solver]\nmethod = \"verbss\"\nrigid_layer = 0.2\nsubsteps = 3\nstiffening = 2.0\n"
+    ))
+    .unwrap()
+    .settings
+    .robust;
+    assert_eq!(mixed.layer, Layer::Thickness(0.2));
+    assert_eq!((mixed.substeps, mixed.stiffening), (3, 2.0));
+    let off = parse(&format!("{head}[solver]\nrigid_layer = \"off\"\n"))
+        .unwrap()
+        .settings
+        .robust;
+    assert_eq!(off.layer, Layer::Off);
+    assert_eq!(
+        err(&format!("{head}[solver]\nrigid_layer = \"thick\"\n")),
+        "cases/c.toml:4: `solver.rigid_layer` must be \"off\", \"auto\" or a positive thickness (got \"thick\")"
+    );
+    assert_eq!(
+        err(&format!("{head}[solver]\nrigid_layer = -0.5\n")),
+        "cases/c.toml:4: `solver.rigid_layer` must be \"off\", \"auto\" or a positive thickness (got -0.5)"
+    );
+    assert_eq!(
+        err(&format!("{head}[solver]\nsubsteps = 40\n")),
+        "cases/c.toml:4: `solver.substeps` must be at most 30 (got 40)"
+    );
+    assert_eq!(
+        err(&format!("{head}[solver]\nstiffening = -1.0\n")),
+        "cases/c.toml:4: `solver.stiffening` must be zero or positive (got -1)"
+    );
+}
+
+#[test]
+fn unknown_motion_kind() {
+    assert_eq!(
+        err("mesh = \"m.su2\"\nsteps = 3\n[[motion]]\nkind = \"spin\"\ngroups = [\"a\"]\n"),
+        "cases/c.toml:4: unknown variant `spin`, expected one of `fixed`, `slide`, `translation`, `rotation`, `pitch-plunge`, `undulation`, `bending`, `positions`"
+    );
+}
+
+#[test]
+fn unknown_motion_key() {
+    assert_eq!(
+        err("mesh = \"m.su2\"\nsteps = 3\n[[motion]]\nkind = \"rotation\"\ngroups = [\"a\"]\ncenter = [0, 0]\nangle = 3\n"),
+        "cases/c.toml:3: unknown field `angle`, expected one of `groups`, `center`, `axis`, `angle_deg`"
+    );
+}
+
+#[test]
+fn missing_motion_key() {
+    assert_eq!(
+        err("mesh = \"m.su2\"\nsteps = 3\n[[motion]]\nkind = \"translation\"\ngroups = [\"a\"]\n"),
+        "cases/c.toml:3: missing field `displacement`"
+    );
+}
+
+#[test]
+fn out_of_range_values() {
+    assert_eq!(
+        err("mesh = \"m.su2\"\nsteps = 0\n"),
+        "cases/c.toml:2: `steps` must be at least 1"
+    );
+    assert_eq!(
+        err("mesh = \"m.su2\"\nsteps = 2\n[solver]\nomega = 2.5\n"),
+        "cases/c.toml:4: `solver.omega` must lie in (0, 2) (got 2.5)"
+    );
+    assert_eq!(
+        err("mesh = \"m.su2\"\nsteps = 2\n[output]\nevery = 0\n"),
+        "cases/c.toml:4: `output.every` must be at least 1"
+    );
+    assert_eq!(
+        err("mesh = \"m.su2\"\nsteps = 2\n[[motion]]\nkind = \"fixed\"\ngroups = []\n"),
+        "cases/c.toml:3: `groups` must name at least one group"
+    );
+}
+
+#[test]
+fn vectors_must_match_the_dimension() {
+    assert_eq!(vector("center", &[1.0, 2.0], 2), Ok([1.0, 2.0, 0.0]));
+    assert_eq!(vector("center", &[1.0, 2.0, 0.0], 2), Ok([1.0, 2.0, 0.0]));
+    assert_eq!(
+        vector("axis", &[1.0, 2.0], 3),
+        Err("`axis` has 2 numbers (expected 3 for a 3D mesh)".to_string())
+    );
+}
