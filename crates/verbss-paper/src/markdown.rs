@@ -2,7 +2,7 @@
 //! and where they differ, by how much and why.
 //!
 //! The tables are in [`tables`], the sections of §4.2 to §5.3 in [`sections`],
-//! the differences from the paper in [`differences`].
+//! the differences from the paper in [`differences`](mod@differences).
 
 mod differences;
 mod sections;

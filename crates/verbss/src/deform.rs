@@ -84,7 +84,7 @@ pub struct StepReport {
     /// The worst node's estimated error relative to its local cell height
     /// in the accepted solve (docs/method.md, "Accepting a step").
     pub error_ratio: f64,
-    /// The eq.-8 value of every sweep, when [`SolveParams::record_history`] is set.
+    /// The eq.-8 value of every sweep, when [`crate::solve::SolveParams::record_history`] is set.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub history: Vec<f64>,
 }

@@ -1,6 +1,6 @@
 //! Mesh files in and out: Gmsh MSH 2.2/4.1, SU2, VTK XML (`.vtu`, `.pvd`).
 //!
-//! [`read`] and [`write`] choose the format by extension.
+//! [`read`] and [`write()`] choose the format by extension.
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -15,7 +15,7 @@ pub mod pvd;
 pub mod su2;
 pub mod vtu;
 
-/// Options for [`write`].
+/// Options for [`write()`].
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct WriteOptions {

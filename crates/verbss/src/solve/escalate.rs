@@ -107,7 +107,7 @@ impl Engine {
 
     /// The step solved to round-off: the direct solve where it fits, else
     /// the multigrid (block systems) or ω = 1 sweeps (Laplacian) to
-    /// [`ROUND_OFF`]. What the stepper does before it rejects a step for an
+    /// a relative 1e-12 (`ROUND_OFF`). What the stepper does before it rejects a step for an
     /// inverted element: an inversion is never the solver's fault.
     pub fn solve_exact(
         &mut self,

@@ -13,7 +13,7 @@ pub enum NodeRole {
     Free,
     /// Prescribed: the displacement given on entry is kept.
     Fixed,
-    /// Slides within a plane with this unit normal (index into [`Engine::new`]'s `normals`):
+    /// Slides within a plane with this unit normal (index into [`crate::solve::Engine::new`]'s `normals`):
     /// the normal component of the displacement is prescribed, the tangential ones are unknowns.
     Slide(usize),
 }
