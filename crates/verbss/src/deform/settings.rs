@@ -185,6 +185,7 @@ impl Settings {
         self.solve.validate()?;
         self.robust.validate()
     }
+
     /// The settings of `steps` steps from named values in any order, as
     /// `verbss deform` builds them from its options: the preset of `method`
     /// (robust when not named), then every other value [`Settings::set`]
