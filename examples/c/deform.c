@@ -2,19 +2,27 @@
  * deform.c: a flow solver's view of verbss, through its C API.
  *
  * Reads an SU2 mesh (ASCII), moves the nodes of one marker by a translation
- * reached in STEPS equal steps (as `verbss deform MESH --moving MARKER
- * --translate DX,DY[,DZ] --steps STEPS` does), calling verbss once per time
- * step, and writes the final coordinates of every node to OUT, one node per
- * line. TOL is the solver's relative tolerance (the default settings'
- * 1e-5, or larger for a quicker, coarser solve).
+ * reached in STEPS equal steps, calling verbss once per time step, and
+ * writes the final coordinates of every node to OUT, one node per line.
+ * Each NAME=VALUE is a setting, named and spelled as on the command line
+ * with `_` for `-` (tolerance=1e-5, method=verbss, rigid_layer=0.1, …);
+ * slide=MARKER makes a marker slide in its own plane, and
+ * slide=MARKER:NX,NY[,NZ] in the plane of that normal; fixed=MARKER keeps
+ * a marker where it is, with the nodes where a sliding marker meets it (the
+ * mesh file's other markers, for the command).
  *
- *     deform MESH.su2 MARKER STEPS TOL OUT DX DY [DZ]
+ *     deform MESH.su2 MARKER STEPS OUT DX DY [DZ] [NAME=VALUE …]
+ *
+ * does what `verbss deform MESH.su2 -o OUT.su2 --moving MARKER --translate
+ * DX,DY[,DZ] --steps STEPS --NAME VALUE … --slide MARKER …` does, given
+ * fixed=M for each marker M that neither moves nor slides.
  *
  * Build (from the repository root, after `cargo build -p verbss-capi`):
  *
  *     cc -std=c99 -O2 examples/c/deform.c -Iinclude -Ltarget/debug \
  *        -lverbss_capi -Wl,-rpath,$PWD/target/debug -o deform
- *     ./deform assets/meshes/su2/mesh_NACA0012_inv.su2 airfoil 4 1e-5 out.txt 0.1 0.05
+ *     ./deform assets/meshes/su2/mesh_NACA0012_inv.su2 airfoil 4 out.txt 0.1 0.05 \
+ *        tolerance=1e-5 predictor=linear
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,15 +30,19 @@
 
 #include "verbss.h"
 
-/* An SU2 mesh: coordinates, cells as VTK kinds + concatenated nodes, and the
- * distinct nodes of one marker. */
+/* An SU2 mesh: coordinates, cells as VTK kinds + concatenated nodes. */
 typedef struct {
-    size_t dim, n_points, n_cells, n_cell_nodes, n_marker;
+    size_t dim, n_points, n_cells, n_cell_nodes;
     double *points;
     int32_t *kinds;
     int64_t *cell_nodes;
-    int64_t *marker;
 } Su2;
+
+/* The distinct nodes of a marker, sorted. */
+typedef struct {
+    size_t n;
+    int64_t *ids;
+} Marker;
 
 static int nodes_of(long kind) {
     switch (kind) {
@@ -63,13 +75,11 @@ static int keyword(const char *line, const char *key, long *value) {
     return strncmp(line, key, n) == 0 && sscanf(line + n, " = %ld", value) == 1;
 }
 
-/* Reads the mesh and the nodes of `marker`; returns 0 on success. */
-static int read_su2(const char *path, const char *marker, Su2 *m) {
+/* Reads the coordinates and the cells; returns 0 on success. */
+static int read_su2(const char *path, Su2 *m) {
     FILE *f = fopen(path, "r");
     char line[4096];
     long value;
-    int in_marker = 0;
-    size_t cap_marker = 0;
     memset(m, 0, sizeof *m);
     if (!f) {
         perror(path);
@@ -111,44 +121,62 @@ static int read_su2(const char *path, const char *marker, Su2 *m) {
                 }
                 skip_line(f); /* the point's index */
             }
-        } else if (strncmp(line, "MARKER_TAG=", 11) == 0) {
-            char name[256];
-            in_marker = sscanf(line + 11, " %255s", name) == 1 && strcmp(name, marker) == 0;
+        }
+    }
+    fclose(f);
+    return 0;
+}
+
+/* Reads the distinct nodes of the marker `name`; returns 0 on success. */
+static int read_marker(const char *path, const char *name, Marker *out) {
+    FILE *f = fopen(path, "r");
+    char line[4096];
+    long value;
+    int in_marker = 0;
+    size_t cap = 0;
+    memset(out, 0, sizeof *out);
+    if (!f) {
+        perror(path);
+        return 1;
+    }
+    while (fgets(line, sizeof line, f)) {
+        if (strncmp(line, "MARKER_TAG=", 11) == 0) {
+            char tag[256];
+            in_marker = sscanf(line + 11, " %255s", tag) == 1 && strcmp(tag, name) == 0;
         } else if (in_marker && keyword(line, "MARKER_ELEMS", &value)) {
             for (long e = 0; e < value; e++) {
                 long kind;
                 if (fscanf(f, "%ld", &kind) != 1 || nodes_of(kind) == 0) {
-                    fprintf(stderr, "%s: marker %s: bad element\n", path, marker);
+                    fprintf(stderr, "%s: marker %s: bad element\n", path, name);
                     return 1;
                 }
                 for (int k = 0; k < nodes_of(kind); k++) {
                     long long id;
                     if (fscanf(f, "%lld", &id) != 1) {
-                        fprintf(stderr, "%s: marker %s: missing node\n", path, marker);
+                        fprintf(stderr, "%s: marker %s: missing node\n", path, name);
                         return 1;
                     }
-                    if (m->n_marker == cap_marker) {
-                        cap_marker = 2 * cap_marker + 64;
-                        m->marker = realloc(m->marker, cap_marker * sizeof *m->marker);
+                    if (out->n == cap) {
+                        cap = 2 * cap + 64;
+                        out->ids = realloc(out->ids, cap * sizeof *out->ids);
                     }
-                    m->marker[m->n_marker++] = (int64_t)id;
+                    out->ids[out->n++] = (int64_t)id;
                 }
             }
             in_marker = 0;
         }
     }
     fclose(f);
-    /* The marker's distinct nodes, sorted. */
-    qsort(m->marker, m->n_marker, sizeof *m->marker, by_value);
+    qsort(out->ids, out->n, sizeof *out->ids, by_value);
     size_t distinct = 0;
-    for (size_t k = 0; k < m->n_marker; k++) {
-        if (distinct == 0 || m->marker[distinct - 1] != m->marker[k]) {
-            m->marker[distinct++] = m->marker[k];
+    for (size_t k = 0; k < out->n; k++) {
+        if (distinct == 0 || out->ids[distinct - 1] != out->ids[k]) {
+            out->ids[distinct++] = out->ids[k];
         }
     }
-    m->n_marker = distinct;
-    if (m->n_marker == 0) {
-        fprintf(stderr, "%s: no marker %s\n", path, marker);
+    out->n = distinct;
+    if (out->n == 0) {
+        fprintf(stderr, "%s: no marker %s\n", path, name);
         return 1;
     }
     return 0;
@@ -160,43 +188,108 @@ static int fail(const char *call, int status) {
     return status;
 }
 
+/* fixed=MARKER: adds the marker's fixed group; returns a status, or -1 when
+ * the marker cannot be read. */
+static int add_fixed(const char *path, const char *name, VerbssSettings *settings) {
+    Marker marker;
+    if (read_marker(path, name, &marker) != 0) {
+        return -1;
+    }
+    int status = verbss_settings_add_fixed(settings, marker.ids, marker.n);
+    free(marker.ids);
+    return status;
+}
+
+/* slide=MARKER or slide=MARKER:NX,NY[,NZ]: adds the marker's sliding plane;
+ * returns a status, or -1 when the marker cannot be read. */
+static int add_slide(const char *path, char *spec, VerbssSettings *settings) {
+    double normal[3];
+    int n_normal = 0;
+    char *colon = strchr(spec, ':');
+    if (colon) {
+        *colon = '\0';
+        n_normal = sscanf(colon + 1, "%lf,%lf,%lf", &normal[0], &normal[1], &normal[2]);
+        n_normal = n_normal < 0 ? 0 : n_normal;
+    }
+    Marker marker;
+    if (read_marker(path, spec, &marker) != 0) {
+        return -1;
+    }
+    int status = verbss_settings_add_slide(settings, marker.ids, marker.n,
+                                           n_normal ? normal : NULL, (size_t)n_normal);
+    free(marker.ids);
+    return status;
+}
+
 int main(int argc, char **argv) {
-    if (argc < 8 || argc > 9) {
-        fprintf(stderr, "usage: %s MESH.su2 MARKER STEPS TOL OUT DX DY [DZ]\n", argv[0]);
+    if (argc < 7) {
+        fprintf(stderr, "usage: %s MESH.su2 MARKER STEPS OUT DX DY [DZ] [NAME=VALUE ...]\n",
+                argv[0]);
         return 1;
     }
     Su2 m;
-    if (read_su2(argv[1], argv[2], &m) != 0) {
+    Marker moving;
+    if (read_su2(argv[1], &m) != 0 || read_marker(argv[1], argv[2], &moving) != 0) {
         return 1;
     }
     int steps = atoi(argv[3]);
+
+    /* The translation, then the settings: the defaults of `verbss deform`
+     * with each NAME=VALUE over them. */
     double shift[3] = {0.0, 0.0, 0.0};
-    for (int d = 6; d < argc; d++) {
-        shift[d - 6] = atof(argv[d]);
+    size_t n_shift = 0;
+    VerbssSettings *settings = NULL;
+    const char *call = "verbss_settings_new";
+    int status = verbss_settings_new(&settings);
+    for (int a = 5; a < argc && status == VERBSS_OK; a++) {
+        char *eq = strchr(argv[a], '=');
+        if (!eq) {
+            if (n_shift == m.dim) {
+                fprintf(stderr, "%s: more than %zu numbers in the translation\n", argv[a], m.dim);
+                return 1;
+            }
+            shift[n_shift++] = atof(argv[a]);
+            continue;
+        }
+        *eq = '\0';
+        if (strcmp(argv[a], "slide") == 0) {
+            call = "verbss_settings_add_slide";
+            status = add_slide(argv[1], eq + 1, settings);
+        } else if (strcmp(argv[a], "fixed") == 0) {
+            call = "verbss_settings_add_fixed";
+            status = add_fixed(argv[1], eq + 1, settings);
+        } else {
+            call = "verbss_settings_set";
+            status = verbss_settings_set(settings, argv[a], eq + 1);
+        }
+    }
+    if (status < 0) {
+        return 1;
+    }
+    if (status != VERBSS_OK) {
+        return fail(call, status);
     }
 
-    /* Once per mesh: the deformer, with the default settings but TOL. */
-    VerbssSettings settings;
-    verbss_settings_default(&settings);
-    settings.tolerance = atof(argv[4]);
+    /* Once per mesh: the deformer. It keeps a copy of the settings. */
     VerbssDeformer *deformer = NULL;
-    int status = verbss_deformer_new(m.dim, m.points, m.n_points, m.kinds, m.n_cells,
-                                     m.cell_nodes, m.n_cell_nodes, m.marker, m.n_marker,
-                                     &settings, &deformer);
+    status = verbss_deformer_new(m.dim, m.points, m.n_points, m.kinds, m.n_cells,
+                                 m.cell_nodes, m.n_cell_nodes, moving.ids, moving.n,
+                                 settings, &deformer);
+    verbss_settings_free(settings);
     if (status != VERBSS_OK) {
         return fail("verbss_deformer_new", status);
     }
 
     /* Once per time step: the marker's displacement from the input mesh. */
-    double *u = malloc(m.n_marker * m.dim * sizeof *u);
+    double *u = malloc(moving.n * m.dim * sizeof *u);
     for (int n = 1; n <= steps; n++) {
         double f = (double)n / (double)steps;
-        for (size_t k = 0; k < m.n_marker; k++) {
+        for (size_t k = 0; k < moving.n; k++) {
             for (size_t d = 0; d < m.dim; d++) {
                 u[m.dim * k + d] = f * shift[d];
             }
         }
-        status = verbss_deformer_step(deformer, u, m.n_marker * m.dim);
+        status = verbss_deformer_step(deformer, u, moving.n * m.dim);
         if (status != VERBSS_OK) {
             verbss_deformer_free(deformer);
             return fail("verbss_deformer_step", status);
@@ -213,9 +306,9 @@ int main(int argc, char **argv) {
     if (status != VERBSS_OK) {
         return fail("verbss_deformer_points", status);
     }
-    FILE *out = fopen(argv[5], "w");
+    FILE *out = fopen(argv[4], "w");
     if (!out) {
-        perror(argv[5]);
+        perror(argv[4]);
         return 1;
     }
     for (size_t i = 0; i < m.n_points; i++) {
@@ -228,6 +321,6 @@ int main(int argc, char **argv) {
     free(m.points);
     free(m.kinds);
     free(m.cell_nodes);
-    free(m.marker);
+    free(moving.ids);
     return 0;
 }

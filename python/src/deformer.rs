@@ -1,12 +1,11 @@
 //! The `Deformer` class: a mesh in motion, stepped by a flow solver.
 
 use std::collections::HashMap;
-use std::str::FromStr;
 
 use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
-use verbss::deform::{Preset, Settings, StepReport};
+use pyo3::types::{PyDict, PyList, PyString};
+use verbss::deform::{Settings, StepReport};
 use verbss::motion::{Attachment, Motion, PositionSource};
 
 use crate::{asarray, invalid_setting, pairs, points_array, raise, shape_text, GilProbe, Mesh};
@@ -23,7 +22,12 @@ struct Moving {
 ///
 /// Deformer(mesh, method="robust", omega=None, tolerance=None,
 ///          max_iterations=None, threads=0, reference="updated", solver=None,
-///          accel=None)
+///          accel=None, *, absolute_tolerance=None, predictor=None,
+///          slide=None, rigid_layer=None, stiffening=None, substeps=None,
+///          blend=None)
+///
+/// Every setting is `verbss deform`'s option of the same name (`_` for
+/// `-`), with its spellings; None: what `method` implies.
 ///
 /// - method: "robust" (the default, as on the command line: verbss with the
 ///   near-wall treatments and the blended rigid motion of
@@ -38,9 +42,8 @@ struct Moving {
 ///   of them given: exactly that solver.
 /// - tolerance: the sweeps stop when the mean absolute change of one sweep is
 ///   below tolerance × the step's largest prescribed displacement (1e-6
-///   when None).
+///   when None), or below tolerance itself with absolute_tolerance=True.
 /// - max_iterations: the most sweeps per step (2000 when None).
-/// Invalid settings raise VerbssError here, not at the first step.
 /// - threads: worker threads, 0 for one per core; results do not depend on it.
 /// - reference: "updated" (springs on the current mesh each step) or
 ///   "fixed" (also spelled "initial": springs on the input mesh, solving for
@@ -49,17 +52,21 @@ struct Moving {
 ///   V-cycle whose smoother is the VerBSS sweep; tolerance then bounds the
 ///   estimated RMS error) or "auto" (amg on large meshes of mostly
 ///   triangles/tetrahedra), for the methods verbss and spring.
-/// - keyword only, as `verbss deform`'s options of the same names (None: what
-///   `method` implies): slide (groups whose nodes slide in their own plane),
-///   rigid_layer ("off", "auto" or a wall distance), stiffening (exponent
-///   ≥ 0), substeps (halvings of a step, at most 30), blend (True/False: the
-///   blended rigid motion), predictor ("previous" or "linear").
+/// - keyword only: predictor ("previous" or "linear"), slide (group names,
+///   each sliding in its own plane, or a mapping of a group name to its
+///   plane's normal, D numbers, or None for its own plane), rigid_layer
+///   ("off", "auto" or a wall distance), stiffening (exponent ≥ 0),
+///   substeps (halvings of a step, at most 30), blend (True/False: the
+///   blended rigid motion).
+///
+/// Invalid settings, unknown slide groups and slide normals of the wrong
+/// length raise VerbssError here, not at the first step.
 #[pyclass(module = "verbss")]
 pub(crate) struct Deformer {
     mesh: verbss::Mesh,
     settings: Settings,
-    /// Groups whose nodes slide in their own plane.
-    slide: Vec<String>,
+    /// The sliding walls.
+    slide: Vec<Attachment>,
     moving: Option<Moving>,
 }
 
@@ -74,12 +81,7 @@ impl Deformer {
                 motion: Motion::Positions(PositionSource::Given(HashMap::new())),
             })
             .collect();
-        if !self.slide.is_empty() {
-            attachments.push(Attachment {
-                groups: self.slide.clone(),
-                motion: Motion::Slide { normal: None },
-            });
-        }
+        attachments.extend(self.slide.iter().cloned());
         let (mesh, settings) = (&self.mesh, &self.settings);
         let deformer = py
             .detach(|| verbss::deform::Deformer::new(mesh, &attachments, settings.clone()))
@@ -130,6 +132,51 @@ fn displacement(
     Ok(u)
 }
 
+/// The sliding walls: group names, each sliding in its own plane, or a
+/// mapping of a group name to its plane's normal (D numbers) or None.
+fn slides(value: &Bound<'_, PyAny>, mesh: &verbss::Mesh) -> PyResult<Vec<Attachment>> {
+    let given: Vec<(String, Option<Vec<f64>>)> = if value.hasattr("items")? {
+        pairs(value)?
+            .into_iter()
+            .map(|(name, normal)| {
+                let normal = (!normal.is_none())
+                    .then(|| vector(&normal, &name, mesh.dim))
+                    .transpose()?;
+                Ok((name, normal))
+            })
+            .collect::<PyResult<_>>()?
+    } else if value.is_instance_of::<PyString>() {
+        return Err(invalid_setting(format!(
+            "slide must be a list of group names or a mapping of a group name to its \
+             plane's normal (got the string '{value}')"
+        )));
+    } else {
+        let names: Vec<String> = value.extract()?;
+        names.into_iter().map(|name| (name, None)).collect()
+    };
+    given
+        .iter()
+        .map(|(name, normal)| {
+            mesh.group(name).map_err(raise)?;
+            Attachment::slide(name, normal.as_deref(), mesh.dim).map_err(raise)
+        })
+        .collect()
+}
+
+/// The numbers of a 1-D array: the slide normal of group `name`.
+fn vector(value: &Bound<'_, PyAny>, name: &str, dim: usize) -> PyResult<Vec<f64>> {
+    let array = asarray(value, "float64")?;
+    let shape: Vec<usize> = array.getattr("shape")?.extract()?;
+    if shape.len() != 1 {
+        return Err(invalid_setting(format!(
+            "the slide normal of group '{name}' has shape {}, expected ({dim},)",
+            shape_text(&shape)
+        )));
+    }
+    let a: PyReadonlyArray1<f64> = array.extract()?;
+    Ok(a.as_array().to_vec())
+}
+
 fn report_dict<'py>(py: Python<'py>, r: &StepReport) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("step", r.step)?;
@@ -160,12 +207,13 @@ impl Deformer {
         solver = None,
         accel = None,
         *,
+        absolute_tolerance = None,
+        predictor = None,
         slide = None,
         rigid_layer = None,
         stiffening = None,
         substeps = None,
         blend = None,
-        predictor = None,
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -178,55 +226,50 @@ impl Deformer {
         reference: &str,
         solver: Option<&str>,
         accel: Option<&str>,
-        slide: Option<Vec<String>>,
+        absolute_tolerance: Option<bool>,
+        predictor: Option<&str>,
+        slide: Option<&Bound<'_, PyAny>>,
         rigid_layer: Option<&Bound<'_, PyAny>>,
         stiffening: Option<f64>,
         substeps: Option<i64>,
         blend: Option<bool>,
-        predictor: Option<&str>,
     ) -> PyResult<Deformer> {
-        let count = |name: &str, v: i64| {
-            usize::try_from(v)
-                .map_err(|_| invalid_setting(format!("{name} must be zero or positive (got {v})")))
-        };
-        let mut settings = Preset::from_str(method).map_err(raise)?.settings(1);
-        settings.reference = reference.parse().map_err(raise)?;
-        let s = &mut settings.solve;
-        // A solver, accel or omega given means exactly that solver.
-        s.escalate = solver.is_none() && accel.is_none() && omega.is_none();
-        if let Some(solver) = solver {
-            s.solver = solver.parse().map_err(raise)?;
-        }
-        if let Some(accel) = accel {
-            s.accel = accel.parse().map_err(raise)?;
-        }
-        s.omega = omega.unwrap_or(s.omega);
-        s.tolerance = tolerance.unwrap_or(s.tolerance);
-        if let Some(k) = max_iterations {
-            s.max_iterations = count("max_iterations", k)?;
-        }
-        s.threads = count("threads", threads)?;
-        if let Some(p) = predictor {
-            settings.predictor = p.parse().map_err(raise)?;
-        }
-        let robust = &mut settings.robust;
-        if let Some(layer) = rigid_layer {
-            let text = match layer.extract::<f64>() {
-                Ok(t) => t.to_string(),
-                Err(_) => layer.extract::<String>()?,
-            };
-            robust.layer = text.parse().map_err(raise)?;
-        }
-        robust.stiffening = stiffening.unwrap_or(robust.stiffening);
-        if let Some(k) = substeps {
-            robust.substeps = u32::try_from(count("substeps", k)?).unwrap_or(u32::MAX);
-        }
-        robust.blend = blend.unwrap_or(robust.blend);
-        settings.validate().map_err(raise)?;
+        let switch = |b: bool| if b { "on" } else { "off" }.to_string();
+        let layer = rigid_layer
+            .map(|l| match l.extract::<f64>() {
+                Ok(t) => Ok(t.to_string()),
+                Err(_) => l.extract::<String>(),
+            })
+            .transpose()?;
+        let given = [
+            ("method", Some(method.to_string())),
+            ("omega", omega.map(|x| x.to_string())),
+            ("tolerance", tolerance.map(|x| x.to_string())),
+            ("max_iterations", max_iterations.map(|k| k.to_string())),
+            ("threads", Some(threads.to_string())),
+            ("reference", Some(reference.to_string())),
+            ("solver", solver.map(str::to_string)),
+            ("accel", accel.map(str::to_string)),
+            ("absolute_tolerance", absolute_tolerance.map(switch)),
+            ("predictor", predictor.map(str::to_string)),
+            ("rigid_layer", layer),
+            ("stiffening", stiffening.map(|x| x.to_string())),
+            ("substeps", substeps.map(|k| k.to_string())),
+            ("blend", blend.map(switch)),
+        ];
+        let named: Vec<(&str, String)> = given
+            .into_iter()
+            .filter_map(|(name, value)| value.map(|v| (name, v)))
+            .collect();
+        let settings = Settings::named(1, &named).map_err(raise)?;
+        let slide = slide
+            .map(|s| slides(s, &mesh.inner))
+            .transpose()?
+            .unwrap_or_default();
         Ok(Deformer {
             mesh: mesh.inner.clone(),
             settings,
-            slide: slide.unwrap_or_default(),
+            slide,
             moving: None,
         })
     }

@@ -216,6 +216,52 @@ def test_near_wall_settings_and_slides_match_the_command(cli, tmp_path):
         assert np.array_equal(got[nodes, 1], start.points[nodes, 1])
 
 
+def test_reference_predictor_and_absolute_tolerance_match_the_command(cli, tmp_path):
+    mesh, group, shift = CASES[0]
+    extra = ("--reference", "fixed", "--predictor", "linear", "--absolute-tolerance")
+    expected = cli_deform(cli, tmp_path, mesh, group, shift, extra=extra)
+    plain = cli_deform(cli, tmp_path, mesh, group, shift)
+    d = verbss.Deformer(
+        verbss.read(MESHES / mesh), **SETTINGS, reference="fixed", predictor="linear",
+        absolute_tolerance=True,
+    )
+    for n in range(1, STEPS + 1):
+        got = d.step({group: np.array(shift) * n / STEPS})
+    assert np.array_equal(got, expected)
+    assert not np.array_equal(got, plain)
+
+
+def test_slide_normals_match_a_case_file(cli, tmp_path):
+    # `verbss run` with `kind = "slide"` tables: y_m in the plane of a given
+    # normal, y_p in its own plane.
+    mesh, group, shift = CASES[3]
+    case = tmp_path / "normals.toml"
+    case.write_text(
+        "mesh = %s\nsteps = %d\n\n[solver]\nmethod = \"verbss\"\nomega = %r\n"
+        "tolerance = %r\nmax_iterations = %d\n\n"
+        "[[motion]]\nkind = \"translation\"\ngroups = [\"%s\"]\ndisplacement = %r\n\n"
+        "[[motion]]\nkind = \"slide\"\ngroups = [\"y_m\"]\nnormal = [0.0, 1.0, 0.5]\n\n"
+        "[[motion]]\nkind = \"slide\"\ngroups = [\"y_p\"]\n\n"
+        "[output]\nseries = false\nreport = false\n"
+        % (json.dumps(str(MESHES / mesh)), STEPS, SETTINGS["omega"], SETTINGS["tolerance"],
+           SETTINGS["max_iterations"], group, shift)
+    )
+    done = run_cli(cli, "run", case, "--out", tmp_path / "run", "--quiet")
+    assert done.returncode == 0, done.stderr
+    expected = verbss.read(tmp_path / "run" / mesh).points
+    start = verbss.read(MESHES / mesh)
+    d = verbss.Deformer(start, **SETTINGS, slide={"y_m": [0.0, 1.0, 0.5], "y_p": None})
+    for n in range(1, STEPS + 1):
+        got = d.step({group: np.array(shift) * n / STEPS})
+    assert np.array_equal(got, expected)
+    # The nodes of y_m that only slide moved within the plane of the normal.
+    others = np.concatenate([start.groups[g] for g in start.groups if g != "y_m"])
+    slid = np.setdiff1d(start.groups["y_m"], others)
+    u = got[slid] - start.points[slid]
+    assert np.abs(u @ np.array([0.0, 1.0, 0.5])).max() < 1e-12
+    assert np.abs(u[:, 1]).max() > 1e-3
+
+
 def test_rejected_step_keeps_the_last_one_and_can_be_retried():
     mesh = verbss.read(NACA)
     d = verbss.Deformer(mesh, **SETTINGS)
@@ -269,6 +315,18 @@ def test_bad_settings_and_arrays_are_named():
          "invalid setting: substeps must be at most 30 (got 40)"),
         (lambda: verbss.Deformer(mesh, accel="fast"),
          "invalid setting: unknown accel 'fast' (expected none, amg or auto)"),
+        (lambda: verbss.Deformer(mesh, tolerance=-1.0, absolute_tolerance=True),
+         "invalid setting: tolerance -1 is not a finite number ≥ 0"),
+        (lambda: verbss.Deformer(mesh, slide=["wing"]),
+         "unknown group 'wing' (the mesh has: airfoil, farfield)"),
+        (lambda: verbss.Deformer(mesh, slide={"farfield": [0.0, 0.0, 1.0]}),
+         "invalid setting: the slide normal of group 'farfield' has 3 numbers, expected 2 "
+         "(the mesh's dimension)"),
+        (lambda: verbss.Deformer(mesh, slide={"farfield": [[0.0, 1.0]]}),
+         "invalid setting: the slide normal of group 'farfield' has shape (1, 2), expected (2,)"),
+        (lambda: verbss.Deformer(mesh, slide="farfield"),
+         "invalid setting: slide must be a list of group names or a mapping of a group name "
+         "to its plane's normal (got the string 'farfield')"),
         (lambda: verbss.Mesh([[0, 0], [1, 0], [0, 1]], {"tri": [[0, 1, 2]]}),
          "invalid mesh: unknown cell kind 'tri' (expected triangle, quad, tetra, hexahedron, wedge or pyramid)"),
         (lambda: verbss.Mesh([[0, 0], [1, 0], [0, 1]], {"triangle": [[0, 1, 3]]}),

@@ -91,6 +91,9 @@ class Mesh:
 class Deformer:
     """A mesh in motion, stepped by a flow solver (see :meth:`step`).
 
+    Every setting is ``verbss deform``'s option of the same name (``_`` for
+    ``-``), with its spellings; None: what ``method`` implies.
+
     - ``method``: ``"robust"`` (the default, as on the command line: verbss
       with the near-wall treatments and the blended rigid motion),
       ``"verbss"`` (the paper's method: edge + ball-vertex springs, node by
@@ -104,26 +107,27 @@ class Deformer:
       given: exactly that solver.
     - ``tolerance``: the sweeps stop when the mean absolute change of one
       sweep is below tolerance × the step's largest prescribed displacement
-      (1e-6 when None).
+      (1e-6 when None), or below tolerance itself with
+      ``absolute_tolerance=True``.
     - ``max_iterations``: the most sweeps per step (2000 when None).
     - ``threads``: worker threads, 0 for one per core; results do not depend
       on it.
     - ``reference``: ``"updated"`` (springs on the current mesh each step) or
       ``"fixed"`` (also spelled ``"initial"``: springs on the input mesh,
       solving for the total displacement).
-
-    - keyword only, as ``verbss deform``'s options of the same names (None:
-      what ``method`` implies): ``slide`` (groups whose nodes slide in their
-      own plane), ``rigid_layer`` (``"off"``, ``"auto"`` or a wall distance),
-      ``stiffening`` (exponent ≥ 0), ``substeps`` (halvings of a step, at
-      most 30), ``blend`` (the blended rigid motion), ``predictor``
-      (``"previous"`` or ``"linear"``).
-
-    Invalid settings raise :class:`VerbssError` here, not at the first step.
     - ``accel``: ``"none"`` (plain VerBSS sweeps), ``"amg"`` (GMRES around a
       multigrid V-cycle whose smoother is the VerBSS sweep; ``tolerance`` then
       bounds the estimated RMS error) or ``"auto"`` (``"amg"`` on large meshes
       of mostly triangles/tetrahedra), for the methods verbss and spring.
+    - keyword only: ``predictor`` (``"previous"`` or ``"linear"``),
+      ``slide`` (group names, each sliding in its own plane, or a mapping of
+      a group name to its plane's normal, D numbers, or None for its own
+      plane), ``rigid_layer`` (``"off"``, ``"auto"`` or a wall distance),
+      ``stiffening`` (exponent ≥ 0), ``substeps`` (halvings of a step, at
+      most 30), ``blend`` (the blended rigid motion).
+
+    Invalid settings, unknown slide groups and slide normals of the wrong
+    length raise :class:`VerbssError` here, not at the first step.
     """
 
     def __new__(
@@ -138,12 +142,13 @@ class Deformer:
         solver: Optional[str] = None,
         accel: Optional[str] = None,
         *,
-        slide: Optional[Sequence[str]] = None,
+        absolute_tolerance: Optional[bool] = None,
+        predictor: Optional[str] = None,
+        slide: Union[Sequence[str], Mapping[str, Optional[npt.ArrayLike]], None] = None,
         rigid_layer: Union[str, float, None] = None,
         stiffening: Optional[float] = None,
         substeps: Optional[int] = None,
         blend: Optional[bool] = None,
-        predictor: Optional[str] = None,
     ) -> "Deformer": ...
     def step(
         self, displacements: Mapping[str, _Displacement], *, probe: Optional[GilProbe] = None

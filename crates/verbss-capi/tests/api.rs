@@ -3,7 +3,7 @@
 //! the deformer as it was, and the same points as the library for the same
 //! motion.
 
-use std::ffi::CStr;
+use std::ffi::{CStr, CString};
 use std::ptr;
 
 use verbss::deform::{Deformer, Settings};
@@ -47,16 +47,16 @@ fn create(
     nodes: &[i64],
     moving: &[i64],
 ) -> (i32, *mut VerbssDeformer) {
-    create_with(points, kinds, nodes, moving, None)
+    create_with(points, kinds, nodes, moving, ptr::null())
 }
 
-/// `create` with explicit settings (`None`: the defaults).
+/// `create` with settings (NULL: the defaults).
 fn create_with(
     points: &[f64],
     kinds: &[i32],
     nodes: &[i64],
     moving: &[i64],
-    settings: Option<&VerbssSettings>,
+    settings: *const VerbssSettings,
 ) -> (i32, *mut VerbssDeformer) {
     let mut d = ptr::null_mut();
     let status = unsafe {
@@ -70,11 +70,29 @@ fn create_with(
             nodes.len(),
             moving.as_ptr(),
             moving.len(),
-            settings.map_or(ptr::null(), |s| s as *const VerbssSettings),
+            settings,
             &mut d,
         )
     };
     (status, d)
+}
+
+/// `verbss_settings_set(s, name, value)`: its status and message.
+fn set(s: *mut VerbssSettings, name: &str, value: &str) -> (i32, String) {
+    let (name, value) = (CString::new(name).unwrap(), CString::new(value).unwrap());
+    let status = unsafe { verbss_settings_set(s, name.as_ptr(), value.as_ptr()) };
+    (status, last_error())
+}
+
+/// New settings with each `(name, value)` set.
+fn settings(values: &[(&str, &str)]) -> *mut VerbssSettings {
+    let mut s = ptr::null_mut();
+    assert_eq!(unsafe { verbss_settings_new(&mut s) }, VERBSS_OK);
+    for (name, value) in values {
+        let (status, message) = set(s, name, value);
+        assert_eq!(status, VERBSS_OK, "{message}");
+    }
+    s
 }
 
 fn info(d: *const VerbssDeformer) -> VerbssInfo {
@@ -171,11 +189,9 @@ fn library_deformer(points: &[f64], nodes: &[i64], robust: Robust) -> Deformer {
         facets,
     };
     let mesh = Mesh::new(2, points.to_vec(), cells, vec![group]).unwrap();
+    // The C defaults: the command line's, one worker thread per core.
     let mut settings = Settings::new(1);
-    let c = VerbssSettings::default();
-    settings.solve.tolerance = c.tolerance;
-    settings.solve.max_iterations = c.max_iterations;
-    settings.solve.threads = c.threads;
+    settings.solve.threads = 0;
     settings.robust = robust;
     let given = Motion::Positions(verbss::motion::PositionSource::Given(Default::default()));
     let attachment = Attachment {
@@ -258,32 +274,6 @@ fn bad_input_returns_status_2_and_says_what_is_wrong() {
         (status, last_error().as_str()),
         (VERBSS_ERROR_INPUT, "`points` is NULL")
     );
-    let settings = VerbssSettings {
-        method: 9,
-        ..VerbssSettings::default()
-    };
-    let status = unsafe {
-        verbss_deformer_new(
-            2,
-            p.as_ptr(),
-            25,
-            k.as_ptr(),
-            32,
-            n.as_ptr(),
-            96,
-            MOVING.as_ptr(),
-            1,
-            &settings,
-            &mut d,
-        )
-    };
-    assert_eq!(
-        (status, last_error().as_str()),
-        (
-            VERBSS_ERROR_INPUT,
-            "invalid setting: method 9 is not one of VERBSS_METHOD_*"
-        )
-    );
 
     let (_, d) = create(&p, &k, &n, &MOVING);
     let u = [0.1, 0.0, 0.0];
@@ -336,26 +326,21 @@ fn the_message_is_per_thread() {
 #[test]
 fn the_accelerated_solve_is_selectable_and_gives_the_direct_solution() {
     let (p, k, n) = square();
-    let create_with = |settings: &VerbssSettings| create_with(&p, &k, &n, &MOVING, Some(settings));
+    let create_with = |settings| create_with(&p, &k, &n, &MOVING, settings);
     let u = [0.1, 0.05];
-    let mut direct = VerbssSettings {
-        method: VERBSS_METHOD_BALL_VERTEX,
-        solver: VERBSS_SOLVER_DIRECT,
-        ..VerbssSettings::default()
-    };
-    let (status, exact) = create_with(&direct);
+    let direct = settings(&[("method", "ball-vertex"), ("solver", "direct")]);
+    let (status, exact) = create_with(direct);
     assert_eq!(status, VERBSS_OK, "{}", last_error());
     assert_eq!(
         unsafe { verbss_deformer_step(exact, u.as_ptr(), 2) },
         VERBSS_OK
     );
-    let amg = VerbssSettings {
-        method: VERBSS_METHOD_VERBSS,
-        accel: VERBSS_ACCEL_AMG,
-        tolerance: 1e-12,
-        ..VerbssSettings::default()
-    };
-    let (status, fast) = create_with(&amg);
+    let amg = settings(&[
+        ("method", "verbss"),
+        ("accel", "amg"),
+        ("tolerance", "1e-12"),
+    ]);
+    let (status, fast) = create_with(amg);
     assert_eq!(status, VERBSS_OK, "{}", last_error());
     assert_eq!(
         unsafe { verbss_deformer_step(fast, u.as_ptr(), 2) },
@@ -370,23 +355,29 @@ fn the_accelerated_solve_is_selectable_and_gives_the_direct_solution() {
     for d in [exact, fast] {
         assert_eq!(unsafe { verbss_deformer_free(d) }, VERBSS_OK);
     }
-    direct.accel = 7;
-    let (status, _) = create_with(&direct);
+    // The multigrid solves the block systems only: the combination is
+    // refused when the deformer is made.
+    let (status, _) = set(direct, "accel", "amg");
+    assert_eq!(status, VERBSS_OK);
+    let (status, d) = create_with(direct);
     assert_eq!(status, VERBSS_ERROR_INPUT);
+    assert!(d.is_null());
     assert_eq!(
         last_error(),
-        "invalid setting: accel 7 is not one of VERBSS_ACCEL_*"
+        "invalid setting: accel amg solves the block systems of method verbss and spring \
+         (not ball-vertex or laplacian)"
     );
+    for s in [direct, amg] {
+        assert_eq!(unsafe { verbss_settings_free(s) }, VERBSS_OK);
+    }
 }
 
 #[test]
 fn the_robust_method_is_the_library_with_the_recommended_treatments() {
     let (p, k, n) = square();
-    let settings = VerbssSettings {
-        method: VERBSS_METHOD_ROBUST,
-        ..VerbssSettings::default()
-    };
-    let (status, d) = create_with(&p, &k, &n, &MOVING, Some(&settings));
+    let settings = settings(&[("method", "robust")]);
+    let (status, d) = create_with(&p, &k, &n, &MOVING, settings);
+    assert_eq!(unsafe { verbss_settings_free(settings) }, VERBSS_OK);
     assert_eq!(status, VERBSS_OK, "{}", last_error());
     let mut library = library_deformer(&p, &n, Robust::recommended());
     let u = [0.3, 0.0];
@@ -422,4 +413,219 @@ fn the_kind_constants_are_the_vtk_ids() {
     ] {
         assert_eq!(code, i32::from(kind.vtk_id()), "{kind:?}");
     }
+}
+
+#[test]
+fn settings_are_named_as_on_the_command_line_and_checked_when_set() {
+    let (p, k, n) = square();
+    // The paper's method, whose sweeps the tolerance below changes.
+    let s = settings(&[("method", "verbss")]);
+    let cases = [
+        (
+            "method",
+            "fast",
+            "unknown method 'fast' (expected robust, verbss, ball-vertex, spring or laplacian)",
+        ),
+        (
+            "omegga",
+            "1.5",
+            "unknown setting 'omegga' (expected method, solver, accel, reference, \
+          predictor, tolerance, absolute_tolerance, max_iterations, omega, threads, rigid_layer, \
+          substeps, stiffening or blend)",
+        ),
+        ("omega", "2.5", "omega 2.5 is outside (0, 2)"),
+        (
+            "rigid_layer",
+            "thick",
+            "the rigid layer must be off, auto or a positive wall distance (got 'thick')",
+        ),
+        ("substeps", "40", "substeps must be at most 30 (got 40)"),
+        ("blend", "yes", "blend must be on or off (got 'yes')"),
+    ];
+    for (name, value, message) in cases {
+        let expected = format!("invalid setting: {message}");
+        assert_eq!(set(s, name, value), (VERBSS_ERROR_INPUT, expected));
+    }
+    let name = CString::new("max_iterations").unwrap();
+    let status = unsafe { verbss_settings_set_number(s, name.as_ptr(), 2.5) };
+    assert_eq!(
+        (status, last_error().as_str()),
+        (
+            VERBSS_ERROR_INPUT,
+            "invalid setting: max_iterations must be a whole number (got '2.5')"
+        )
+    );
+    let value = CString::new("on").unwrap();
+    let status = unsafe { verbss_settings_set(ptr::null_mut(), name.as_ptr(), value.as_ptr()) };
+    assert_eq!(
+        (status, last_error().as_str()),
+        (VERBSS_ERROR_INPUT, "the settings are NULL")
+    );
+    let status = unsafe { verbss_settings_set(s, ptr::null(), value.as_ptr()) };
+    assert_eq!(
+        (status, last_error().as_str()),
+        (VERBSS_ERROR_INPUT, "`name` is NULL")
+    );
+    let latin1 = CString::new(vec![0xe9u8]).unwrap();
+    let status = unsafe { verbss_settings_set(s, name.as_ptr(), latin1.as_ptr()) };
+    assert_eq!(
+        (status, last_error().as_str()),
+        (VERBSS_ERROR_INPUT, "`value` is not UTF-8 text")
+    );
+    // The refused values changed nothing.
+    let u = [0.1, 0.05];
+    let step = |settings| {
+        let (status, d) = create_with(&p, &k, &n, &MOVING, settings);
+        assert_eq!(status, VERBSS_OK, "{}", last_error());
+        assert_eq!(unsafe { verbss_deformer_step(d, u.as_ptr(), 2) }, VERBSS_OK);
+        let result = (info(d).iterations, points(d));
+        assert_eq!(unsafe { verbss_deformer_free(d) }, VERBSS_OK);
+        result
+    };
+    let paper = settings(&[("method", "verbss")]);
+    assert_eq!(step(s), step(paper));
+    // A number is written exactly: the same deformer as its text.
+    let tight = settings(&[("method", "verbss"), ("tolerance", "1e-12")]);
+    let name = CString::new("tolerance").unwrap();
+    assert_eq!(
+        unsafe { verbss_settings_set_number(s, name.as_ptr(), 1e-12) },
+        VERBSS_OK
+    );
+    assert_eq!(step(s), step(tight));
+    assert_ne!(step(s).0, step(paper).0);
+    for s in [s, paper, tight] {
+        assert_eq!(unsafe { verbss_settings_free(s) }, VERBSS_OK);
+    }
+    assert_eq!(unsafe { verbss_settings_free(ptr::null_mut()) }, VERBSS_OK);
+}
+
+/// `verbss_settings_add_slide(s, nodes, normal)`: its status and message.
+fn add_slide(s: *mut VerbssSettings, nodes: &[i64], normal: &[f64]) -> (i32, String) {
+    let normal_ptr = if normal.is_empty() {
+        ptr::null()
+    } else {
+        normal.as_ptr()
+    };
+    let status = unsafe {
+        verbss_settings_add_slide(s, nodes.as_ptr(), nodes.len(), normal_ptr, normal.len())
+    };
+    (status, last_error())
+}
+
+/// The square's points after the centre moves by (0.1, 0.05), with the
+/// bottom edge (nodes 0 to 4, y = 0) sliding in the plane of `normal`
+/// (empty: its own) and the nodes `fixed` a fixed group.
+fn slide_bottom(normal: &[f64], fixed: &[i64]) -> Vec<f64> {
+    let (p, k, n) = square();
+    let s = settings(&[("method", "verbss")]);
+    assert_eq!(add_slide(s, &[0, 1, 2, 3, 4], normal).0, VERBSS_OK);
+    if !fixed.is_empty() {
+        let status = unsafe { verbss_settings_add_fixed(s, fixed.as_ptr(), fixed.len()) };
+        assert_eq!(status, VERBSS_OK);
+    }
+    let (status, d) = create_with(&p, &k, &n, &MOVING, s);
+    assert_eq!(status, VERBSS_OK, "{}", last_error());
+    assert_eq!(unsafe { verbss_settings_free(s) }, VERBSS_OK);
+    let u = [0.1, 0.05];
+    assert_eq!(unsafe { verbss_deformer_step(d, u.as_ptr(), 2) }, VERBSS_OK);
+    let moved = points(d);
+    assert_eq!(unsafe { verbss_deformer_free(d) }, VERBSS_OK);
+    moved
+}
+
+#[test]
+fn nodes_slide_in_their_own_plane_or_in_the_plane_of_a_normal() {
+    let (p, _, _) = square();
+    let own = slide_bottom(&[], &[]);
+    // The bottom edge's own plane is y = 0: its nodes moved along x only.
+    for i in 1..4 {
+        assert_eq!(own[2 * i + 1], 0.0, "node {i}");
+        assert_ne!(own[2 * i], p[2 * i], "node {i}");
+    }
+    assert_eq!(slide_bottom(&[0.0, 3.0], &[]), own);
+    // A tilted plane: each node moved along (1, -1).
+    let tilted = slide_bottom(&[1.0, 1.0], &[]);
+    for i in 1..4 {
+        let (dx, dy) = (tilted[2 * i] - p[2 * i], tilted[2 * i + 1] - p[2 * i + 1]);
+        assert!(
+            dx != 0.0 && (dx + dy).abs() < 1e-15,
+            "node {i}: ({dx}, {dy})"
+        );
+    }
+}
+
+#[test]
+fn bad_slide_planes_are_named() {
+    let (p, k, n) = square();
+    let cases: [(&[i64], &[f64], &str); 3] = [
+        (
+            &[0, 1, 25],
+            &[],
+            "invalid mesh: node 2 of slide plane 0 is node 25, not a node id of the mesh (0 to 24)",
+        ),
+        (
+            &[0, 1, 2],
+            &[0.0, 0.0, 1.0],
+            "invalid setting: the slide normal of group 'slide plane 0' has 3 numbers, \
+             expected 2 (the mesh's dimension)",
+        ),
+        (
+            &[0, 1, 2, 7],
+            &[],
+            "invalid setting: group 'slide plane 0' does not lie in one plane: give the slide \
+             motion a `normal`",
+        ),
+    ];
+    for (nodes, normal, message) in cases {
+        let s = settings(&[]);
+        assert_eq!(add_slide(s, nodes, normal).0, VERBSS_OK);
+        let (status, d) = create_with(&p, &k, &n, &MOVING, s);
+        assert_eq!(
+            (status, last_error().as_str()),
+            (VERBSS_ERROR_INPUT, message)
+        );
+        assert!(d.is_null());
+        assert_eq!(unsafe { verbss_settings_free(s) }, VERBSS_OK);
+    }
+    let s = settings(&[]);
+    assert_eq!(
+        add_slide(s, &[], &[]),
+        (
+            VERBSS_ERROR_INPUT,
+            "invalid setting: slide plane 0 has no node".into()
+        )
+    );
+    assert_eq!(unsafe { verbss_settings_free(s) }, VERBSS_OK);
+}
+
+#[test]
+fn a_fixed_group_holds_the_nodes_where_a_plane_meets_it() {
+    let (p, k, n) = square();
+    let free = slide_bottom(&[], &[]);
+    let held = slide_bottom(&[], &[0, 1]);
+    assert_ne!(free[2], p[2]);
+    assert_eq!(&held[..4], &p[..4]);
+    assert_ne!(held[4], p[4]);
+    let s = settings(&[]);
+    let ids = [30];
+    let status = unsafe { verbss_settings_add_fixed(s, ids.as_ptr(), 1) };
+    assert_eq!(status, VERBSS_OK);
+    let (status, d) = create_with(&p, &k, &n, &MOVING, s);
+    assert_eq!(
+        (status, last_error().as_str()),
+        (
+            VERBSS_ERROR_INPUT,
+            "invalid mesh: node 0 of fixed group 0 is node 30, not a node id of the mesh (0 to 24)"
+        )
+    );
+    assert!(d.is_null());
+    let status = unsafe { verbss_settings_add_fixed(s, ptr::null(), 0) };
+    assert_eq!(
+        (status, last_error().as_str()),
+        (
+            VERBSS_ERROR_INPUT,
+            "invalid setting: fixed group 1 has no node"
+        )
+    );
+    assert_eq!(unsafe { verbss_settings_free(s) }, VERBSS_OK);
 }

@@ -1,4 +1,4 @@
-//! `include/verbss.h` is what cbindgen generates from `src/lib.rs` with
+//! `include/verbss.h` is what cbindgen generates from `src/lib.rs` and its modules with
 //! `cbindgen.toml`: the committed header never drifts from the code.
 //!
 //! After changing the API, rewrite the header with
