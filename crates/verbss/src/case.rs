@@ -9,12 +9,10 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use crate::deform::{Predictor, Preset, Reference, Settings};
+use crate::deform::Settings;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Motion, PositionSource};
-use crate::robust::Layer;
-use crate::solve::{Accel, SolveParams, Solver};
 
 /// A parsed case file.
 #[derive(Debug, Clone, PartialEq)]
@@ -64,42 +62,14 @@ struct CaseFile {
     mesh: String,
     steps: usize,
     dt: Option<f64>,
+    reference: Option<toml::Value>,
+    /// The `[solver]` table: [`Settings::NAMES`] and their values.
     #[serde(default)]
-    reference: Reference,
-    #[serde(default)]
-    solver: SolverTable,
+    solver: toml::Table,
     #[serde(default)]
     motion: Vec<toml::Spanned<MotionSpec>>,
     #[serde(default)]
     output: OutputTable,
-}
-
-#[derive(Deserialize, Default)]
-#[serde(deny_unknown_fields)]
-struct SolverTable {
-    #[serde(default)]
-    method: Preset,
-    solver: Option<Solver>,
-    accel: Option<Accel>,
-    omega: Option<f64>,
-    tolerance: Option<f64>,
-    absolute_tolerance: Option<bool>,
-    max_iterations: Option<usize>,
-    threads: Option<usize>,
-    rigid_layer: Option<LayerSpec>,
-    substeps: Option<u32>,
-    stiffening: Option<f64>,
-    blend: Option<bool>,
-    #[serde(default)]
-    predictor: Predictor,
-}
-
-/// `rigid_layer = "off" | "auto" | THICKNESS`.
-#[derive(Deserialize)]
-#[serde(untagged)]
-enum LayerSpec {
-    Name(String),
-    Thickness(f64),
 }
 
 #[derive(Deserialize)]
@@ -206,6 +176,15 @@ impl MotionSpec {
     }
 }
 
+/// The message of a setting's error, without the `invalid setting: ` of
+/// its display.
+fn setting_message(e: Error) -> String {
+    match e {
+        Error::InvalidSetting(message) => message,
+        other => other.to_string(),
+    }
+}
+
 /// 1-based line of byte `offset` in `text`.
 fn line_of(text: &str, offset: usize) -> usize {
     text[..offset.min(text.len())].matches('\n').count() + 1
@@ -244,93 +223,31 @@ impl Case {
         if !(dt > 0.0 && dt.is_finite()) {
             return Err(at(top("dt"), format!("`dt` must be positive (got {dt})")));
         }
-        let s = &file.solver;
-        let preset = s.method.settings(file.steps);
-        let mut solve = SolveParams {
-            solver: s.solver.unwrap_or_default(),
-            accel: s.accel.unwrap_or_default(),
-            // A solver, accel or omega given explicitly means exactly that.
-            escalate: s.solver.is_none() && s.accel.is_none() && s.omega.is_none(),
-            ..preset.solve
-        };
-        if let Some(omega) = s.omega {
-            if !(omega > 0.0 && omega < 2.0) {
-                return Err(at(
-                    top("omega"),
-                    format!("`solver.omega` must lie in (0, 2) (got {omega})"),
-                ));
-            }
-            solve.omega = omega;
+        let mut named = Vec::new();
+        let keys = file.reference.iter().map(|v| ("reference", v));
+        for (key, value) in keys.chain(file.solver.iter().map(|(k, v)| (k.as_str(), v))) {
+            let line = top(key);
+            let table = if key == "reference" { "" } else { "solver." };
+            let text =
+                match value {
+                    toml::Value::String(s) => s.clone(),
+                    toml::Value::Integer(i) => i.to_string(),
+                    toml::Value::Float(x) => x.to_string(),
+                    toml::Value::Boolean(b) => (if *b { "on" } else { "off" }).into(),
+                    other => return Err(at(
+                        line,
+                        format!(
+                            "`{table}{key}` must be a string, a number or true/false (got {other})"
+                        ),
+                    )),
+                };
+            Settings::check(key, &text)
+                .map_err(|e| at(line, format!("`{table}{key}`: {}", setting_message(e))))?;
+            named.push((key, text));
         }
-        if let Some(tol) = s.tolerance {
-            if !(tol > 0.0 && tol.is_finite()) {
-                return Err(at(
-                    top("tolerance"),
-                    format!("`solver.tolerance` must be positive (got {tol})"),
-                ));
-            }
-            solve.tolerance = tol;
-        }
-        if let Some(b) = s.absolute_tolerance {
-            solve.absolute_tolerance = b;
-        }
-        if let Some(k) = s.max_iterations {
-            if k == 0 {
-                return Err(at(
-                    top("max_iterations"),
-                    "`solver.max_iterations` must be at least 1".into(),
-                ));
-            }
-            solve.max_iterations = k;
-        }
-        if let Some(t) = s.threads {
-            if t == 0 {
-                return Err(at(
-                    top("threads"),
-                    "`solver.threads` must be at least 1".into(),
-                ));
-            }
-            solve.threads = t;
-        }
-        let mut robust = preset.robust;
-        if let Some(spec) = &s.rigid_layer {
-            robust.layer = match spec {
-                LayerSpec::Name(n) if n == "off" => Layer::Off,
-                LayerSpec::Name(n) if n == "auto" => Layer::Auto,
-                LayerSpec::Thickness(t) if *t > 0.0 && t.is_finite() => Layer::Thickness(*t),
-                LayerSpec::Name(n) => {
-                    return Err(at(
-                        top("rigid_layer"),
-                        format!("`solver.rigid_layer` must be \"off\", \"auto\" or a positive thickness (got \"{n}\")"),
-                    ))
-                }
-                LayerSpec::Thickness(t) => {
-                    return Err(at(
-                        top("rigid_layer"),
-                        format!("`solver.rigid_layer` must be \"off\", \"auto\" or a positive thickness (got {t})"),
-                    ))
-                }
-            };
-        }
-        if let Some(k) = s.substeps {
-            if k > 30 {
-                return Err(at(
-                    top("substeps"),
-                    format!("`solver.substeps` must be at most 30 (got {k})"),
-                ));
-            }
-            robust.substeps = k;
-        }
-        if let Some(p) = s.stiffening {
-            if !(p >= 0.0 && p.is_finite()) {
-                return Err(at(
-                    top("stiffening"),
-                    format!("`solver.stiffening` must be zero or positive (got {p})"),
-                ));
-            }
-            robust.stiffening = p;
-        }
-        robust.blend = s.blend.unwrap_or(robust.blend);
+        let mut settings = Settings::named(file.steps, &named)
+            .map_err(|e| at(top("[solver]"), setting_message(e)))?;
+        settings.dt = dt;
         if file.output.every == 0 {
             return Err(at(top("every"), "`output.every` must be at least 1".into()));
         }
@@ -347,14 +264,7 @@ impl Case {
         Ok(Case {
             path: path.to_path_buf(),
             mesh: base.join(&file.mesh),
-            settings: Settings {
-                steps: file.steps,
-                dt,
-                reference: file.reference,
-                solve,
-                robust,
-                predictor: file.solver.predictor,
-            },
+            settings,
             output: Output {
                 dir: file.output.dir.map(|d| base.join(d)),
                 every: file.output.every,

@@ -1,6 +1,7 @@
 use super::*;
-use crate::robust::Robust;
-use crate::solve::Method;
+use crate::deform::Reference;
+use crate::robust::{Layer, Robust};
+use crate::solve::{Accel, Method, Solver};
 
 fn parse(text: &str) -> Result<Case> {
     Case::parse(text, Path::new("cases/c.toml"))
@@ -84,10 +85,24 @@ fn wrong_type() {
 }
 
 #[test]
+fn unknown_setting_names_the_known_ones() {
+    assert_eq!(
+        err("mesh = \"m.su2\"\nsteps = 3\n[solver]\nomegga = 1.5\n"),
+        "cases/c.toml:4: `solver.omegga`: unknown setting 'omegga' (expected method, solver, \
+         accel, reference, predictor, tolerance, absolute_tolerance, max_iterations, omega, \
+         threads, rigid_layer, substeps, stiffening or blend)"
+    );
+    assert_eq!(
+        err("mesh = \"m.su2\"\nsteps = 3\n[solver]\nblend = [1]\n"),
+        "cases/c.toml:4: `solver.blend` must be a string, a number or true/false (got [1])"
+    );
+}
+
+#[test]
 fn unknown_method() {
     assert_eq!(
         err("mesh = \"m.su2\"\nsteps = 3\n[solver]\nmethod = \"fem\"\n"),
-        "cases/c.toml:4: unknown variant `fem`, expected one of `robust`, `verbss`, `ball-vertex`, `spring`, `laplacian`"
+        "cases/c.toml:4: `solver.method`: unknown method 'fem' (expected robust, verbss, ball-vertex, spring or laplacian)"
     );
 }
 
@@ -116,19 +131,19 @@ fn near_wall_treatments_follow_the_method_unless_given() {
     assert_eq!(off.layer, Layer::Off);
     assert_eq!(
         err(&format!("{head}[solver]\nrigid_layer = \"thick\"\n")),
-        "cases/c.toml:4: `solver.rigid_layer` must be \"off\", \"auto\" or a positive thickness (got \"thick\")"
+        "cases/c.toml:4: `solver.rigid_layer`: the rigid layer must be off, auto or a positive wall distance (got 'thick')"
     );
     assert_eq!(
         err(&format!("{head}[solver]\nrigid_layer = -0.5\n")),
-        "cases/c.toml:4: `solver.rigid_layer` must be \"off\", \"auto\" or a positive thickness (got -0.5)"
+        "cases/c.toml:4: `solver.rigid_layer`: the rigid layer must be off, auto or a positive wall distance (got '-0.5')"
     );
     assert_eq!(
         err(&format!("{head}[solver]\nsubsteps = 40\n")),
-        "cases/c.toml:4: `solver.substeps` must be at most 30 (got 40)"
+        "cases/c.toml:4: `solver.substeps`: substeps must be at most 30 (got 40)"
     );
     assert_eq!(
         err(&format!("{head}[solver]\nstiffening = -1.0\n")),
-        "cases/c.toml:4: `solver.stiffening` must be zero or positive (got -1)"
+        "cases/c.toml:4: `solver.stiffening`: the stiffening exponent must be zero or positive (got -1)"
     );
 }
 
@@ -164,7 +179,7 @@ fn out_of_range_values() {
     );
     assert_eq!(
         err("mesh = \"m.su2\"\nsteps = 2\n[solver]\nomega = 2.5\n"),
-        "cases/c.toml:4: `solver.omega` must lie in (0, 2) (got 2.5)"
+        "cases/c.toml:4: `solver.omega`: omega 2.5 is outside (0, 2)"
     );
     assert_eq!(
         err("mesh = \"m.su2\"\nsteps = 2\n[output]\nevery = 0\n"),
