@@ -7,8 +7,6 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::Context;
-use mpi::topology::SimpleCommunicator;
-use mpi::traits::*;
 use verbss::deform::{Settings, Snapshot};
 use verbss::io::{self, vtu, WriteOptions};
 use verbss::mesh::Mesh;
@@ -17,6 +15,7 @@ use verbss::report::Report;
 use verbss::Error;
 use verbss_mpi::pieces::{write_piece, write_pvtu};
 use verbss_mpi::stepper::Stepper;
+use verbss_mpi::Comm;
 
 use crate::overwrite::note_lost_su2_blocks;
 use crate::progress::Progress;
@@ -24,7 +23,7 @@ use crate::render::Recorder;
 
 /// Whether this process is rank 0 of `MPI_COMM_WORLD` (the one that prints).
 pub fn is_root() -> bool {
-    SimpleCommunicator::world().rank() == 0
+    Comm::world().rank() == 0
 }
 
 /// The file name without its extension (`mesh` when there is none).
@@ -127,7 +126,7 @@ impl Summary {
 /// `verbss` (the final mesh, the report, the series when asked, the
 /// pictures), every rank its piece of the final state.
 pub fn execute(job: &Job, quiet: bool, recorder: &mut Recorder) -> anyhow::Result<Summary> {
-    let world = SimpleCommunicator::world();
+    let world = Comm::world();
     let root = world.rank() == 0;
     std::fs::create_dir_all(&job.dir)
         .with_context(|| format!("cannot create the output folder {}", job.dir.display()))?;

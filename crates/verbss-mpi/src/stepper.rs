@@ -16,7 +16,6 @@
 
 use std::time::Instant;
 
-use mpi::traits::*;
 use verbss::deform::{Deformer, Reference, Settings, Snapshot, StepReport};
 use verbss::motion::Attachment;
 use verbss::quality::{self, Inversion, Summary};
@@ -25,16 +24,16 @@ use verbss::topology::{self, Csr};
 use verbss::{Error, Mesh, Result};
 
 use crate::colouring::{engine_colours, is_seed};
-use crate::halo::all_gather_lists;
 use crate::part::Part;
 use crate::partition::partition;
 use crate::sweeper::Sweeper;
+use crate::Comm;
 
 /// A mesh in motion over the ranks of a communicator (see the module documentation).
-pub struct Stepper<'c, C: Communicator> {
-    comm: &'c C,
+pub struct Stepper<'c> {
+    comm: &'c Comm,
     deformer: Deformer,
-    sweeper: Sweeper<'c, C>,
+    sweeper: Sweeper<'c>,
     graph: Csr,
     /// Global numbers of every rank's owned nodes, rank by rank.
     owned: Vec<Vec<u64>>,
@@ -48,22 +47,22 @@ pub struct Stepper<'c, C: Communicator> {
     failed: Option<Snapshot>,
 }
 
-impl<'c, C: Communicator> Stepper<'c, C> {
+impl<'c> Stepper<'c> {
     /// Prepares `mesh` for `attachments` on every rank of `comm`
     /// (collective; every rank passes the same arguments).
     pub fn new(
-        comm: &'c C,
+        comm: &'c Comm,
         mesh: &Mesh,
         attachments: &[Attachment],
         settings: Settings,
-    ) -> Result<Stepper<'c, C>> {
+    ) -> Result<Stepper<'c>> {
         let deformer = Deformer::new(mesh, attachments, settings)?;
         let mut owner = if comm.rank() == 0 {
             partition(mesh, comm.size() as usize)?
         } else {
             vec![0; mesh.node_count()]
         };
-        comm.process_at_rank(0).broadcast_into(&mut owner[..]);
+        comm.broadcast(0, &mut owner);
         let part = Part::extract(mesh, &owner, comm.rank());
         let roles = part
             .global
@@ -74,7 +73,7 @@ impl<'c, C: Communicator> Stepper<'c, C> {
             .filter(|&i| part.owns(i))
             .map(|i| part.global[i])
             .collect();
-        let owned = all_gather_lists(comm, &mine);
+        let owned = comm.all_gather(&mine);
         let stiffness = deformer.stiffness();
         let factors = if stiffness.is_empty() {
             Vec::new()
@@ -285,7 +284,7 @@ impl<'c, C: Communicator> Stepper<'c, C> {
             .filter(|&i| part.owns(i))
             .flat_map(|i| local[dim * i..dim * (i + 1)].iter().copied())
             .collect();
-        for (nodes, values) in self.owned.iter().zip(all_gather_lists(self.comm, &mine)) {
+        for (nodes, values) in self.owned.iter().zip(self.comm.all_gather(&mine)) {
             for (k, &g) in nodes.iter().enumerate() {
                 let g = g as usize;
                 u[dim * g..dim * (g + 1)].copy_from_slice(&values[dim * k..dim * (k + 1)]);
