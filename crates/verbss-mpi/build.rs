@@ -92,7 +92,7 @@ fn metis() -> Flags {
 }
 
 /// Compiles and links a program calling both libraries; on failure, the
-/// compiler's first error.
+/// first error of the compiler or the linker.
 fn probe(flags: &Flags, out: &Path) -> Result<(), String> {
     let source = out.join("probe.c");
     std::fs::write(
@@ -118,9 +118,18 @@ fn probe(flags: &Flags, out: &Path) -> Result<(), String> {
     let stderr = String::from_utf8_lossy(&result.stderr);
     let first = stderr
         .lines()
-        .find(|l| l.contains("error"))
+        .find(|l| {
+            ["error:", "cannot find", "undefined reference"]
+                .iter()
+                .any(|k| l.contains(k))
+        })
         .unwrap_or("the probe program does not link");
-    Err(first.trim().to_string())
+    // A compiler's error without the probe's path: `fatal error: metis.h: …`.
+    let at = first
+        .find("fatal error:")
+        .or_else(|| first.find("error:"))
+        .unwrap_or(0);
+    Err(first[at..].trim().to_string())
 }
 
 fn main() {

@@ -49,14 +49,12 @@ int verbss_mpi_active(void) {
 
 int verbss_mpi_world(void) { return (int)MPI_Comm_c2f(MPI_COMM_WORLD); }
 
-/* The Fortran handle of the C handle `*comm`; -1 for MPI_COMM_NULL. */
-int verbss_mpi_c2f(const void *comm) {
-    MPI_Comm c = *(const MPI_Comm *)comm;
-    return c == MPI_COMM_NULL ? -1 : (int)MPI_Comm_c2f(c);
+/* 1 when `handle` names a communicator other than MPI_COMM_NULL (Open MPI
+ * gives a null pointer for a handle it does not know). */
+int verbss_mpi_valid(int handle) {
+    MPI_Comm c = MPI_Comm_f2c(handle);
+    return c != MPI_COMM_NULL && c != (MPI_Comm)0;
 }
-
-/* 1 when `handle` names a communicator other than MPI_COMM_NULL. */
-int verbss_mpi_valid(int handle) { return MPI_Comm_f2c(handle) != MPI_COMM_NULL; }
 
 int verbss_mpi_rank(int comm, int *rank) { return MPI_Comm_rank(MPI_Comm_f2c(comm), rank); }
 

@@ -8,7 +8,7 @@
 //! (MPI's default error handler aborts the job; a status that still comes
 //! back is a panic that names the call).
 
-use std::ffi::{c_int, c_void};
+use std::ffi::c_int;
 use std::marker::PhantomData;
 
 mod ffi {
@@ -19,7 +19,6 @@ mod ffi {
         pub fn verbss_mpi_finalize() -> c_int;
         pub fn verbss_mpi_active() -> c_int;
         pub fn verbss_mpi_world() -> c_int;
-        pub fn verbss_mpi_c2f(comm: *const c_void) -> c_int;
         pub fn verbss_mpi_valid(comm: c_int) -> c_int;
         pub fn verbss_mpi_rank(comm: c_int, rank: *mut c_int) -> c_int;
         pub fn verbss_mpi_size(comm: c_int, size: *mut c_int) -> c_int;
@@ -121,8 +120,9 @@ impl Drop for Mpi {
 }
 
 /// An MPI communicator, held as its Fortran handle (`MPI_Fint`), which
-/// every MPI binding can give (`MPI_Comm_c2f` in C, the integer itself in
-/// Fortran, `comm.py2f()` in mpi4py).
+/// every MPI binding can give (`MPI_Comm_c2f(comm)` in C, the integer
+/// itself in Fortran, `comm.py2f()` in mpi4py), whatever the MPI
+/// implementation's C handle type is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Comm {
     handle: c_int,
@@ -214,26 +214,13 @@ impl Comm {
         Comm::new(unsafe { ffi::verbss_mpi_world() })
     }
 
-    /// The communicator of a Fortran handle (`MPI_Fint`); `None` when it
-    /// names no communicator. Panics when MPI is not initialised.
+    /// The communicator of a Fortran handle (`MPI_Fint`; from C,
+    /// `MPI_Comm_c2f(comm)`); `None` for `MPI_COMM_NULL` or a handle MPI
+    /// does not know. Panics when MPI is not initialised.
     pub fn from_fortran(handle: i32) -> Option<Comm> {
         assert_active();
         // SAFETY: MPI is initialised; MPI_Comm_f2c takes any integer.
         (unsafe { ffi::verbss_mpi_valid(handle) } != 0).then(|| Comm::new(handle))
-    }
-
-    /// The communicator of a C handle: `comm` points to an `MPI_Comm` (of
-    /// the MPI this crate was built with); `None` for `MPI_COMM_NULL`.
-    /// Panics when MPI is not initialised.
-    ///
-    /// # Safety
-    ///
-    /// `comm` must point to a valid `MPI_Comm`.
-    pub unsafe fn from_c(comm: *const c_void) -> Option<Comm> {
-        assert_active();
-        // SAFETY: the caller's promise.
-        let handle = unsafe { ffi::verbss_mpi_c2f(comm) };
-        (handle != -1).then(|| Comm::new(handle))
     }
 
     /// The Fortran handle (`MPI_Fint`).
@@ -471,5 +458,67 @@ pub(crate) fn part_kway(
     match status {
         1 => Ok(part),
         s => Err(MetisError::Status(s)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every wrapper on one process (MPI's singleton start, no mpirun).
+    #[test]
+    fn the_wrappers_on_one_rank() {
+        let mpi = Mpi::init().expect("MPI is not initialised yet");
+        assert!(Mpi::init().is_none(), "MPI is initialised once");
+        let world = mpi.world();
+        assert_eq!((world.rank(), world.size()), (0, 1));
+        assert_eq!(Comm::from_fortran(world.fortran()), Some(world));
+        assert_eq!(world.sum(2.5f64), 2.5);
+        assert_eq!(world.max(7u8), 7);
+        assert_eq!(world.max(-3i32), -3);
+        assert_eq!(world.sum(u64::MAX), u64::MAX);
+        assert_eq!(world.max(9u32), 9);
+        let mut data = [1, 2, 3i32];
+        world.broadcast(0, &mut data);
+        assert_eq!(data, [1, 2, 3]);
+        assert_eq!(world.all_to_all(&[vec![4u64, 5]]), [vec![4u64, 5]]);
+        assert_eq!(world.all_gather(&[1.5f64, -2.0]), [vec![1.5, -2.0]]);
+        let mut recv = [vec![0.0; 2], Vec::new()];
+        world.exchange(&[0, 0], &[vec![3.0, 4.0], Vec::new()], &mut recv);
+        assert_eq!(recv, [vec![3.0, 4.0], Vec::new()]);
+        world.barrier();
+    }
+
+    /// A 4 × 4 grid of nodes cut in two by METIS: 8 nodes each.
+    #[test]
+    fn metis_halves_a_grid() {
+        let at = |i: usize, j: usize| 4 * i + j;
+        let mut offsets = vec![0];
+        let mut targets = Vec::new();
+        for i in 0..4 {
+            for j in 0..4 {
+                if i > 0 {
+                    targets.push(at(i - 1, j));
+                }
+                if j > 0 {
+                    targets.push(at(i, j - 1));
+                }
+                if j < 3 {
+                    targets.push(at(i, j + 1));
+                }
+                if i < 3 {
+                    targets.push(at(i + 1, j));
+                }
+                offsets.push(targets.len());
+            }
+        }
+        let part = part_kway(&offsets, &targets, 2).unwrap();
+        assert_eq!(part.iter().filter(|&&p| p == 0).count(), 8, "{part:?}");
+        assert_eq!(part.iter().filter(|&&p| p == 1).count(), 8, "{part:?}");
+        assert_eq!(
+            part,
+            part_kway(&offsets, &targets, 2).unwrap(),
+            "the same seed"
+        );
     }
 }

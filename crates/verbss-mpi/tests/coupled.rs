@@ -50,7 +50,8 @@ fn worker() {
     const TOLERANCE: f64 = 1e-13;
 
     let mpi = verbss_mpi::Mpi::init().unwrap();
-    let world = mpi.world();
+    // The communicator as a flow solver hands it over: its Fortran handle.
+    let world = verbss_mpi::Comm::from_fortran(mpi.world().fortran()).unwrap();
     let (rank, size) = (world.rank() as usize, world.size() as usize);
     let name = std::env::var("VERBSS_MPI_MESH").unwrap();
     let group = std::env::var("VERBSS_MPI_GROUP").unwrap();
