@@ -9,8 +9,8 @@
 //! ```
 //!
 //! `comm` is the flow solver's communicator as a [`Comm`]:
-//! [`Comm::world`], [`Comm::from_fortran`] of its Fortran handle (from C,
-//! `MPI_Comm_c2f(comm)`) or [`Comm::from_c`] of a pointer to its `MPI_Comm`.
+//! [`Comm::world`], or [`Comm::from_fortran`] of its Fortran handle (from
+//! C, `MPI_Comm_c2f(comm)`).
 //! MPI is initialised by the flow solver or by [`crate::Mpi::init`].
 //!
 //! The local meshes may be any split of the cells (each cell on one rank or
