@@ -39,12 +39,12 @@ int verbss_mpi_init(void) {
 
 int verbss_mpi_finalize(void) { return MPI_Finalize(); }
 
-/* 1 while MPI is initialised and not finalised, else 0. */
-int verbss_mpi_active(void) {
+/* 1 once MPI is initialised, plus 2 once it is finalised. */
+int verbss_mpi_state(void) {
     int initialized = 0, finalized = 0;
     MPI_Initialized(&initialized);
     MPI_Finalized(&finalized);
-    return initialized && !finalized;
+    return (initialized ? 1 : 0) + (finalized ? 2 : 0);
 }
 
 int verbss_mpi_world(void) { return (int)MPI_Comm_c2f(MPI_COMM_WORLD); }

@@ -17,7 +17,7 @@ mod ffi {
     extern "C" {
         pub fn verbss_mpi_init() -> c_int;
         pub fn verbss_mpi_finalize() -> c_int;
-        pub fn verbss_mpi_active() -> c_int;
+        pub fn verbss_mpi_state() -> c_int;
         pub fn verbss_mpi_world() -> c_int;
         pub fn verbss_mpi_valid(comm: c_int) -> c_int;
         pub fn verbss_mpi_rank(comm: c_int, rank: *mut c_int) -> c_int;
@@ -90,13 +90,13 @@ pub struct Mpi {
 
 impl Mpi {
     /// Initialises MPI (`MPI_Init_thread`, `MPI_THREAD_SINGLE`); `None` when
-    /// it is already initialised (by the flow solver: use [`Comm::world`]
-    /// or [`Comm::from_fortran`] then) or finalised.
+    /// it was initialised before (by the flow solver: use [`Comm::world`]
+    /// or [`Comm::from_fortran`] then), finalised or not.
     pub fn init() -> Option<Mpi> {
         // SAFETY: plain calls without arguments; the state check keeps
         // MPI_Init_thread from running twice.
         unsafe {
-            if ffi::verbss_mpi_active() != 0 {
+            if ffi::verbss_mpi_state() != 0 {
                 return None;
             }
             check(ffi::verbss_mpi_init(), "MPI_Init_thread");
@@ -192,7 +192,7 @@ fn displacements(counts: &[c_int]) -> Vec<c_int> {
 /// Panics unless MPI is initialised and not finalised.
 fn assert_active() {
     // SAFETY: MPI_Initialized and MPI_Finalized may be called at any time.
-    let active = unsafe { ffi::verbss_mpi_active() } != 0;
+    let active = unsafe { ffi::verbss_mpi_state() } == 1;
     assert!(
         active,
         "MPI is not initialised (verbss_mpi::Mpi::init or MPI_Init first) or already finalised"

@@ -23,7 +23,8 @@ use std::process::Command;
 /// Whether a test that needs `package` can run, from `probe`: `Ok` when the
 /// package is here, `Err(why)` when not (see the crate documentation).
 /// Panics with the notice when the package is missing and
-/// `VERBSS_REQUIRE_ALL=1`.
+/// `VERBSS_REQUIRE_ALL=1`, at the caller's line.
+#[track_caller]
 pub fn needs(package: &str, probe: Result<(), String>) -> bool {
     let thread = std::thread::current();
     let test = thread.name().unwrap_or("a test");
