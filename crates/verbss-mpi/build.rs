@@ -38,6 +38,7 @@ impl Flags {
         flags
     }
 
+    /// Adds `other`'s flags after these.
     fn extend(&mut self, other: Flags) {
         self.include.extend(other.include);
         self.search.extend(other.search);
@@ -59,6 +60,7 @@ fn pkg_config(package: &str) -> Option<Flags> {
     output(&program, &["--cflags", "--libs", package]).map(|line| Flags::parse(&line))
 }
 
+/// MPI's flags, or why there are none.
 fn mpi() -> Result<Flags, String> {
     for package in ["mpi-c", "ompi-c", "mpich"] {
         if let Some(flags) = pkg_config(package) {
@@ -76,6 +78,7 @@ fn mpi() -> Result<Flags, String> {
         })
 }
 
+/// METIS's flags (the compiler's default paths when nothing says otherwise).
 fn metis() -> Flags {
     if let Some(dir) = env::var_os("METIS_DIR") {
         let dir = PathBuf::from(dir);
