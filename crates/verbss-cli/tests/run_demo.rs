@@ -7,6 +7,7 @@ use std::process::Command;
 mod common;
 
 use common::verbss;
+use verbss_testkit::{needs, python};
 
 const SU2: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/meshes/su2");
 
@@ -14,24 +15,17 @@ fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
 
-/// Checks files with meshio through scripts/check_external_readers.py;
-/// skipped (with a note) when python3 or meshio is missing, unless CI is set.
+/// Checks files with meshio through scripts/check_external_readers.py
+/// (skipped with a notice without python3 and meshio, `verbss_testkit::needs`).
 fn check_with_meshio(files: &[PathBuf]) {
     let script = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../scripts/check_external_readers.py"
     );
-    let has_meshio = Command::new("python3")
-        .args(["-c", "import meshio"])
-        .output()
-        .map(|o| o.status.success())
-        .unwrap_or(false);
-    if !has_meshio || !Path::new(script).exists() {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "python3 with meshio and {script} are required in CI"
-        );
-        println!("skipped: python3/meshio or the checker script is missing");
+    if !needs(
+        "python3 with meshio (pip install meshio)",
+        python(&["meshio"]),
+    ) {
         return;
     }
     let out = Command::new("python3")

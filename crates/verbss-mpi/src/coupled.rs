@@ -8,6 +8,11 @@
 //! let info = solver.solve(&coords, &mut displacement, &params)?;                          // per step
 //! ```
 //!
+//! `comm` is the flow solver's communicator as a [`Comm`]:
+//! [`Comm::world`], or [`Comm::from_fortran`] of its Fortran handle (from
+//! C, `MPI_Comm_c2f(comm)`).
+//! MPI is initialised by the flow solver or by [`crate::Mpi::init`].
+//!
 //! The local meshes may be any split of the cells (each cell on one rank or
 //! on several, as with halo cells); a node on several ranks has the same
 //! global number, role and coordinates on each. Setup (collective, once):
@@ -28,37 +33,36 @@
 //! differ: compare converged results, not sweep counts. Results for
 //! different numbers of ranks agree to rounding.
 
-use mpi::collective::SystemOperation;
-use mpi::traits::*;
 use verbss::mesh::CellKind;
 use verbss::solve::{NodeRole, SolveInfo, SolveParams};
 use verbss::topology;
 use verbss::{Cells, Error, Mesh, Result};
 
-use crate::halo::{all_to_all_lists, Halo};
+use crate::halo::Halo;
 use crate::part::Part;
 use crate::sweeper::Sweeper;
+use crate::Comm;
 
 /// A flow-solver rank's deformer (see the module documentation).
-pub struct LocalSolver<'c, C: Communicator> {
-    sweeper: Sweeper<'c, C>,
+pub struct LocalSolver<'c> {
+    sweeper: Sweeper<'c>,
     /// Part index of each of the caller's local nodes.
     local: Vec<usize>,
     colours: Vec<u32>,
 }
 
-impl<'c, C: Communicator> LocalSolver<'c, C> {
+impl<'c> LocalSolver<'c> {
     /// Sets up rank `comm.rank()` (collective): `mesh` is its local mesh,
     /// `global[i]` the global number of local node `i` (distinct within the
     /// rank), `roles` per local node, `normals` the sliding planes' normals
     /// (as [`verbss::solve::Engine::new`]).
     pub fn new(
-        comm: &'c C,
+        comm: &'c Comm,
         mesh: &Mesh,
         global: &[u64],
         roles: &[NodeRole],
         normals: &[[f64; 3]],
-    ) -> Result<LocalSolver<'c, C>> {
+    ) -> Result<LocalSolver<'c>> {
         let n = mesh.node_count();
         if global.len() != n || roles.len() != n {
             return Err(Error::InvalidSetting(format!(
@@ -88,7 +92,7 @@ impl<'c, C: Communicator> LocalSolver<'c, C> {
                 }
             }
         }
-        let received = all_to_all_lists(comm, &out);
+        let received = comm.all_to_all(&out);
         // The part: own cells and received ones, each once (keyed by its sorted nodes).
         let mut cells: Vec<(Vec<u64>, CellKind, Vec<u64>)> = Vec::new();
         let mut node_owner: Vec<(u64, i32)> = global.iter().copied().zip(owner.clone()).collect();
@@ -214,13 +218,13 @@ impl<'c, C: Communicator> LocalSolver<'c, C> {
 }
 
 /// The owner of each local node: the lowest rank holding its global number.
-fn owners<C: Communicator>(comm: &C, global: &[u64]) -> Vec<i32> {
+fn owners(comm: &Comm, global: &[u64]) -> Vec<i32> {
     let size = comm.size() as u64;
     let mut ask: Vec<Vec<u64>> = vec![Vec::new(); size as usize];
     for &g in global {
         ask[(g % size) as usize].push(g);
     }
-    let asked = all_to_all_lists(comm, &ask);
+    let asked = comm.all_to_all(&ask);
     let mut holders: Vec<(u64, i32)> = asked
         .iter()
         .enumerate()
@@ -239,7 +243,7 @@ fn owners<C: Communicator>(comm: &C, global: &[u64]) -> Vec<i32> {
                 .collect()
         })
         .collect();
-    let replies = all_to_all_lists(comm, &answers);
+    let replies = comm.all_to_all(&answers);
     let mut next = vec![0usize; size as usize];
     global
         .iter()
@@ -254,12 +258,7 @@ fn owners<C: Communicator>(comm: &C, global: &[u64]) -> Vec<i32> {
 
 /// Parallel greedy colouring of the unknown nodes of `part` (see the
 /// module documentation); `u32::MAX` for prescribed nodes.
-fn jones_plassmann<C: Communicator>(
-    comm: &C,
-    part: &Part,
-    roles: &[NodeRole],
-    halo: &Halo,
-) -> Vec<u32> {
+fn jones_plassmann(comm: &Comm, part: &Part, roles: &[NodeRole], halo: &Halo) -> Vec<u32> {
     let n = part.node_count();
     let graph = topology::node_graph(&part.cells, n);
     let unknown = |i: usize| roles[i] != NodeRole::Fixed;
@@ -299,9 +298,7 @@ fn jones_plassmann<C: Communicator>(
         let left = (0..n)
             .filter(|&i| part.owns(i) && unknown(i) && colour[i].is_nan())
             .count() as u64;
-        let mut total = 0u64;
-        comm.all_reduce_into(&left, &mut total, SystemOperation::sum());
-        if total == 0 {
+        if comm.sum(left) == 0 {
             break;
         }
     }

@@ -7,9 +7,7 @@
 //! message per neighbouring rank that has something to send, never a
 //! global gather.
 
-use mpi::datatype::{Partition, PartitionMut};
-use mpi::traits::*;
-use mpi::Count;
+use crate::Comm;
 
 /// Who holds copies of whose nodes: per neighbouring rank, the owned local
 /// nodes it holds as ghosts (`send`) and the local ghosts it owns (`recv`),
@@ -30,7 +28,7 @@ impl Halo {
     /// each owner which of its nodes it holds as ghosts (one all-to-all of
     /// global numbers, once per mesh). `global` is increasing; `owner[i]` is
     /// the rank owning local node `i`.
-    pub fn new<C: Communicator>(comm: &C, global: &[u64], owner: &[i32]) -> Halo {
+    pub fn new(comm: &Comm, global: &[u64], owner: &[i32]) -> Halo {
         let size = comm.size() as usize;
         let rank = comm.rank();
         let mut wanted: Vec<Vec<u64>> = vec![Vec::new(); size];
@@ -41,7 +39,7 @@ impl Halo {
                 recv_all[o as usize].push(i as u32);
             }
         }
-        let asked = all_to_all_lists(comm, &wanted);
+        let asked = comm.all_to_all(&wanted);
         let mut halo = Halo::default();
         for r in 0..size {
             if asked[r].is_empty() && recv_all[r].is_empty() {
@@ -60,7 +58,7 @@ impl Halo {
 
     /// Sends the `width` values of every listed owned node to its holders
     /// and overwrites the ghosts' values with their owners'.
-    pub fn exchange<C: Communicator>(&self, comm: &C, data: &mut [f64], width: usize) {
+    pub fn exchange(&self, comm: &Comm, data: &mut [f64], width: usize) {
         swap(comm, &self.ranks, &self.send, &self.recv, data, width);
     }
 }
@@ -68,8 +66,8 @@ impl Halo {
 /// One exchange: for neighbour `k`, the `width` values of entries
 /// `send[k]` of `data` go to rank `ranks[k]`, and what it sends comes into
 /// entries `recv[k]`. Empty lists send nothing (both sides know them).
-pub fn swap<C: Communicator>(
-    comm: &C,
+pub fn swap(
+    comm: &Comm,
     ranks: &[i32],
     send: &[Vec<u32>],
     recv: &[Vec<u32>],
@@ -88,87 +86,11 @@ pub fn swap<C: Communicator>(
         })
         .collect();
     let mut incoming: Vec<Vec<f64>> = recv.iter().map(|l| vec![0.0; width * l.len()]).collect();
-    mpi::request::scope(|scope| {
-        let mut requests = Vec::new();
-        for (k, buf) in incoming.iter_mut().enumerate() {
-            if !buf.is_empty() {
-                let from = comm.process_at_rank(ranks[k]);
-                requests.push(from.immediate_receive_into(scope, &mut buf[..]));
-            }
-        }
-        for (k, buf) in out.iter().enumerate() {
-            if !buf.is_empty() {
-                let to = comm.process_at_rank(ranks[k]);
-                requests.push(to.immediate_send(scope, &buf[..]));
-            }
-        }
-        for r in requests {
-            r.wait();
-        }
-    });
+    comm.exchange(ranks, &out, &mut incoming);
     for (list, buf) in recv.iter().zip(&incoming) {
         for (m, &p) in list.iter().enumerate() {
             let p = p as usize;
             data[width * p..width * (p + 1)].copy_from_slice(&buf[width * m..width * (m + 1)]);
         }
     }
-}
-
-/// All-to-all of lists: `out[r]` goes to rank `r`; returns what each rank sent here.
-pub fn all_to_all_lists<C: Communicator, T>(comm: &C, out: &[Vec<T>]) -> Vec<Vec<T>>
-where
-    T: Equivalence + Copy + Default,
-{
-    let size = comm.size() as usize;
-    let counts: Vec<Count> = out.iter().map(|v| v.len() as Count).collect();
-    let mut rcounts = vec![0 as Count; size];
-    comm.all_to_all_into(&counts[..], &mut rcounts[..]);
-    let sdispls = displacements(&counts);
-    let rdispls = displacements(&rcounts);
-    let send: Vec<T> = out.iter().flatten().copied().collect();
-    let mut recv = vec![T::default(); rcounts.iter().map(|&c| c as usize).sum()];
-    {
-        let sp = Partition::new(&send[..], &counts[..], &sdispls[..]);
-        let mut rp = PartitionMut::new(&mut recv[..], &rcounts[..], &rdispls[..]);
-        comm.all_to_all_varcount_into(&sp, &mut rp);
-    }
-    rdispls
-        .iter()
-        .zip(&rcounts)
-        .map(|(&d, &c)| recv[d as usize..(d + c) as usize].to_vec())
-        .collect()
-}
-
-/// Every rank's list, in rank order, on every rank.
-pub fn all_gather_lists<C: Communicator, T>(comm: &C, mine: &[T]) -> Vec<Vec<T>>
-where
-    T: Equivalence + Copy + Default,
-{
-    let size = comm.size() as usize;
-    let count = mine.len() as Count;
-    let mut counts = vec![0 as Count; size];
-    comm.all_gather_into(&count, &mut counts[..]);
-    let displs = displacements(&counts);
-    let mut all = vec![T::default(); counts.iter().map(|&c| c as usize).sum()];
-    {
-        let mut rp = PartitionMut::new(&mut all[..], &counts[..], &displs[..]);
-        comm.all_gather_varcount_into(mine, &mut rp);
-    }
-    displs
-        .iter()
-        .zip(&counts)
-        .map(|(&d, &c)| all[d as usize..(d + c) as usize].to_vec())
-        .collect()
-}
-
-/// Exclusive prefix sums of `counts`.
-fn displacements(counts: &[Count]) -> Vec<Count> {
-    counts
-        .iter()
-        .scan(0, |acc, &c| {
-            let d = *acc;
-            *acc += c;
-            Some(d)
-        })
-        .collect()
 }

@@ -12,16 +12,41 @@
 //!   already has its partition and communicator;
 //! * [`cost`] counts what one sweep sends on a given partition.
 //!
+//! The MPI parts ([`Comm`], [`coupled`], [`halo`], [`partition`],
+//! [`stepper`], [`sweeper`]) are built when `build.rs` finds MPI and METIS
+//! ([`missing`] says why they were not); [`colouring`], [`cost`], [`part`]
+//! and [`pieces`] need neither. The crate's only `unsafe` code calls MPI and
+//! METIS (the private module `sys`).
+//!
 //! See `docs/distributed.md`.
 
 #![warn(missing_docs)]
+#![deny(unsafe_code)]
 
 pub mod colouring;
 pub mod cost;
+#[cfg(with_mpi)]
 pub mod coupled;
+#[cfg(with_mpi)]
 pub mod halo;
 pub mod part;
+#[cfg(with_mpi)]
 pub mod partition;
 pub mod pieces;
+#[cfg(with_mpi)]
 pub mod stepper;
+#[cfg(with_mpi)]
 pub mod sweeper;
+#[cfg(with_mpi)]
+#[allow(unsafe_code)]
+mod sys;
+
+#[cfg(with_mpi)]
+pub use sys::{Comm, Mpi, Scalar};
+
+/// Why this build has no MPI parts (no MPI or no METIS was found when it
+/// was compiled); `None` when it has them.
+pub fn missing() -> Option<&'static str> {
+    let why = env!("VERBSS_MPI_MISSING");
+    (!why.is_empty()).then_some(why)
+}

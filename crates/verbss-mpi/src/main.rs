@@ -10,18 +10,24 @@
 //! report; every rank writes its piece `OUT-STEM_RANK.vtu` beside OUT, and
 //! rank 0 the `OUT-STEM.pvtu` joining them.
 //!
-//! Exit codes as `verbss`: 0 success, 2 bad input, 3 an inverted element.
+//! Exit codes as `verbss`: 0 success, 2 bad input, 3 an inverted element,
+//! 4 a step no solver could solve. Built without MPI or METIS (see
+//! `build.rs`), it says so and exits with 2.
 
 #![forbid(unsafe_code)]
 
+#[cfg(with_mpi)]
 mod run;
 
 use std::process::ExitCode;
 
+#[cfg(with_mpi)]
 use clap::{Parser, Subcommand};
+#[cfg(with_mpi)]
 use verbss_cli::deform;
 
 /// Mesh motion by Vertex-Ball Spring Smoothing over MPI ranks (run under mpirun).
+#[cfg(with_mpi)]
 #[derive(Parser)]
 #[command(name = "verbss-mpi", version, about, long_about = None)]
 struct Cli {
@@ -29,14 +35,16 @@ struct Cli {
     command: Command,
 }
 
+#[cfg(with_mpi)]
 #[derive(Subcommand)]
 enum Command {
     /// Move groups by a translation, a rotation or given positions, in N steps.
     Deform(Box<deform::DeformArgs>),
 }
 
+#[cfg(with_mpi)]
 fn main() -> ExitCode {
-    let Some(universe) = mpi::initialize() else {
+    let Some(mpi) = verbss_mpi::Mpi::init() else {
         eprintln!("error: MPI could not be initialised");
         return ExitCode::from(2);
     };
@@ -53,6 +61,17 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     };
-    drop(universe);
+    drop(mpi);
     code
+}
+
+#[cfg(not(with_mpi))]
+fn main() -> ExitCode {
+    eprintln!(
+        "error: verbss-mpi was built without MPI/METIS ({}): install Open MPI and METIS \
+         (Debian: libopenmpi-dev openmpi-bin libmetis-dev), then `cargo clean -p verbss-mpi` \
+         and build again",
+        verbss_mpi::missing().unwrap_or("unknown reason")
+    );
+    ExitCode::from(2)
 }

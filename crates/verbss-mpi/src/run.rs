@@ -5,22 +5,21 @@
 
 use std::process::ExitCode;
 
-use mpi::topology::SimpleCommunicator;
-use mpi::traits::*;
 use verbss_cli::run::{execute, Prepared};
 use verbss_mpi::pieces::{write_piece, write_pvtu};
 use verbss_mpi::stepper::stepper;
+use verbss_mpi::Comm;
 
 /// Whether this process is rank 0 of `MPI_COMM_WORLD` (the one that prints).
 pub fn is_root() -> bool {
-    SimpleCommunicator::world().rank() == 0
+    Comm::world().rank() == 0
 }
 
 /// Runs a prepared job on every rank: the steps of `verbss`, rank 0 writing
 /// its outputs; after a completed run every rank writes its piece of the
 /// final state and rank 0 the `.pvtu` joining them.
 pub fn run_distributed(mut prepared: Prepared) -> anyhow::Result<ExitCode> {
-    let world = SimpleCommunicator::world();
+    let world = Comm::world();
     let root = world.rank() == 0;
     let job = &prepared.job;
     let mut stepper = stepper(

@@ -14,7 +14,6 @@
 //! rejects a step, and where the sweeps do not converge) is rank 0's
 //! [`Engine`], its solution broadcast.
 
-use mpi::traits::*;
 use verbss::deform::{Deformer, Settings};
 use verbss::motion::Attachment;
 use verbss::solve::{Engine, NodeRole, SolveInfo, SolveParams, SolverSetup, SpringSolver, Stage};
@@ -22,24 +21,24 @@ use verbss::topology::{self, Csr};
 use verbss::{Error, Mesh, Result};
 
 use crate::colouring::{engine_colours, is_seed};
-use crate::halo::all_gather_lists;
 use crate::part::Part;
 use crate::partition::partition;
 use crate::sweeper::Sweeper;
+use crate::Comm;
 
 /// A mesh in motion over the ranks of a communicator.
-pub type Stepper<'c, C> = Deformer<Distributed<'c, C>>;
+pub type Stepper<'c> = Deformer<Distributed<'c>>;
 
 /// Prepares `mesh` for `attachments` on every rank of `comm` (collective;
 /// every rank passes the same arguments). Settings the distributed sweeps
 /// cannot do are refused here, before any step.
-pub fn stepper<'c, C: Communicator>(
-    comm: &'c C,
+pub fn stepper<'c>(
+    comm: &'c Comm,
     mesh: &Mesh,
     attachments: &[Attachment],
     settings: Settings,
-) -> Result<Stepper<'c, C>> {
-    Sweeper::<C>::supports(&settings.solve)?;
+) -> Result<Stepper<'c>> {
+    Sweeper::supports(&settings.solve)?;
     Deformer::with_solver(mesh, attachments, settings, |setup| {
         Distributed::new(comm, setup)
     })
@@ -47,9 +46,9 @@ pub fn stepper<'c, C: Communicator>(
 
 /// The spring system of a step solved over the ranks of a communicator
 /// (see the module documentation).
-pub struct Distributed<'c, C: Communicator> {
-    comm: &'c C,
-    sweeper: Sweeper<'c, C>,
+pub struct Distributed<'c> {
+    comm: &'c Comm,
+    sweeper: Sweeper<'c>,
     graph: Csr,
     dim: usize,
     roles: Vec<NodeRole>,
@@ -64,17 +63,17 @@ pub struct Distributed<'c, C: Communicator> {
     exact: Option<Engine>,
 }
 
-impl<'c, C: Communicator> Distributed<'c, C> {
+impl<'c> Distributed<'c> {
     /// Cuts the mesh of `setup` over the ranks of `comm` and sets up this
     /// rank's sweeper (collective).
-    pub fn new(comm: &'c C, setup: &SolverSetup) -> Result<Distributed<'c, C>> {
+    pub fn new(comm: &'c Comm, setup: &SolverSetup) -> Result<Distributed<'c>> {
         let mesh = setup.mesh;
         let mut owner = if comm.rank() == 0 {
             partition(mesh, comm.size() as usize)?
         } else {
             vec![0; mesh.node_count()]
         };
-        comm.process_at_rank(0).broadcast_into(&mut owner[..]);
+        comm.broadcast(0, &mut owner);
         let part = Part::extract(mesh, &owner, comm.rank());
         let roles = part
             .global
@@ -85,7 +84,7 @@ impl<'c, C: Communicator> Distributed<'c, C> {
             .filter(|&i| part.owns(i))
             .map(|i| part.global[i])
             .collect();
-        let owned = all_gather_lists(comm, &mine);
+        let owned = comm.all_gather(&mine);
         let factors = if setup.stiffness.is_empty() {
             Vec::new()
         } else {
@@ -162,7 +161,7 @@ impl<'c, C: Communicator> Distributed<'c, C> {
             .filter(|&i| part.owns(i))
             .flat_map(|i| local[dim * i..dim * (i + 1)].iter().copied())
             .collect();
-        for (nodes, values) in self.owned.iter().zip(all_gather_lists(self.comm, &mine)) {
+        for (nodes, values) in self.owned.iter().zip(self.comm.all_gather(&mine)) {
             for (k, &g) in nodes.iter().enumerate() {
                 let g = g as usize;
                 u[dim * g..dim * (g + 1)].copy_from_slice(&values[dim * k..dim * (k + 1)]);
@@ -171,7 +170,7 @@ impl<'c, C: Communicator> Distributed<'c, C> {
     }
 }
 
-impl<C: Communicator> SpringSolver for Distributed<'_, C> {
+impl SpringSolver for Distributed<'_> {
     /// The distributed sweeps; where they stop unconverged and the settings
     /// escalate, the exact solve.
     fn solve(&mut self, coords: &[f64], u: &mut [f64], params: &SolveParams) -> Result<SolveInfo> {
@@ -201,17 +200,16 @@ impl<C: Communicator> SpringSolver for Distributed<'_, C> {
             .exact
             .as_mut()
             .map(|engine| engine.solve_exact(coords, u, params));
-        let root = self.comm.process_at_rank(0);
-        let mut failed = u8::from(matches!(solved, Some(Err(_))));
-        root.broadcast_into(&mut failed);
-        if failed != 0 {
+        let mut failed = [u8::from(matches!(solved, Some(Err(_))))];
+        self.comm.broadcast(0, &mut failed);
+        if failed[0] != 0 {
             return Err(match solved {
                 Some(Err(e)) => e,
                 _ => Error::InvalidMesh("rank 0's exact solve of the step failed".into()),
             });
         }
         let mut info = solved.and_then(Result::ok).unwrap_or_default();
-        root.broadcast_into(u);
+        self.comm.broadcast(0, u);
         let mut numbers = [
             info.iterations as f64,
             info.residual,
@@ -222,12 +220,12 @@ impl<C: Communicator> SpringSolver for Distributed<'_, C> {
             info.error_ratio,
             info.worst_node as f64,
         ];
-        root.broadcast_into(&mut numbers[..]);
+        self.comm.broadcast(0, &mut numbers);
         let mut stages: Vec<u8> = info.stages.iter().map(|&s| s as u8).collect();
-        let mut count = stages.len() as u64;
-        root.broadcast_into(&mut count);
-        stages.resize(count as usize, 0);
-        root.broadcast_into(&mut stages[..]);
+        let mut count = [stages.len() as u64];
+        self.comm.broadcast(0, &mut count);
+        stages.resize(count[0] as usize, 0);
+        self.comm.broadcast(0, &mut stages);
         info.iterations = numbers[0] as usize;
         info.residual = numbers[1];
         info.converged = numbers[2] != 0.0;

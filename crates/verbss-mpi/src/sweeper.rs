@@ -22,8 +22,6 @@
 
 use std::time::Instant;
 
-use mpi::collective::SystemOperation;
-use mpi::traits::*;
 use verbss::geometry::{
     ldlt_factor, morton_keys, norm, normal_frame, packed_index, packed_len, packed_mul, point,
 };
@@ -34,11 +32,12 @@ use verbss::{Error, Result};
 
 use crate::halo::{swap, Halo};
 use crate::part::Part;
+use crate::Comm;
 
 /// A rank's solver: its [`Part`], the roles of its nodes, the ghost
 /// exchange lists and, once built, its rows of the spring system.
-pub struct Sweeper<'c, C: Communicator> {
-    comm: &'c C,
+pub struct Sweeper<'c> {
+    comm: &'c Comm,
     part: Part,
     conn: Connectivity,
     roles: Vec<NodeRole>,
@@ -73,17 +72,17 @@ struct Built {
     dofs: u64,
 }
 
-impl<'c, C: Communicator> Sweeper<'c, C> {
+impl<'c> Sweeper<'c> {
     /// Prepares rank `part.rank` of `comm`: `roles` per local node (the same
     /// on every rank that holds the node), `normals` for
     /// [`NodeRole::Slide`] (the first `D` numbers used, normalised). Finds the
     /// ghost exchange lists (collective).
     pub fn new(
-        comm: &'c C,
+        comm: &'c Comm,
         part: Part,
         roles: Vec<NodeRole>,
         normals: &[[f64; 3]],
-    ) -> Result<Sweeper<'c, C>> {
+    ) -> Result<Sweeper<'c>> {
         let dim = part.dim;
         if roles.len() != part.node_count() {
             return Err(Error::InvalidSetting(format!(
@@ -225,10 +224,7 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
 
     /// Whether `flag` is set on any rank (collective).
     fn any(&self, flag: bool) -> bool {
-        let mut out = 0u8;
-        self.comm
-            .all_reduce_into(&u8::from(flag), &mut out, SystemOperation::max());
-        out != 0
+        self.comm.max(u8::from(flag)) != 0
     }
 
     /// Validates the arrays and settings of [`Sweeper::solve`].
@@ -284,10 +280,7 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
         let owned = order.len();
         order.extend((0..n).filter(|&i| !part.owns(i) && unknown(i)));
         let local_colours = order.iter().map(|&i| colours[i] + 1).max().unwrap_or(0);
-        let mut count = 0u32;
-        self.comm
-            .all_reduce_into(&local_colours, &mut count, SystemOperation::max());
-        let count = count as usize;
+        let count = self.comm.max(local_colours) as usize;
         let mut colour_starts = vec![0usize; count + 1];
         for &i in &order[..owned] {
             colour_starts[colours[i] as usize + 1] += 1;
@@ -328,9 +321,7 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
                 dofs -= 1;
             }
         }
-        let mut total = 0u64;
-        self.comm
-            .all_reduce_into(&dofs, &mut total, SystemOperation::sum());
+        let total = self.comm.sum(dofs);
         let kind = if method == Method::Spring {
             Springs::Edge
         } else {
@@ -419,9 +410,7 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
             };
             scale = scale.max(size);
         }
-        let mut global_scale = 0.0f64;
-        self.comm
-            .all_reduce_into(&scale, &mut global_scale, SystemOperation::max());
+        let global_scale = self.comm.max(scale);
         let threshold = if params.absolute_tolerance || global_scale == 0.0 {
             params.tolerance
         } else {
@@ -449,9 +438,7 @@ impl<'c, C: Communicator> Sweeper<'c, C> {
                 let (send, recv) = &b.exchanges[c];
                 swap(self.comm, &self.halo.ranks, send, recv, &mut work, D);
             }
-            let mut sum = 0.0;
-            self.comm
-                .all_reduce_into(&local, &mut sum, SystemOperation::sum());
+            let sum = self.comm.sum(local);
             let value = sum / b.dofs as f64;
             info.iterations += 1;
             info.residual = value;

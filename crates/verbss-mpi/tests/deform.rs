@@ -1,27 +1,28 @@
 //! `mpirun -np N verbss-mpi deform …` on the shared meshes against the
 //! single-process stepper (what `verbss deform` runs): the same output file
 //! for 1, 2 and 3 ranks, per-rank pieces that cover the mesh once, and the
-//! messages of bad input.
+//! messages of bad input. Without MPI (in this build or `mpirun`) the tests
+//! skip with a notice, and without python3 and meshio the pieces are not
+//! read back by meshio.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+
+mod common;
 
 use verbss::deform::{Deformer, Predictor, Settings};
 use verbss::io::{self, WriteOptions};
 use verbss::motion::{Attachment, Motion};
 use verbss::robust::Robust;
 use verbss::Mesh;
+use verbss_testkit::{needs, python};
 
-/// `mpirun --oversubscribe -np N verbss-mpi ARGS…` (root allowed, as in
-/// containers). Each run has a session directory of its own: two mpiruns started at
-/// once race for the shared one under /tmp.
+use common::mpi_ready;
+
+/// `mpirun --oversubscribe -np N verbss-mpi ARGS…` ([`common::mpirun`]).
 fn mpirun(np: usize, args: &[&str]) -> Output {
     let session = tempfile::tempdir().unwrap();
-    Command::new("mpirun")
-        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-        .env("OMPI_MCA_orte_tmpdir_base", session.path())
-        .args(["--oversubscribe", "-np", &np.to_string()])
+    common::mpirun(np, session.path())
         .arg(env!("CARGO_BIN_EXE_verbss-mpi"))
         .args(args)
         .output()
@@ -42,8 +43,7 @@ fn stderr(o: &Output) -> String {
 /// is an error).
 const MAX_SWEEPS: usize = 20_000;
 
-/// The near-wall treatments of `verbss deform`'s default `--method robust`,
-/// and its predictor.
+/// The near-wall treatments of `verbss deform`'s default `--method robust`.
 fn robust(settings: &mut Settings) {
     settings.robust = Robust::recommended();
 }
@@ -103,6 +103,10 @@ fn same_as_single(
     let reference = dir.path().join("single.su2");
     let expected = single(input, attachments, steps, configure, &reference);
     let whole = io::read(input).unwrap();
+    let meshio = needs(
+        "python3 with meshio (pip install meshio)",
+        python(&["meshio"]),
+    );
     for np in 1..=3 {
         let out = dir.path().join(format!("np{np}.su2"));
         let steps = steps.to_string();
@@ -126,13 +130,13 @@ fn same_as_single(
         assert_eq!(got.node_tags, expected.node_tags);
         let diff = relative_difference(&expected, &got);
         assert!(diff <= 1e-12, "{np} ranks: relative difference {diff:e}");
-        check_pieces(dir.path(), &format!("np{np}"), np, &whole, &got);
+        check_pieces(dir.path(), &format!("np{np}"), np, &whole, &got, meshio);
     }
 }
 
 /// The `.pvtu` names `np` pieces; together they hold every cell once, with
-/// the moved coordinates; meshio reads each piece when it is installed.
-fn check_pieces(dir: &Path, name: &str, np: usize, whole: &Mesh, moved: &Mesh) {
+/// the moved coordinates; with `meshio`, meshio reads each piece.
+fn check_pieces(dir: &Path, name: &str, np: usize, whole: &Mesh, moved: &Mesh, meshio: bool) {
     let pvtu = std::fs::read_to_string(dir.join(format!("{name}.pvtu"))).unwrap();
     let mut cell_seen = vec![0u32; whole.cell_count()];
     for r in 0..np {
@@ -151,7 +155,7 @@ fn check_pieces(dir: &Path, name: &str, np: usize, whole: &Mesh, moved: &Mesh) {
         }
         let rank = &data.fields.cell.iter().find(|f| f.0 == "rank").unwrap().2;
         assert!(rank.iter().all(|&v| v == r as f64));
-        if meshio_available() {
+        if meshio {
             let o = Command::new("python3")
                 .args([
                     "-c",
@@ -169,22 +173,12 @@ fn check_pieces(dir: &Path, name: &str, np: usize, whole: &Mesh, moved: &Mesh) {
     assert!(pvtu.matches("<Piece ").count() == np);
 }
 
-/// Whether python3 with meshio is here; CI installs it, so there it must be.
-fn meshio_available() -> bool {
-    let ok = Command::new("python3")
-        .args(["-c", "import meshio"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    assert!(
-        ok || std::env::var_os("CI").is_none(),
-        "python3 with meshio is required under CI"
-    );
-    ok
-}
-
 /// The default `--method robust`: rigid layer, stiffened springs, sub-steps.
 #[test]
 fn naca0012_rotation_matches_one_process() {
+    if !mpi_ready() {
+        return;
+    }
     let rotate = Attachment {
         groups: vec!["airfoil".into()],
         motion: Motion::Rotation {
@@ -205,6 +199,9 @@ fn naca0012_rotation_matches_one_process() {
 /// The linear predictor (`2 u₁ − u₂`) is the one step loop's, over MPI too.
 #[test]
 fn linear_predictor_matches_one_process() {
+    if !mpi_ready() {
+        return;
+    }
     let rotate = Attachment {
         groups: vec!["airfoil".into()],
         motion: Motion::Rotation {
@@ -237,6 +234,9 @@ fn linear_predictor_matches_one_process() {
 /// The paper's method on triangles and quadrilaterals.
 #[test]
 fn rae2822_hybrid_translation_matches_one_process() {
+    if !mpi_ready() {
+        return;
+    }
     let translate = Attachment {
         groups: vec!["AIRFOIL".into()],
         motion: Motion::Translation {
@@ -261,6 +261,9 @@ fn rae2822_hybrid_translation_matches_one_process() {
 
 #[test]
 fn tetrahedral_brick_with_sliding_sides_matches_one_process() {
+    if !mpi_ready() {
+        return;
+    }
     let slide = Attachment {
         groups: vec!["y_m".into(), "y_p".into()],
         motion: Motion::Slide { normal: None },
@@ -289,6 +292,9 @@ fn tetrahedral_brick_with_sliding_sides_matches_one_process() {
 
 #[test]
 fn bad_input_gives_the_message_of_verbss_once() {
+    if !mpi_ready() {
+        return;
+    }
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("x.su2");
     let o = mpirun(
@@ -316,6 +322,9 @@ fn bad_input_gives_the_message_of_verbss_once() {
 
 #[test]
 fn methods_that_are_not_distributed_are_refused() {
+    if !mpi_ready() {
+        return;
+    }
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("x.su2");
     let o = mpirun(
@@ -343,4 +352,31 @@ fn methods_that_are_not_distributed_are_refused() {
         stderr(&o)
     );
     assert!(!out.exists());
+}
+
+/// Run directly: with MPI it is a program like `verbss`; built without,
+/// one line says why and what to install, exit code 2.
+#[test]
+fn the_binary_says_whether_it_was_built_with_mpi() {
+    let o = Command::new(env!("CARGO_BIN_EXE_verbss-mpi"))
+        .arg("--version")
+        .output()
+        .unwrap();
+    match verbss_mpi::missing() {
+        None => {
+            assert!(o.status.success(), "{}", stderr(&o));
+            assert!(String::from_utf8_lossy(&o.stdout).starts_with("verbss-mpi "));
+        }
+        Some(why) => {
+            assert_eq!(o.status.code(), Some(2));
+            let text = stderr(&o);
+            assert!(
+                text.starts_with(&format!(
+                    "error: verbss-mpi was built without MPI/METIS ({why}): install Open MPI"
+                )),
+                "{text}"
+            );
+            assert_eq!(text.lines().count(), 1, "{text}");
+        }
+    }
 }

@@ -6,6 +6,7 @@ use std::process::Command;
 
 use serde_json::Value;
 use verbss::case::Case;
+use verbss_testkit::{needs, program};
 
 const NAMES: [&str; 10] = [
     "rectangle-298",
@@ -161,6 +162,9 @@ rectangle-8081, rectangle-21376, naca0012, three-element, sphere-cube, two-fish,
 
 #[test]
 fn a_missing_mesh_whose_script_cannot_import_gmsh_says_what_to_install() {
+    if !needs("python3", program("python3", &["--version"])) {
+        return;
+    }
     let dir = tempfile::tempdir().unwrap();
     std::fs::copy(
         cases_dir().join("rectangle-298.toml"),

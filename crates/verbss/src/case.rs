@@ -228,19 +228,20 @@ impl Case {
         for (key, value) in keys.chain(file.solver.iter().map(|(k, v)| (k.as_str(), v))) {
             let line = top(key);
             let table = if key == "reference" { "" } else { "solver." };
-            let text =
-                match value {
-                    toml::Value::String(s) => s.clone(),
-                    toml::Value::Integer(i) => i.to_string(),
-                    toml::Value::Float(x) => x.to_string(),
-                    toml::Value::Boolean(b) => (if *b { "on" } else { "off" }).into(),
-                    other => return Err(at(
+            let text = match value {
+                toml::Value::String(s) => s.clone(),
+                toml::Value::Integer(i) => i.to_string(),
+                toml::Value::Float(x) => x.to_string(),
+                toml::Value::Boolean(b) => (if *b { "on" } else { "off" }).into(),
+                other => {
+                    return Err(at(
                         line,
                         format!(
                             "`{table}{key}` must be a string, a number or true/false (got {other})"
                         ),
-                    )),
-                };
+                    ))
+                }
+            };
             Settings::check(key, &text)
                 .map_err(|e| at(line, format!("`{table}{key}`: {}", setting_message(e))))?;
             named.push((key, text));

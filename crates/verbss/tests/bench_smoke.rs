@@ -4,34 +4,18 @@
 //! It runs the binaries this `cargo test` built (`--bin-dir`: the
 //! `motion_bench` example of this crate and the `verbss` binary, which
 //! `cargo test --workspace` builds for the CLI's tests), so it compiles
-//! nothing itself. Needs python3 with gmsh (CI installs it); elsewhere,
-//! without them or without the `verbss` binary, the test says so and checks
-//! nothing.
+//! nothing itself. Needs python3 with gmsh and the `verbss` binary; without
+//! them it skips with a notice (`verbss_testkit::needs`).
 
 use std::path::Path;
 use std::process::Command;
 
-fn python_has_gmsh() -> bool {
-    Command::new("python3")
-        .args(["-c", "import gmsh"])
-        .output()
-        .is_ok_and(|o| o.status.success())
-}
-
-/// Says why the test checks nothing; under CI, where everything it needs is
-/// installed and built, fails instead.
-fn skip(why: &str) {
-    assert!(
-        std::env::var_os("CI").is_none(),
-        "the benchmark smoke test cannot be skipped under CI: {why}"
-    );
-    eprintln!("skipped: {why}");
-}
+use verbss_testkit::{needs, python};
 
 #[test]
 fn compare_script_runs_in_smoke_mode() {
-    if !python_has_gmsh() {
-        return skip("python3 with gmsh is not installed");
+    if !needs("python3 with gmsh (pip install gmsh)", python(&["gmsh"])) {
+        return;
     }
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let exe = std::env::current_exe().expect("the test's own path");
@@ -39,11 +23,16 @@ fn compare_script_runs_in_smoke_mode() {
         .parent()
         .and_then(Path::parent)
         .expect("the test runs from <target>/<profile>/deps");
-    if !bin_dir.join("verbss").is_file() {
-        return skip(&format!(
-            "no verbss binary in {} (cargo test --workspace builds it)",
-            bin_dir.display()
-        ));
+    let binary = if bin_dir.join("verbss").is_file() {
+        Ok(())
+    } else {
+        Err(format!("none in {}", bin_dir.display()))
+    };
+    if !needs(
+        "the verbss binary (cargo test --workspace builds it)",
+        binary,
+    ) {
+        return;
     }
     let work = std::env::temp_dir().join(format!("verbss-bench-smoke-{}", std::process::id()));
     for extra in [&[][..], &["--series-2d"][..]] {

@@ -2,9 +2,8 @@
 //! Gmsh's own API reads the `.msh` files, and both report the node and cell
 //! counts verbss wrote (scripts/check_external_readers.py does the reading).
 //!
-//! Needs `python3` with `meshio`, `gmsh` and `numpy`. Without them the tests
-//! print "skipped: …" and pass, unless the `CI` environment variable is set,
-//! in which case they fail.
+//! Needs `python3` with `meshio`, `gmsh` and `numpy`; without them the tests
+//! skip with a notice (`verbss_testkit::needs`).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -12,28 +11,20 @@ use std::process::Command;
 use verbss::io::{MshVersion, WriteOptions};
 use verbss::mesh::samples::{hex_wedge_pyramid_tet, two_triangles_and_a_quad};
 use verbss::Mesh;
+use verbss_testkit::{needs, python};
 
 const SCRIPT: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/../../scripts/check_external_readers.py"
 );
 
-/// Whether python3 can import meshio and gmsh; otherwise fails under CI and
-/// says "skipped" elsewhere.
+/// Whether python3 can import meshio, gmsh and numpy (else the test skips,
+/// see `verbss_testkit::needs`).
 fn python_ready() -> bool {
-    let probe = Command::new("python3")
-        .args(["-c", "import meshio, gmsh, numpy"])
-        .output();
-    let why = match probe {
-        Ok(out) if out.status.success() => return true,
-        Ok(out) => String::from_utf8_lossy(&out.stderr).trim().to_string(),
-        Err(e) => format!("python3: {e}"),
-    };
-    if std::env::var_os("CI").is_some() {
-        panic!("python3 with meshio, gmsh and numpy is required under CI: {why}");
-    }
-    println!("skipped: python3 with meshio, gmsh and numpy is not available ({why})");
-    false
+    needs(
+        "python3 with meshio, gmsh and numpy (pip install meshio gmsh numpy)",
+        python(&["meshio", "gmsh", "numpy"]),
+    )
 }
 
 /// Writes each mesh under `dir` with the given file name (format chosen by
