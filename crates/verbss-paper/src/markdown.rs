@@ -3,8 +3,6 @@
 
 use std::fmt::Write;
 
-use verbss::deform::Reference;
-
 use crate::results::{CaseResult, MethodResult};
 use crate::Results;
 
@@ -343,10 +341,7 @@ the increment), run once per method: `spring` (edge springs), `laplacian` (compo
 k = 1/L), `ball-vertex` (edge + ball-vertex springs, one global system, scalar SOR over \
 all D·N unknowns: the paper's baseline) and `verbss` (the same system, node by node, \
 block SOR with per-node LDLᵀ).",
-        match s.reference {
-            Reference::Updated => "updated",
-            Reference::Fixed => "fixed",
-        }
+        s.reference.name()
     );
     let _ = writeln!(
         w,

@@ -8,11 +8,14 @@
 //! ```
 //!
 //! Each case file is run once per variant — `default` (the command line's
-//! defaults: `--method robust`, the escalating solve), `verbss` (the
-//! paper's method), `laplacian`, `exact` (the default's near-wall treatment,
-//! every step solved by the sparse direct solve), `springs` (the default
+//! defaults: `--method robust`, its `anchored` reference, the escalating
+//! solve), `updated` (the default with the updated reference, the default
+//! before the anchored one), `verbss` (the paper's method), `laplacian`,
+//! `exact` (the default's near-wall treatment and reference, every step
+//! solved by the sparse direct solve), `springs` (the near-wall treatment
 //! without the blended rigid motion), and the single treatments
-//! `layer`, `stiffening`, `substeps` — with the case's steps and motions,
+//! `layer`, `stiffening`, `substeps` — with the case's steps, motions and
+//! (but for `default`, `updated` and `exact`) reference,
 //! until the first inverted element, an unconverged step or the last step.
 //! Printed per case and variant: the steps completed and the amplitude
 //! reached (for a rotation, in degrees), where the run stopped, the rigid
@@ -25,14 +28,15 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use verbss::case::Case;
-use verbss::deform::Deformer;
+use verbss::deform::{Deformer, Preset, Reference};
 use verbss::error::Error;
 use verbss::motion::Motion;
 use verbss::robust::{Layer, Robust};
 use verbss::solve::{Method, SolveParams, Solver, Stage};
 
-const VARIANTS: [&str; 8] = [
+const VARIANTS: [&str; 9] = [
     "default",
+    "updated",
     "springs",
     "verbss",
     "laplacian",
@@ -42,12 +46,21 @@ const VARIANTS: [&str; 8] = [
     "substeps",
 ];
 
-/// The near-wall treatment and the solver settings of `variant`.
-fn variant(name: &str) -> (Robust, SolveParams) {
+/// The near-wall treatment and the solver settings of `variant`, and its
+/// reference where it is not the case file's.
+fn variant(name: &str) -> (Robust, SolveParams, Option<Reference>) {
     let mut r = Robust::off();
     let mut s = SolveParams::default();
+    let mut reference = None;
     match name {
-        "default" => r = Robust::recommended(),
+        "default" => {
+            r = Robust::recommended();
+            reference = Some(Preset::Robust.settings(1).reference);
+        }
+        "updated" => {
+            r = Robust::recommended();
+            reference = Some(Reference::Updated);
+        }
         "springs" => {
             r = Robust::recommended();
             r.blend = false;
@@ -55,6 +68,7 @@ fn variant(name: &str) -> (Robust, SolveParams) {
         "laplacian" => s.method = Method::Laplacian,
         "exact" => {
             r = Robust::recommended();
+            reference = Some(Preset::Robust.settings(1).reference);
             (s.method, s.solver) = (Method::BallVertex, Solver::Direct);
         }
         "layer" => r.layer = Layer::Auto,
@@ -62,7 +76,7 @@ fn variant(name: &str) -> (Robust, SolveParams) {
         "substeps" => r.substeps = 6,
         _ => {}
     }
-    (r, s)
+    (r, s, reference)
 }
 
 /// What one run of a case gave.
@@ -83,7 +97,9 @@ fn run(case: &Case, variant_name: &str) -> Result<Outcome, Error> {
     let attachments = case.attachments(&mesh)?;
     let mut settings = case.settings.clone();
     let threads = settings.solve.threads;
-    (settings.robust, settings.solve) = variant(variant_name);
+    let reference;
+    (settings.robust, settings.solve, reference) = variant(variant_name);
+    settings.reference = reference.unwrap_or(settings.reference);
     settings.solve.threads = threads;
     let mut d = Deformer::new(&mesh, &attachments, settings)?;
     let mut out = Outcome {

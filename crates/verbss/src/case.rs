@@ -64,8 +64,7 @@ struct CaseFile {
     mesh: String,
     steps: usize,
     dt: Option<f64>,
-    #[serde(default)]
-    reference: Reference,
+    reference: Option<Reference>,
     #[serde(default)]
     solver: SolverTable,
     #[serde(default)]
@@ -350,7 +349,7 @@ impl Case {
             settings: Settings {
                 steps: file.steps,
                 dt,
-                reference: file.reference,
+                reference: file.reference.unwrap_or(preset.reference),
                 solve,
                 robust,
                 predictor: file.solver.predictor,

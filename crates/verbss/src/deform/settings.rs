@@ -9,7 +9,9 @@ use crate::names::named;
 use crate::robust::Robust;
 use crate::solve::{Method, SolveParams};
 
-/// Which configuration the springs are built on (the paper's options 1 and 2).
+/// Which configuration the springs are built on and what the unknown is
+/// (the paper's options 1 and 2, and a third that returns exactly:
+/// docs/method.md, "Time stepping").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 #[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
@@ -22,9 +24,19 @@ pub enum Reference {
     #[serde(alias = "initial")]
     #[cfg_attr(feature = "clap", value(alias = "initial"))]
     Fixed,
+    /// Springs on the input mesh moved by the blended rigid motion to the
+    /// step's boundary position, solve for the rest of the total
+    /// displacement from the input mesh: the mesh is a function of the
+    /// boundary's position, so a periodic motion comes back to the input
+    /// mesh (the default of [`Preset::Robust`]).
+    Anchored,
 }
 
-named!(Reference, "reference", [Updated => "updated", Fixed => "fixed"], ["initial" => Fixed]);
+named!(Reference, "reference", [
+    Updated => "updated",
+    Fixed => "fixed",
+    Anchored => "anchored",
+], ["initial" => Fixed]);
 
 /// How a step's initial guess is made from the steps before it. The guess
 /// only decides where the sweeps start, not the system they solve.
@@ -87,6 +99,7 @@ impl Preset {
         };
         if self == Preset::Robust {
             s.robust = Robust::recommended();
+            s.reference = Reference::Anchored;
         }
         s
     }
@@ -100,7 +113,7 @@ pub struct Settings {
     pub steps: usize,
     /// Time per step (`t = n · dt`, used by undulation).
     pub dt: f64,
-    /// Updated or fixed reference.
+    /// Updated, fixed or anchored reference.
     pub reference: Reference,
     /// The solver's settings for every step.
     pub solve: SolveParams,
