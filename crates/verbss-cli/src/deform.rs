@@ -92,7 +92,7 @@ pub struct DeformArgs {
     /// (updated); on the input mesh (fixed, also spelled initial); on the
     /// input mesh moved by the blended rigid motion, solving for the total
     /// displacement (anchored: a periodic motion returns to the input mesh)
-    /// [default: anchored with --method robust, updated otherwise].
+    /// [default: updated; anchored with --method robust and a periodic motion].
     #[arg(long, value_enum)]
     reference: Option<Reference>,
     /// Each step's initial guess: the previous step's solution, or extrapolated
@@ -215,7 +215,10 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
         unreachable!("clap requires one motion")
     };
     let mut settings = args.method.settings(args.steps);
-    settings.reference = args.reference.unwrap_or(settings.reference);
+    settings.reference = args.reference.unwrap_or(match args.method {
+        Preset::Robust => Reference::for_motions([&motion]),
+        _ => settings.reference,
+    });
     settings.predictor = args.predictor;
     let robust = &mut settings.robust;
     robust.layer = args.rigid_layer.unwrap_or(robust.layer);

@@ -8,14 +8,14 @@
 //! ```
 //!
 //! Each case file is run once per variant — `default` (the command line's
-//! defaults: `--method robust`, its `anchored` reference, the escalating
-//! solve), `updated` (the default with the updated reference, the default
-//! before the anchored one), `verbss` (the paper's method), `laplacian`,
-//! `exact` (the default's near-wall treatment and reference, every step
-//! solved by the sparse direct solve), `springs` (the near-wall treatment
-//! without the blended rigid motion), and the single treatments
-//! `layer`, `stiffening`, `substeps` — with the case's steps, motions and
-//! (but for `default`, `updated` and `exact`) reference,
+//! defaults: `--method robust`, the reference its motions' kind implies,
+//! the escalating solve), `anchored` (the default with the anchored
+//! reference, the default of periodic motions), `verbss` (the paper's
+//! method), `laplacian`, `exact` (the default's near-wall treatment and
+//! reference, every step solved by the sparse direct solve), `springs` (the
+//! near-wall treatment without the blended rigid motion), and the single
+//! treatments `layer`, `stiffening`, `substeps` — with the case's steps,
+//! motions and (but for `default`, `anchored` and `exact`) reference,
 //! until the first inverted element, an unconverged step or the last step.
 //! Printed per case and variant: the steps completed and the amplitude
 //! reached (for a rotation, in degrees), where the run stopped, the rigid
@@ -28,7 +28,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use verbss::case::Case;
-use verbss::deform::{Deformer, Preset, Reference};
+use verbss::deform::{Deformer, Reference};
 use verbss::error::Error;
 use verbss::motion::Motion;
 use verbss::robust::{Layer, Robust};
@@ -36,7 +36,7 @@ use verbss::solve::{Method, SolveParams, Solver, Stage};
 
 const VARIANTS: [&str; 9] = [
     "default",
-    "updated",
+    "anchored",
     "springs",
     "verbss",
     "laplacian",
@@ -46,21 +46,12 @@ const VARIANTS: [&str; 9] = [
     "substeps",
 ];
 
-/// The near-wall treatment and the solver settings of `variant`, and its
-/// reference where it is not the case file's.
-fn variant(name: &str) -> (Robust, SolveParams, Option<Reference>) {
+/// The near-wall treatment and the solver settings of `variant`.
+fn variant(name: &str) -> (Robust, SolveParams) {
     let mut r = Robust::off();
     let mut s = SolveParams::default();
-    let mut reference = None;
     match name {
-        "default" => {
-            r = Robust::recommended();
-            reference = Some(Preset::Robust.settings(1).reference);
-        }
-        "updated" => {
-            r = Robust::recommended();
-            reference = Some(Reference::Updated);
-        }
+        "default" | "anchored" => r = Robust::recommended(),
         "springs" => {
             r = Robust::recommended();
             r.blend = false;
@@ -68,7 +59,6 @@ fn variant(name: &str) -> (Robust, SolveParams, Option<Reference>) {
         "laplacian" => s.method = Method::Laplacian,
         "exact" => {
             r = Robust::recommended();
-            reference = Some(Preset::Robust.settings(1).reference);
             (s.method, s.solver) = (Method::BallVertex, Solver::Direct);
         }
         "layer" => r.layer = Layer::Auto,
@@ -76,7 +66,7 @@ fn variant(name: &str) -> (Robust, SolveParams, Option<Reference>) {
         "substeps" => r.substeps = 6,
         _ => {}
     }
-    (r, s, reference)
+    (r, s)
 }
 
 /// What one run of a case gave.
@@ -97,9 +87,12 @@ fn run(case: &Case, variant_name: &str) -> Result<Outcome, Error> {
     let attachments = case.attachments(&mesh)?;
     let mut settings = case.settings.clone();
     let threads = settings.solve.threads;
-    let reference;
-    (settings.robust, settings.solve, reference) = variant(variant_name);
-    settings.reference = reference.unwrap_or(settings.reference);
+    (settings.robust, settings.solve) = variant(variant_name);
+    settings.reference = match variant_name {
+        "default" | "exact" => Reference::for_motions(attachments.iter().map(|a| &a.motion)),
+        "anchored" => Reference::Anchored,
+        _ => settings.reference,
+    };
     settings.solve.threads = threads;
     let mut d = Deformer::new(&mesh, &attachments, settings)?;
     let mut out = Outcome {

@@ -333,6 +333,30 @@ impl Case {
         if file.output.every == 0 {
             return Err(at(top("every"), "`output.every` must be at least 1".into()));
         }
+        // The robust preset's reference follows the motions' kind
+        // (`Reference::for_motions`): anchored when every moving motion
+        // is periodic.
+        let periodic = |m: &MotionSpec| {
+            matches!(
+                m,
+                MotionSpec::Fixed { .. }
+                    | MotionSpec::Slide { .. }
+                    | MotionSpec::PitchPlunge { .. }
+                    | MotionSpec::Undulation { .. }
+            )
+        };
+        let moving =
+            |m: &MotionSpec| !matches!(m, MotionSpec::Fixed { .. } | MotionSpec::Slide { .. });
+        let specs = || file.motion.iter().map(|m| m.get_ref());
+        let reference = if s.method == Preset::Robust {
+            if specs().any(moving) && specs().all(periodic) {
+                Reference::Anchored
+            } else {
+                Reference::Updated
+            }
+        } else {
+            preset.reference
+        };
         let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
         let mut motions = Vec::new();
         for m in file.motion {
@@ -349,7 +373,7 @@ impl Case {
             settings: Settings {
                 steps: file.steps,
                 dt,
-                reference: file.reference.unwrap_or(preset.reference),
+                reference: file.reference.unwrap_or(reference),
                 solve,
                 robust,
                 predictor: file.solver.predictor,

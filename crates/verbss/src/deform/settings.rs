@@ -5,6 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
+use crate::motion::Motion;
 use crate::names::named;
 use crate::robust::Robust;
 use crate::solve::{Method, SolveParams};
@@ -28,8 +29,28 @@ pub enum Reference {
     /// step's boundary position, solve for the rest of the total
     /// displacement from the input mesh: the mesh is a function of the
     /// boundary's position, so a periodic motion comes back to the input
-    /// mesh (the default of [`Preset::Robust`]).
+    /// mesh (the default of [`Preset::Robust`]; the command line and case
+    /// files take [`Reference::for_motions`]).
     Anchored,
+}
+
+impl Reference {
+    /// The reference of [`Preset::Robust`] for a run of `motions`: anchored
+    /// when every moving motion is periodic (pitch–plunge, undulation) and
+    /// the mesh must come back with the boundary, updated for the one-way
+    /// motions (a rotation, translation, bending or given positions), whose
+    /// springs on the current mesh carry a gap that closes further
+    /// (docs/method.md, "Time stepping").
+    pub fn for_motions<'a>(motions: impl IntoIterator<Item = &'a Motion>) -> Reference {
+        let mut moving = motions.into_iter().filter(|m| m.moves()).peekable();
+        let periodic =
+            |m: &Motion| matches!(m, Motion::PitchPlunge { .. } | Motion::Undulation { .. });
+        if moving.peek().is_some() && moving.all(periodic) {
+            Reference::Anchored
+        } else {
+            Reference::Updated
+        }
+    }
 }
 
 named!(Reference, "reference", [
