@@ -191,6 +191,17 @@ enum MotionSpec {
 }
 
 impl MotionSpec {
+    /// `None` if it moves no node, else whether it is periodic.
+    fn periodic(&self) -> Option<bool> {
+        match self {
+            MotionSpec::Fixed { .. } | MotionSpec::Slide { .. } => None,
+            m => Some(matches!(
+                m,
+                MotionSpec::PitchPlunge { .. } | MotionSpec::Undulation { .. }
+            )),
+        }
+    }
+
     fn groups(&self) -> &[String] {
         match self {
             MotionSpec::Fixed { groups }
@@ -333,29 +344,16 @@ impl Case {
         if file.output.every == 0 {
             return Err(at(top("every"), "`output.every` must be at least 1".into()));
         }
-        // The robust preset's reference follows the motions' kind
-        // (`Reference::for_motions`): anchored when every moving motion
-        // is periodic.
-        let periodic = |m: &MotionSpec| {
-            matches!(
-                m,
-                MotionSpec::Fixed { .. }
-                    | MotionSpec::Slide { .. }
-                    | MotionSpec::PitchPlunge { .. }
-                    | MotionSpec::Undulation { .. }
-            )
-        };
-        let moving =
-            |m: &MotionSpec| !matches!(m, MotionSpec::Fixed { .. } | MotionSpec::Slide { .. });
-        let specs = || file.motion.iter().map(|m| m.get_ref());
-        let reference = if s.method == Preset::Robust {
-            if specs().any(moving) && specs().all(periodic) {
-                Reference::Anchored
-            } else {
-                Reference::Updated
-            }
-        } else {
-            preset.reference
+        // The robust preset's by the motions' kind (`Reference::for_motions`).
+        let kinds: Vec<bool> = file
+            .motion
+            .iter()
+            .filter_map(|m| m.get_ref().periodic())
+            .collect();
+        let reference = match s.method {
+            Preset::Robust if !kinds.is_empty() && kinds.iter().all(|&p| p) => Reference::Anchored,
+            Preset::Robust => Reference::Updated,
+            _ => preset.reference,
         };
         let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
         let mut motions = Vec::new();

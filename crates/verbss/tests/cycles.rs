@@ -77,10 +77,47 @@ fn pitch_plunge(pitch_deg: f64, plunge: f64, period: usize) -> Vec<Attachment> {
     }]
 }
 
+/// The robust preset's reference follows the motions' kind: anchored for
+/// periodic motions, updated for one-way ones; the paper's method is
+/// updated.
 #[test]
-fn the_default_is_the_anchored_reference() {
+fn the_default_reference_follows_the_motions_kind() {
     assert_eq!(Settings::robust(1).reference, Reference::Anchored);
     assert_eq!(Settings::paper(1).reference, Reference::Updated);
+    let periodic = &pitch_plunge(15.0, 0.0, 8)[0].motion;
+    let one_way = Motion::Rotation {
+        center: [0.0; 3],
+        axis: [0.0, 0.0, 1.0],
+        angle: 1.0,
+    };
+    assert_eq!(
+        Reference::for_motions([periodic, &Motion::Fixed]),
+        Reference::Anchored
+    );
+    assert_eq!(
+        Reference::for_motions([periodic, &one_way]),
+        Reference::Updated
+    );
+    assert_eq!(Reference::for_motions([&Motion::Fixed]), Reference::Updated);
+    let case = |method: &str, kind: &str| {
+        let text = format!(
+            "mesh = \"m.su2\"\nsteps = 4\n[solver]\nmethod = \"{method}\"\n\
+             [[motion]]\nkind = \"{kind}\"\ngroups = [\"airfoil\"]\ncenter = [0.25, 0.0]\n\
+             {}\n[[motion]]\nkind = \"fixed\"\ngroups = [\"farfield\"]\n",
+            if kind == "rotation" {
+                "angle_deg = 10.0"
+            } else {
+                "pitch_deg = 10.0\nplunge = [0.0, 0.0]"
+            }
+        );
+        Case::parse(&text, Path::new("c.toml"))
+            .unwrap()
+            .settings
+            .reference
+    };
+    assert_eq!(case("robust", "pitch-plunge"), Reference::Anchored);
+    assert_eq!(case("robust", "rotation"), Reference::Updated);
+    assert_eq!(case("verbss", "pitch-plunge"), Reference::Updated);
 }
 
 /// The demo's pitch–plunge (θ₀ = 40°, h₀ = 0.2) on a coarse O-grid, 16 steps a cycle.
