@@ -187,15 +187,16 @@ fn a_total_unknown_returns_to_the_input_mesh_after_a_cycle() {
         let mut settings = Settings::new(8);
         settings.reference = reference;
         let (sweeps, moved) = end(settings);
-        assert!(
-            sweeps[..7].iter().all(|&k| k > 0),
-            "{reference:?}: {sweeps:?}"
-        );
-        assert_eq!((sweeps[7], moved), (0, 0.0), "{reference:?}");
+        // sin(2πn/8) vanishes at steps 4 and 8: the boundary is at the input mesh.
+        let idle: Vec<bool> = sweeps.iter().map(|&k| k == 0).collect();
+        let expected = [false, false, false, true, false, false, false, true];
+        assert_eq!(idle, expected, "{reference:?}: {sweeps:?}");
+        assert_eq!(moved, 0.0, "{reference:?}");
     }
     let (sweeps, moved) = end(Settings::robust(8));
     assert_eq!(sweeps, [0; 8]);
-    assert!(moved <= 1e-15, "{moved}");
+    // Round-off of the coordinates.
+    assert!(moved <= 1e-13, "{moved}");
     let (_, moved) = end(Settings::new(8));
     assert!(moved > 1e-6, "{moved}");
 }
