@@ -21,7 +21,7 @@ struct Moving {
 /// A mesh in motion, stepped by a flow solver (see `Deformer.step`).
 ///
 /// Deformer(mesh, method="robust", omega=None, tolerance=None,
-///          max_iterations=None, threads=0, reference="updated", solver=None,
+///          max_iterations=None, threads=0, reference=None, solver=None,
 ///          accel=None, *, absolute_tolerance=None, predictor=None,
 ///          slide=None, rigid_layer=None, stiffening=None, substeps=None,
 ///          blend=None)
@@ -45,9 +45,13 @@ struct Moving {
 ///   when None), or below tolerance itself with absolute_tolerance=True.
 /// - max_iterations: the most sweeps per step (2000 when None).
 /// - threads: worker threads, 0 for one per core; results do not depend on it.
-/// - reference: "updated" (springs on the current mesh each step) or
-///   "fixed" (also spelled "initial": springs on the input mesh, solving for
-///   the total displacement).
+/// - reference: "anchored" (the default of "robust": each step from the
+///   input mesh moved by the blended rigid motion, solving for the total
+///   displacement, so the mesh is a function of the boundary's position and
+///   a periodic motion returns to the input mesh), "updated" (springs on
+///   the current mesh each step, solving for the increment; the default of
+///   the other methods) or "fixed" (also spelled "initial": springs on the
+///   input mesh); docs/method.md, "Time stepping".
 /// - accel: "none" (plain VerBSS sweeps), "amg" (GMRES around a multigrid
 ///   V-cycle whose smoother is the VerBSS sweep; tolerance then bounds the
 ///   estimated RMS error) or "auto" (amg on large meshes of mostly
@@ -203,7 +207,7 @@ impl Deformer {
         tolerance = None,
         max_iterations = None,
         threads = 0,
-        reference = "updated",
+        reference = None,
         solver = None,
         accel = None,
         *,
@@ -223,7 +227,7 @@ impl Deformer {
         tolerance: Option<f64>,
         max_iterations: Option<i64>,
         threads: i64,
-        reference: &str,
+        reference: Option<&str>,
         solver: Option<&str>,
         accel: Option<&str>,
         absolute_tolerance: Option<bool>,
@@ -247,7 +251,7 @@ impl Deformer {
             ("tolerance", tolerance.map(|x| x.to_string())),
             ("max_iterations", max_iterations.map(|k| k.to_string())),
             ("threads", Some(threads.to_string())),
-            ("reference", Some(reference.to_string())),
+            ("reference", reference.map(str::to_string)),
             ("solver", solver.map(str::to_string)),
             ("accel", accel.map(str::to_string)),
             ("absolute_tolerance", absolute_tolerance.map(switch)),

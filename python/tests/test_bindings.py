@@ -183,8 +183,13 @@ def test_accel_amg_matches_the_command(cli, tmp_path):
 
 
 def test_robust_method_matches_the_command_default(cli, tmp_path):
+    # A coupled deformer steps with given positions; its default reference is
+    # the robust preset's, anchored (the command picks updated for a one-way
+    # translation, so it is named here).
     mesh, group, shift = CASES[1]
-    expected = cli_deform(cli, tmp_path, mesh, group, shift, method="robust")
+    expected = cli_deform(
+        cli, tmp_path, mesh, group, shift, extra=("--reference", "anchored"), method="robust"
+    )
     plain = cli_deform(cli, tmp_path, mesh, group, shift)
     d = verbss.Deformer(verbss.read(MESHES / mesh), **dict(SETTINGS, method="robust"))
     for n in range(1, STEPS + 1):
@@ -199,12 +204,13 @@ def test_near_wall_settings_and_slides_match_the_command(cli, tmp_path):
     mesh, group, shift = CASES[3]
     extra = [
         "--slide", "y_m,y_p", "--rigid-layer", "0.1", "--stiffening", "2",
-        "--substeps", "3", "--blend", "off", "--predictor", "linear",
+        "--substeps", "3", "--blend", "off", "--predictor", "linear", "--reference", "updated",
     ]
     expected = cli_deform(cli, tmp_path, mesh, group, shift, extra=extra, method="robust")
     d = verbss.Deformer(
         verbss.read(MESHES / mesh), **dict(SETTINGS, method="robust"), slide=["y_m", "y_p"],
         rigid_layer=0.1, stiffening=2.0, substeps=3, blend=False, predictor="linear",
+        reference="updated",
     )
     for n in range(1, STEPS + 1):
         got = d.step({group: np.array(shift) * n / STEPS})
@@ -304,7 +310,7 @@ def test_bad_settings_and_arrays_are_named():
         (lambda: verbss.Deformer(mesh, method="fast"),
          "invalid setting: unknown method 'fast' (expected robust, verbss, ball-vertex, spring or laplacian)"),
         (lambda: verbss.Deformer(mesh, reference="moving"),
-         "invalid setting: unknown reference 'moving' (expected updated or fixed)"),
+         "invalid setting: unknown reference 'moving' (expected updated, fixed or anchored)"),
         (lambda: verbss.Deformer(mesh, omega=2.5),
          "invalid setting: omega 2.5 is outside (0, 2)"),
         (lambda: verbss.Deformer(mesh, threads=-1),

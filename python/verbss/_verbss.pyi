@@ -112,9 +112,12 @@ class Deformer:
     - ``max_iterations``: the most sweeps per step (2000 when None).
     - ``threads``: worker threads, 0 for one per core; results do not depend
       on it.
-    - ``reference``: ``"updated"`` (springs on the current mesh each step) or
-      ``"fixed"`` (also spelled ``"initial"``: springs on the input mesh,
-      solving for the total displacement).
+    - ``reference``: ``"anchored"`` (the default of ``"robust"``: each step
+      from the input mesh moved by the blended rigid motion, solving for the
+      total displacement, so a periodic motion returns to the input mesh),
+      ``"updated"`` (springs on the current mesh each step, solving for the
+      increment; the default of the other methods) or ``"fixed"`` (also
+      spelled ``"initial"``: springs on the input mesh).
     - ``accel``: ``"none"`` (plain VerBSS sweeps), ``"amg"`` (GMRES around a
       multigrid V-cycle whose smoother is the VerBSS sweep; ``tolerance`` then
       bounds the estimated RMS error) or ``"auto"`` (``"amg"`` on large meshes
@@ -138,7 +141,7 @@ class Deformer:
         tolerance: Optional[float] = None,
         max_iterations: Optional[int] = None,
         threads: int = 0,
-        reference: str = "updated",
+        reference: Optional[str] = None,
         solver: Optional[str] = None,
         accel: Optional[str] = None,
         *,

@@ -88,10 +88,13 @@ pub struct DeformArgs {
     /// Number of equal increments.
     #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     steps: usize,
-    /// Springs on the current mesh each step (updated) or on the input mesh
-    /// (fixed, also spelled initial).
-    #[arg(long, value_enum, default_value = "updated")]
-    reference: Reference,
+    /// Springs on the current mesh each step, solving for the increment
+    /// (updated); on the input mesh (fixed, also spelled initial); on the
+    /// input mesh moved by the blended rigid motion, solving for the total
+    /// displacement (anchored: a periodic motion returns to the input mesh)
+    /// [default: updated; anchored with --method robust and a periodic motion].
+    #[arg(long, value_enum)]
+    reference: Option<Reference>,
     /// Each step's initial guess: the previous step's solution, or extrapolated
     /// linearly from the two previous steps (fewer sweeps for smooth motions).
     #[arg(long, value_enum, default_value = "previous")]
@@ -212,7 +215,10 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
         unreachable!("clap requires one motion")
     };
     let mut settings = args.method.settings(args.steps);
-    settings.reference = args.reference;
+    settings.reference = args.reference.unwrap_or(match args.method {
+        Preset::Robust => Reference::for_motions([&motion]),
+        _ => settings.reference,
+    });
     settings.predictor = args.predictor;
     let robust = &mut settings.robust;
     robust.layer = args.rigid_layer.unwrap_or(robust.layer);

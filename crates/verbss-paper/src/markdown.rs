@@ -10,8 +10,6 @@ mod tables;
 
 use std::fmt::Write;
 
-use verbss::deform::Reference;
-
 use crate::results::{CaseResult, MethodResult};
 use crate::Results;
 
@@ -135,10 +133,7 @@ the increment), run once per method: `spring` (edge springs), `laplacian` (compo
 k = 1/L), `ball-vertex` (edge + ball-vertex springs, one global system, scalar SOR over \
 all D·N unknowns: the paper's baseline) and `verbss` (the same system, node by node, \
 block SOR with per-node LDLᵀ).",
-        match run.reference {
-            Reference::Updated => "updated",
-            Reference::Fixed => "fixed",
-        }
+        run.reference.name()
     );
     let _ = writeln!(
         w,

@@ -194,7 +194,7 @@ fn main() {
     for (n, before, after) in &saved {
         let origin = match o.reference {
             Reference::Updated => before,
-            Reference::Fixed => &mesh.coords,
+            Reference::Fixed | Reference::Anchored => &mesh.coords,
         };
         let increment: Vec<f64> = after.iter().zip(origin).map(|(a, b)| a - b).collect();
         let mut reference = vec![0.0; increment.len()];

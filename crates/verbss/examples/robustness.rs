@@ -8,11 +8,14 @@
 //! ```
 //!
 //! Each case file is run once per variant — `default` (the command line's
-//! defaults: `--method robust`, the escalating solve), `verbss` (the
-//! paper's method), `laplacian`, `exact` (the default's near-wall treatment,
-//! every step solved by the sparse direct solve), `springs` (the default
-//! without the blended rigid motion), and the single treatments
-//! `layer`, `stiffening`, `substeps` — with the case's steps and motions,
+//! defaults: `--method robust`, the reference its motions' kind implies,
+//! the escalating solve), `anchored` (the default with the anchored
+//! reference, the default of periodic motions), `verbss` (the paper's
+//! method), `laplacian`, `exact` (the default's near-wall treatment and
+//! reference, every step solved by the sparse direct solve), `springs` (the
+//! near-wall treatment without the blended rigid motion), and the single
+//! treatments `layer`, `stiffening`, `substeps` — with the case's steps,
+//! motions and (but for `default`, `anchored` and `exact`) reference,
 //! until the first inverted element, an unconverged step or the last step.
 //! Printed per case and variant: the steps completed and the amplitude
 //! reached (for a rotation, in degrees), where the run stopped, the rigid
@@ -25,14 +28,15 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use verbss::case::Case;
-use verbss::deform::Deformer;
+use verbss::deform::{Deformer, Reference};
 use verbss::error::Error;
 use verbss::motion::Motion;
 use verbss::robust::{Layer, Robust};
 use verbss::solve::{Method, SolveParams, Solver, Stage};
 
-const VARIANTS: [&str; 8] = [
+const VARIANTS: [&str; 9] = [
     "default",
+    "anchored",
     "springs",
     "verbss",
     "laplacian",
@@ -47,7 +51,7 @@ fn variant(name: &str) -> (Robust, SolveParams) {
     let mut r = Robust::off();
     let mut s = SolveParams::default();
     match name {
-        "default" => r = Robust::recommended(),
+        "default" | "anchored" => r = Robust::recommended(),
         "springs" => {
             r = Robust::recommended();
             r.blend = false;
@@ -84,6 +88,11 @@ fn run(case: &Case, variant_name: &str) -> Result<Outcome, Error> {
     let mut settings = case.settings.clone();
     let threads = settings.solve.threads;
     (settings.robust, settings.solve) = variant(variant_name);
+    settings.reference = match variant_name {
+        "default" | "exact" => Reference::for_motions(attachments.iter().map(|a| &a.motion)),
+        "anchored" => Reference::Anchored,
+        _ => settings.reference,
+    };
     settings.solve.threads = threads;
     let mut d = Deformer::new(&mesh, &attachments, settings)?;
     let mut out = Outcome {

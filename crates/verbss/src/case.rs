@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use crate::deform::Settings;
+use crate::deform::{Preset, Reference, Settings};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Motion, PositionSource};
@@ -162,6 +162,17 @@ enum MotionSpec {
 }
 
 impl MotionSpec {
+    /// `None` if it moves no node, else whether it is periodic.
+    fn periodic(&self) -> Option<bool> {
+        match self {
+            MotionSpec::Fixed { .. } | MotionSpec::Slide { .. } => None,
+            m => Some(matches!(
+                m,
+                MotionSpec::PitchPlunge { .. } | MotionSpec::Undulation { .. }
+            )),
+        }
+    }
+
     fn groups(&self) -> &[String] {
         match self {
             MotionSpec::Fixed { groups }
@@ -251,6 +262,23 @@ impl Case {
         settings.dt = dt;
         if file.output.every == 0 {
             return Err(at(top("every"), "`output.every` must be at least 1".into()));
+        }
+        // Not given, the robust preset's reference follows the motions' kind
+        // (`Reference::for_motions`): anchored when every moving motion is
+        // periodic.
+        let method = named.iter().find(|(k, _)| *k == "method");
+        let robust = method.is_none_or(|(_, v)| v.parse::<Preset>().ok() == Some(Preset::Robust));
+        if file.reference.is_none() && robust {
+            let kinds: Vec<bool> = file
+                .motion
+                .iter()
+                .filter_map(|m| m.get_ref().periodic())
+                .collect();
+            settings.reference = if !kinds.is_empty() && kinds.iter().all(|&p| p) {
+                Reference::Anchored
+            } else {
+                Reference::Updated
+            };
         }
         let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
         let mut motions = Vec::new();

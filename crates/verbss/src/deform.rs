@@ -8,12 +8,16 @@
 //!
 //! Which node does what is decided once, in `deform/roles.rs`.
 //!
-//! Two ways to step (paper §3.2, step 6):
-//! - [`Reference::Updated`] (option 1, default): the springs are rebuilt on the
-//!   current coordinates `x` and the step solves for the increment
+//! Three ways to step (paper §3.2, step 6, and docs/method.md, "Time stepping"):
+//! - [`Reference::Updated`] (option 1, the paper's): the springs are rebuilt
+//!   on the current coordinates `x` and the step solves for the increment
 //!   `Δu`, `x ← x + Δu`.
 //! - [`Reference::Fixed`] (option 2): the springs stay those of the input mesh
 //!   `X` and each step solves for the total displacement `u`, `x = X + u`.
+//! - [`Reference::Anchored`] ([`Settings::robust`]'s): the input mesh moved
+//!   by the blended rigid motion to the boundary's position, `B(X)`, carries
+//!   the springs and the step solves for the rest, `x = B(X) + u`: `x`
+//!   depends on the boundary's position only.
 //!
 //! Either way the previous step's solution is the next step's initial guess
 //! ([`Predictor::Previous`]; [`Predictor::Linear`] extrapolates from the two
@@ -150,16 +154,20 @@ pub struct Deformer<S = Engine> {
     /// The blended rigid motion, when [`crate::robust::Robust::blend`] is on.
     blend: Option<Blend>,
     orientation: Vec<i8>,
-    /// The last solution per unit step fraction (increment, or total
-    /// displacement with the fixed reference): the next step's guess.
+    /// The last solution per unit step fraction (increment, or the total
+    /// displacement from the start with the fixed and anchored references):
+    /// the next step's guess.
     guess: Vec<f64>,
     /// The solution before [`Deformer::guess`], kept for
     /// [`Predictor::Linear`] once there is one.
     earlier: Option<Vec<f64>>,
-    /// Whether [`Deformer::guess`] is a solution: always with the fixed
-    /// reference (the input mesh's `u = 0`), after the first step with the
-    /// updated one (whose start has no increment).
+    /// Whether [`Deformer::guess`] is a solution: always with a total
+    /// unknown (the input mesh's `u = 0`), after the first step with the
+    /// updated reference (whose start has no increment).
     guess_is_solution: bool,
+    /// Prescribed displacements at most this far (10⁻¹² of the input
+    /// mesh's bounding-box diagonal) are round-off.
+    round_off: f64,
     current: Snapshot,
     failed: Option<Snapshot>,
 }
@@ -241,7 +249,9 @@ impl<S: SpringSolver> Deformer<S> {
         Ok(Deformer {
             guess: vec![0.0; mesh.coords.len()],
             earlier: None,
-            guess_is_solution: settings.reference == Reference::Fixed,
+            guess_is_solution: settings.reference != Reference::Updated,
+            round_off: blend::ROUND_OFF
+                * robust::size(mesh, &(0..mesh.node_count()).collect::<Vec<_>>()),
             current: Snapshot {
                 coords: mesh.coords.clone(),
                 inverted: vec![false; quality.len()],
@@ -338,9 +348,11 @@ impl<S: SpringSolver> Deformer<S> {
     pub fn step(&mut self, n: usize) -> Result<StepReport> {
         let start = Instant::now();
         let targets = self.targets(n)?;
+        // With a total unknown the accepted mesh does not depend on the
+        // increments taken to reach it: no sub-steps.
         let substeps = match self.settings.reference {
             Reference::Updated => self.settings.robust.substeps.min(30),
-            Reference::Fixed => 0,
+            Reference::Fixed | Reference::Anchored => 0,
         };
         let floor = 0.5f64.powi(substeps as i32);
         let from = self.current.coords.clone();
@@ -490,12 +502,12 @@ impl<S: SpringSolver> Deformer<S> {
 
     /// Where a (sub-)step from `coords` towards `targets` starts: the
     /// reference configuration (`coords`, or the input mesh with the fixed
-    /// reference) moved by the blended rigid motion when it is on
+    /// and anchored references) moved by the blended rigid motion when it is on
     /// (docs/method.md, "Blended rigid motion").
     fn blended(&mut self, coords: &[f64], targets: &[(usize, Vec<f64>)]) -> Vec<f64> {
         let reference = match self.settings.reference {
             Reference::Updated => coords,
-            Reference::Fixed => &self.mesh.coords,
+            Reference::Fixed | Reference::Anchored => &self.mesh.coords,
         };
         let Some(blend) = &mut self.blend else {
             return reference.to_vec();
@@ -512,15 +524,18 @@ impl<S: SpringSolver> Deformer<S> {
     }
 
     /// Whether `start` ([`Deformer::blended`]) already puts every
-    /// prescribed node at its target, to round-off: the springs have
-    /// nothing to solve (a rigid body under the blend).
+    /// prescribed node at its target, to round-off (10⁻¹² of the mesh's
+    /// size): the springs have nothing to solve (a rigid body under the
+    /// blend, or a boundary back at the input mesh with a total unknown,
+    /// whose solution is then exactly `u = 0`).
     fn nothing_left(&self, start: &[f64], targets: &[(usize, Vec<f64>)]) -> bool {
         let dim = self.mesh.dim;
         let left = targets
             .iter()
             .flat_map(|(node, p)| (0..dim).map(move |d| (p[d] - start[dim * node + d]).abs()))
             .fold(0.0, f64::max);
-        self.blend.as_ref().is_some_and(|b| b.leaves_nothing(left))
+        (self.blend.is_some() || self.settings.reference != Reference::Updated)
+            && left <= self.round_off
     }
 
     /// One solve from `start` ([`Deformer::blended`]) with the prescribed
@@ -539,7 +554,7 @@ impl<S: SpringSolver> Deformer<S> {
     ) -> Result<Attempt> {
         let dim = self.mesh.dim;
         let springs_at = match self.settings.reference {
-            Reference::Updated => start,
+            Reference::Updated | Reference::Anchored => start,
             Reference::Fixed => &self.mesh.coords,
         };
         let mut u: Vec<f64> = match &self.earlier {

@@ -40,7 +40,7 @@ use crate::topology::Csr;
 
 /// Prescribed nodes this fraction of the mesh's size from their targets
 /// are there: what the fit of an exactly rigid motion leaves.
-const ROUND_OFF: f64 = 1e-12;
+pub(super) const ROUND_OFF: f64 = 1e-12;
 
 /// The angle's weight falls off over `ρ =` this many times the body's
 /// radius about the centre it turns about: the best minimum quality of 0.5,
@@ -147,13 +147,6 @@ impl Blend {
             extent,
             bodies,
         }
-    }
-
-    /// Whether a blended start that leaves the prescribed nodes at most
-    /// `left` from their targets leaves nothing to solve: `left` is
-    /// round-off of the coordinates ([`ROUND_OFF`] of the mesh's size).
-    pub(super) fn leaves_nothing(&self, left: f64) -> bool {
-        left <= ROUND_OFF * self.extent
     }
 
     /// `coords` moved by every body's blended rigid motion towards

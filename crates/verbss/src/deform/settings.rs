@@ -10,7 +10,9 @@ use crate::names::{named, one_of};
 use crate::robust::Robust;
 use crate::solve::{Method, SolveParams};
 
-/// Which configuration the springs are built on (the paper's options 1 and 2).
+/// Which configuration the springs are built on and what the unknown is
+/// (the paper's options 1 and 2, and a third that returns exactly:
+/// docs/method.md, "Time stepping").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 #[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
@@ -23,9 +25,39 @@ pub enum Reference {
     #[serde(alias = "initial")]
     #[cfg_attr(feature = "clap", value(alias = "initial"))]
     Fixed,
+    /// Springs on the input mesh moved by the blended rigid motion to the
+    /// step's boundary position, solve for the rest of the total
+    /// displacement from the input mesh: the mesh is a function of the
+    /// boundary's position, so a periodic motion comes back to the input
+    /// mesh (the default of [`Preset::Robust`]; the command line and case
+    /// files take [`Reference::for_motions`]).
+    Anchored,
 }
 
-named!(Reference, "reference", [Updated => "updated", Fixed => "fixed"], ["initial" => Fixed]);
+impl Reference {
+    /// The reference of [`Preset::Robust`] for a run of `motions`: anchored
+    /// when every moving motion is periodic (pitch–plunge, undulation) and
+    /// the mesh must come back with the boundary, updated for the one-way
+    /// motions (a rotation, translation, bending or given positions), whose
+    /// springs on the current mesh carry a gap that closes further
+    /// (docs/method.md, "Time stepping").
+    pub fn for_motions<'a>(motions: impl IntoIterator<Item = &'a Motion>) -> Reference {
+        let mut moving = motions.into_iter().filter(|m| m.moves()).peekable();
+        let periodic =
+            |m: &Motion| matches!(m, Motion::PitchPlunge { .. } | Motion::Undulation { .. });
+        if moving.peek().is_some() && moving.all(periodic) {
+            Reference::Anchored
+        } else {
+            Reference::Updated
+        }
+    }
+}
+
+named!(Reference, "reference", [
+    Updated => "updated",
+    Fixed => "fixed",
+    Anchored => "anchored",
+], ["initial" => Fixed]);
 
 /// How a step's initial guess is made from the steps before it. The guess
 /// only decides where the sweeps start, not the system they solve.
@@ -88,6 +120,7 @@ impl Preset {
         };
         if self == Preset::Robust {
             s.robust = Robust::recommended();
+            s.reference = Reference::Anchored;
         }
         s
     }
@@ -101,7 +134,7 @@ pub struct Settings {
     pub steps: usize,
     /// Time per step (`t = n · dt`, used by undulation).
     pub dt: f64,
-    /// Updated or fixed reference.
+    /// Updated, fixed or anchored reference.
     pub reference: Reference,
     /// The solver's settings for every step.
     pub solve: SolveParams,

@@ -76,7 +76,7 @@ fn translation_is_reproduced_by_both_references() {
     let shift = Motion::Translation {
         displacement: [0.0, 0.0, 0.0],
     };
-    for reference in [Reference::Updated, Reference::Fixed] {
+    for reference in [Reference::Updated, Reference::Fixed, Reference::Anchored] {
         let mut settings = Settings::new(3);
         settings.reference = reference;
         settings.solve.tolerance = 1e-12;
@@ -91,7 +91,7 @@ fn translation_is_reproduced_by_both_references() {
     let moved = Motion::Translation {
         displacement: [0.3, 0.0, 0.0],
     };
-    for reference in [Reference::Updated, Reference::Fixed] {
+    for reference in [Reference::Updated, Reference::Fixed, Reference::Anchored] {
         let mut settings = Settings::new(3);
         settings.reference = reference;
         settings.solve.tolerance = 1e-12;
@@ -112,6 +112,52 @@ fn translation_is_reproduced_by_both_references() {
     }
 }
 
+/// A pitch–plunge cycle brings the boundary back to the input mesh: with a
+/// total unknown every prescribed displacement is then round-off and the
+/// last step solves nothing, so the free nodes are exactly where they
+/// started (the anchored reference without the blend, which is the fixed
+/// one, and with it); the updated reference ends elsewhere.
+#[test]
+fn a_total_unknown_returns_to_the_input_mesh_after_a_cycle() {
+    let mesh = crate::io::read(Path::new(NACA)).unwrap();
+    let pitch = Motion::PitchPlunge {
+        center: [0.25, 0.0, 0.0],
+        axis: [0.0, 0.0, 1.0],
+        pitch: 10f64.to_radians(),
+        plunge: [0.0, 0.1, 0.0],
+        period: Some(8),
+    };
+    let end = |settings: Settings| {
+        let mut d = Deformer::new(&mesh, &[attach(&["airfoil"], pitch.clone())], settings).unwrap();
+        let sweeps: Vec<usize> = (1..=8).map(|n| d.step(n).unwrap().iterations).collect();
+        let free = d.roles().iter().map(|r| *r == NodeRole::Free);
+        let moved = d
+            .displacement()
+            .chunks(2)
+            .zip(free)
+            .filter(|(_, free)| *free)
+            .map(|(u, _)| u[0].abs().max(u[1].abs()))
+            .fold(0.0, f64::max);
+        (sweeps, moved)
+    };
+    for reference in [Reference::Fixed, Reference::Anchored] {
+        let mut settings = Settings::new(8);
+        settings.reference = reference;
+        let (sweeps, moved) = end(settings);
+        // sin(2πn/8) vanishes at steps 4 and 8: the boundary is at the input mesh.
+        let idle: Vec<bool> = sweeps.iter().map(|&k| k == 0).collect();
+        let expected = [false, false, false, true, false, false, false, true];
+        assert_eq!(idle, expected, "{reference:?}: {sweeps:?}");
+        assert_eq!(moved, 0.0, "{reference:?}");
+    }
+    let (sweeps, moved) = end(Settings::robust(8));
+    assert_eq!(sweeps, [0; 8]);
+    // Round-off of the coordinates.
+    assert!(moved <= 1e-13, "{moved}");
+    let (_, moved) = end(Settings::new(8));
+    assert!(moved > 1e-6, "{moved}");
+}
+
 /// The linear predictor changes where the sweeps start, not what they
 /// solve: both predictors reach the same meshes, the linear one in fewer
 /// sweeps once two steps are solved (with the fixed reference a motion
@@ -122,7 +168,7 @@ fn linear_predictor_reaches_the_same_meshes_in_fewer_sweeps() {
     let lift = Motion::Translation {
         displacement: [0.0, 0.2, 0.0],
     };
-    for reference in [Reference::Updated, Reference::Fixed] {
+    for reference in [Reference::Updated, Reference::Fixed, Reference::Anchored] {
         let run = |predictor: Predictor| {
             let mut settings = Settings::new(6);
             settings.reference = reference;
@@ -144,7 +190,11 @@ fn linear_predictor_reaches_the_same_meshes_in_fewer_sweeps() {
             .map(|(a, b)| (a - b).abs())
             .fold(0.0, f64::max);
         assert!(gap < 1e-8, "{reference:?}: meshes differ by {gap}");
-        let first = if reference == Reference::Fixed { 1 } else { 2 };
+        let first = if reference == Reference::Updated {
+            2
+        } else {
+            1
+        };
         assert_eq!(slow[..first], fast[..first], "{reference:?}");
         assert!(
             fast[first..].iter().sum::<usize>() < slow[first..].iter().sum::<usize>(),
