@@ -83,6 +83,7 @@ pub struct Options {
     pub width: u32,
     /// The window `[u0, u1, v0, v1]` to show (mesh coordinates in 2D and cuts,
     /// screen coordinates of the camera in 3D); the whole scene when `None`.
+    /// It must pass [`check_view`].
     pub view: Option<[f64; 4]>,
     /// Draw the element edges.
     pub edges: bool,
