@@ -49,21 +49,25 @@ pub struct RenderArgs {
     title: Option<String>,
 }
 
-/// `x0,x1,y0,y1` → a window.
+/// `x0,x1,y0,y1` → a window that can be drawn ([`verbss_render::check_view`]).
 fn parse_view(s: &str) -> Result<[f64; 4], String> {
     let v: Vec<f64> = s
         .split(',')
         .map(|x| x.trim().parse::<f64>())
         .collect::<Result<_, _>>()
         .map_err(|_| format!("'{s}' is not four numbers x0,x1,y0,y1"))?;
+    let [x0, x1, y0, y1] = v[..] else {
+        return Err(format!("'{s}' is not four numbers x0,x1,y0,y1"));
+    };
     let span = |a: f64, b: f64| (b - a).is_finite() && a < b;
-    match v[..] {
-        [x0, x1, y0, y1] if span(x0, x1) && span(y0, y1) => Ok([x0, x1, y0, y1]),
-        [_, _, _, _] => Err(format!(
+    if !(span(x0, x1) && span(y0, y1)) {
+        return Err(format!(
             "'{s}': expected finite x0 < x1 and y0 < y1 (with finite x1 - x0 and y1 - y0)"
-        )),
-        _ => Err(format!("'{s}' is not four numbers x0,x1,y0,y1")),
+        ));
     }
+    verbss_render::check_view([x0, x1, y0, y1])
+        .map(|()| [x0, x1, y0, y1])
+        .map_err(|e| e.to_string())
 }
 
 /// An angle in degrees, finite.
@@ -84,8 +88,12 @@ fn parse_cut(s: &str) -> Result<(usize, f64), String> {
         "z" => 2,
         _ => return Err(err()),
     };
-    let at: f64 = at.trim().parse().map_err(|_| err())?;
-    Ok((axis, at))
+    match at.trim().parse::<f64>() {
+        Ok(at) if at.is_finite() => Ok((axis, at)),
+        _ => Err(format!(
+            "'{s}': the plane's position must be a finite number"
+        )),
+    }
 }
 
 /// Runs `verbss render`.
@@ -273,15 +281,11 @@ impl Recorder {
         }
     }
 
-    /// Writes the report: pictures of the input, the worst accepted step,
-    /// the last accepted step and the failed one; the GIF ends with the
-    /// failed state when there is one.
-    pub fn finish(
-        &mut self,
-        report: &Report,
-        last: &Snapshot,
-        failed: Option<&Snapshot>,
-    ) -> anyhow::Result<()> {
+    /// Writes the GIF and the report (pictures of the input, the worst
+    /// accepted step, the last accepted step and the failed one); the GIF
+    /// ends with the failed state when there is one. A picture or file that
+    /// cannot be made is a warning on stderr: the run keeps its outcome.
+    pub fn finish(&mut self, report: &Report, last: &Snapshot, failed: Option<&Snapshot>) {
         if let (Some(f), Some(_)) = (failed, &self.gif) {
             self.gif_frame(f, format!("step {} FAILED", f.report.step));
         }
@@ -290,8 +294,8 @@ impl Recorder {
                 eprintln!("warning: no GIF: {e:#}");
             }
         }
-        let Some(path) = &self.args.html else {
-            return Ok(());
+        let Some(path) = self.args.html.clone() else {
+            return;
         };
         let mut pictures = Vec::new();
         if let Some(image) = self.before.take() {
@@ -301,31 +305,33 @@ impl Recorder {
             });
         }
         let last_n = last.report.step;
+        let mut wanted = Vec::new();
         if let Some(w) = self.worst.as_ref().filter(|w| w.report.step != last_n) {
-            let caption = format!("step {} (lowest minimum quality)", w.report.step);
-            pictures.push(Picture {
-                image: self.picture(w, caption.clone(), REPORT_WIDTH)?,
-                caption,
-            });
+            wanted.push((
+                w,
+                format!("step {} (lowest minimum quality)", w.report.step),
+            ));
         }
         if last_n > 0 {
-            let caption = format!("step {last_n} (last accepted)");
-            pictures.push(Picture {
-                image: self.picture(last, caption.clone(), REPORT_WIDTH)?,
-                caption,
-            });
+            wanted.push((last, format!("step {last_n} (last accepted)")));
         }
         if let Some(f) = failed {
             let caption = format!("step {} (failed: inverted elements in red)", f.report.step);
-            pictures.push(Picture {
-                image: self.picture(f, caption.clone(), REPORT_WIDTH)?,
-                caption,
-            });
+            wanted.push((f, caption));
         }
-        create_parent(path)?;
-        html_report::write(path, report, &pictures)
-            .with_context(|| format!("cannot write the report {}", path.display()))?;
-        Ok(())
+        for (s, caption) in wanted {
+            match self.picture(s, caption.clone(), REPORT_WIDTH) {
+                Ok(image) => pictures.push(Picture { caption, image }),
+                Err(e) => eprintln!("warning: no picture of {caption} in the report: {e:#}"),
+            }
+        }
+        let written = create_parent(&path).and_then(|()| {
+            html_report::write(&path, report, &pictures)
+                .with_context(|| format!("cannot write the report {}", path.display()))
+        });
+        if let Err(e) = written {
+            eprintln!("warning: no HTML report: {e:#}");
+        }
     }
 }
 

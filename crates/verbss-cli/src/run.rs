@@ -312,7 +312,7 @@ pub fn execute<S: SpringSolver>(
                     if let Some(path) = &job.report {
                         report.write(path)?;
                     }
-                    recorder.finish(&report, deformer.current(), Some(failed))?;
+                    recorder.finish(&report, deformer.current(), Some(failed));
                 }
                 summary.seconds = start.elapsed().as_secs_f64();
                 summary.failure = Some((e, last, failed_path));
@@ -332,7 +332,7 @@ pub fn execute<S: SpringSolver>(
         if let Some(path) = &job.report {
             report.write(path)?;
         }
-        recorder.finish(&report, deformer.current(), None)?;
+        recorder.finish(&report, deformer.current(), None);
     }
     Ok(summary)
 }

@@ -46,13 +46,7 @@ impl Layout {
         }
         let mut w = match options.view {
             Some(v) => {
-                if !drawable(v) {
-                    return Err(Error::InvalidSetting(format!(
-                        "view window {},{},{},{} (expected x0 < x1 and y0 < y1, each \
-                         span finite and above 1e-12 of the coordinates)",
-                        v[0], v[1], v[2], v[3]
-                    )));
-                }
+                check_view(v)?;
                 v
             }
             None => {
@@ -87,7 +81,8 @@ impl Layout {
         };
         let width = i64::from(options.width);
         let plot_w = width - margin - ylab - legend;
-        let plot_h = (plot_w as f64 * (w[3] - w[2]) / (w[1] - w[0])).round() as i64;
+        // The ratio first: the spans themselves may be near f64::MAX.
+        let plot_h = (plot_w as f64 * ((w[3] - w[2]) / (w[1] - w[0]))).round() as i64;
         let bar = ((0.7 * plot_h as f64) as i64).clamp(px(150.0), px(480.0));
         let height = (top + plot_h + xlab + margin).max(top + bar + px(170.0));
         Ok(Layout {
@@ -114,6 +109,15 @@ impl Layout {
         ]
     }
 
+    /// Length in pixels of segment `a → b` of the picture.
+    pub fn length(&self, a: [f64; 3], b: [f64; 3]) -> f64 {
+        let [x0, y0, x1, y1] = self.plot.map(|v| v as f64);
+        let w = &self.window;
+        let du = (b[0] - a[0]) / (w[1] - w[0]) * (x1 - x0);
+        let dv = (b[1] - a[1]) / (w[3] - w[2]) * (y1 - y0);
+        du.hypot(dv)
+    }
+
     fn px(&self, x: f64) -> i32 {
         (x * self.scale).round() as i32
     }
@@ -121,6 +125,18 @@ impl Layout {
     fn font(&self, size: f64) -> TextStyle<'static> {
         ("sans-serif", size * self.scale).into_font().color(&BLACK)
     }
+}
+
+/// Refuses a window `[x0, x1, y0, y1]` that cannot be drawn (see [`Options::view`]).
+pub fn check_view(v: [f64; 4]) -> Result<()> {
+    if drawable(v) {
+        return Ok(());
+    }
+    Err(Error::InvalidSetting(format!(
+        "view window {},{},{},{} (expected x0 < x1 and y0 < y1, each span finite \
+         and above 1e-12 of the coordinates)",
+        v[0], v[1], v[2], v[3]
+    )))
 }
 
 /// Whether window `[x0, x1, y0, y1]` can be drawn: finite, positive spans
@@ -131,6 +147,40 @@ fn drawable(w: [f64; 4]) -> bool {
         d.is_finite() && d > 0.0 && d > 1e-12 * a.abs().max(b.abs())
     };
     span(w[0], w[1]) && span(w[2], w[3])
+}
+
+/// The power of ten an axis over `[a, b]` counts its ticks in: 0 (plain
+/// numbers) for spans from 1e-4 to 1e6, else the span's own (ticks in
+/// scientific notation, however far the window is from 1).
+fn label_exponent(a: f64, b: f64) -> i32 {
+    let e = (b - a).log10().floor() as i32;
+    if (-4..=5).contains(&e) {
+        0
+    } else {
+        e
+    }
+}
+
+/// The axis range `[a, b]` counted in units of `10^e`.
+fn scaled(a: f64, b: f64, e: i32) -> std::ops::Range<f64> {
+    let unit = 10f64.powi(e);
+    a / unit..b / unit
+}
+
+/// The label of tick `t` counted in units of `10^e` (`e ≠ 0`), in
+/// scientific notation to a hundredth of the unit, e.g. `1.00005e300`.
+fn label(t: f64, e: i32) -> String {
+    let n = (t * 100.0).round();
+    if n == 0.0 {
+        return "0".into();
+    }
+    let digits = format!("{}", n.abs() as u64);
+    let sign = if n < 0.0 { "-" } else { "" };
+    let (head, tail) = digits.split_at(1);
+    let tail = tail.trim_end_matches('0');
+    let exponent = i64::from(e) - 2 + digits.len() as i64 - 1;
+    let point = if tail.is_empty() { "" } else { "." };
+    format!("{sign}{head}{point}{tail}e{exponent}")
 }
 
 fn rgb(c: Rgb) -> RGBColor {
@@ -171,6 +221,7 @@ fn draw_inner<DB: DrawingBackend>(
     if let Some([u, v]) = scene.axes {
         let [x0, _, x1, y1] = l.plot;
         let w = l.window;
+        let (ex, ey) = (label_exponent(w[0], w[1]), label_exponent(w[2], w[3]));
         let mut chart = ChartBuilder::on(root)
             .margin_left(l.margin as i32)
             .margin_top(l.top as i32)
@@ -178,17 +229,23 @@ fn draw_inner<DB: DrawingBackend>(
             .margin_bottom((i64::from(l.height) - y1 - i64::from(l.px(64.0))).max(0) as i32)
             .x_label_area_size(l.px(64.0))
             .y_label_area_size((x0 - l.margin) as i32)
-            .build_cartesian_2d(w[0]..w[1], w[2]..w[3])?;
-        chart
-            .configure_mesh()
-            .disable_mesh()
+            .build_cartesian_2d(scaled(w[0], w[1], ex), scaled(w[2], w[3], ey))?;
+        let (fx, fy) = (|t: &f64| label(*t, ex), |t: &f64| label(*t, ey));
+        let mut axes = chart.configure_mesh();
+        axes.disable_mesh()
             .x_desc(u)
             .y_desc(v)
             .x_labels(8)
             .y_labels(8)
             .label_style(l.font(20.0))
-            .axis_desc_style(l.font(24.0))
-            .draw()?;
+            .axis_desc_style(l.font(24.0));
+        if ex != 0 {
+            axes.x_label_formatter(&fx);
+        }
+        if ey != 0 {
+            axes.y_label_formatter(&fy);
+        }
+        axes.draw()?;
     }
     let bx = i64::from(l.width) - l.legend + (52.0 * l.scale) as i64;
     let (bw, by, bh) = (l.px(30.0), (l.top + l.px(44.0) as i64) as i32, l.bar as i32);
@@ -242,4 +299,22 @@ fn draw_inner<DB: DrawingBackend>(
         label,
     ))?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn far_and_tiny_windows_label_their_ticks_in_scientific_notation() {
+        assert_eq!(label_exponent(0.999, 1.001), 0);
+        assert_eq!(label_exponent(-1e307, 1e307), 307);
+        assert_eq!(label_exponent(0.0, 1e-300), -300);
+        assert_eq!(label(1.5, -300), "1.5e-300");
+        assert_eq!(label(-2.0, 307), "-2e307");
+        assert_eq!(label(100000.25, 295), "1.0000025e300");
+        assert_eq!(label(1e-9, 12), "0");
+        let r = scaled(1e300, 1.00001e300, label_exponent(1e300, 1.00001e300));
+        assert!((1.0..=10.0).contains(&(r.end - r.start)), "{r:?}");
+    }
 }

@@ -35,6 +35,7 @@
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
 
+mod clip;
 pub mod colour;
 mod frame;
 pub mod html_report;
@@ -43,7 +44,7 @@ mod scene;
 
 use std::fmt::Write as _;
 use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::{BufWriter, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
@@ -51,12 +52,16 @@ use plotters::prelude::*;
 use plotters::style::FontStyle;
 
 use verbss::error::{Error, Result};
-use verbss::io::{is_special, link_target, temp_path, write_atomic};
+use verbss::io::write_atomic;
 
-pub use frame::Layout;
+pub use frame::{check_view, Layout};
 pub use scene::{Camera, Scene, Section, State};
 
 use raster::Canvas;
+
+/// Cells and edges are clipped to the window grown by this fraction of its
+/// spans (the cut lines stay outside the plot).
+const CLIP_MARGIN: f64 = 0.02;
 
 /// The embedded font of the pictures' text.
 const FONT: &[u8] = include_bytes!("../fonts/DejaVuSans-subset.ttf");
@@ -78,6 +83,7 @@ pub struct Options {
     pub width: u32,
     /// The window `[u0, u1, v0, v1]` to show (mesh coordinates in 2D and cuts,
     /// screen coordinates of the camera in 3D); the whole scene when `None`.
+    /// It must pass [`check_view`].
     pub view: Option<[f64; 4]>,
     /// Draw the element edges.
     pub edges: bool,
@@ -154,17 +160,21 @@ pub fn png(scene: &Scene, options: &Options) -> Result<Image> {
     }
     let [x0, y0, x1, y1] = layout.plot;
     let mut canvas = Canvas::new(&mut rgb, w as usize, [x0, y0, x1, y1]);
-    let mut corners = Vec::with_capacity(8);
+    let window = clip::grown(layout.window, CLIP_MARGIN);
+    let (mut inside, mut corners) = (Vec::with_capacity(8), Vec::with_capacity(8));
     for k in 0..scene.len() {
+        clip::polygon(scene.polygon(k), window, &mut inside);
         corners.clear();
-        corners.extend(scene.polygon(k).iter().map(|&p| layout.map(p)));
+        corners.extend(inside.iter().map(|&p| layout.map(p)));
         canvas.polygon(&corners, scene.colours[k]);
     }
     if options.edges {
         for e in &scene.edges {
-            let (a, b) = (layout.map(e[0]), layout.map(e[1]));
-            let len = (b[0] - a[0]).hypot(b[1] - a[1]);
-            let alpha = colour::edge_alpha(len);
+            let Some([a, b]) = clip::segment(e[0], e[1], window) else {
+                continue;
+            };
+            let alpha = colour::edge_alpha(layout.length(e[0], e[1]));
+            let (a, b) = (layout.map(a), layout.map(b));
             canvas.line(a, b, colour::EDGE, alpha, scene.depth_tolerance);
         }
     }
@@ -176,7 +186,8 @@ pub fn png(scene: &Scene, options: &Options) -> Result<Image> {
 }
 
 /// Draws `scene` as an SVG document: plotters' frame, then the polygons (far
-/// to near, each with its outline) with float coordinates, clipped to the plot.
+/// to near, each with its outline) with float coordinates; cells outside the
+/// window are left out and those across its border cut at its margin.
 pub fn svg(scene: &Scene, options: &Options) -> Result<String> {
     let layout = Layout::new(scene, options)?;
     let mut doc = String::new();
@@ -204,19 +215,27 @@ pub fn svg(scene: &Scene, options: &Options) -> Result<String> {
     };
     order.sort_by(|&a, &b| depth(b).total_cmp(&depth(a)));
     let e = colour::EDGE;
+    let window = clip::grown(layout.window, CLIP_MARGIN);
+    let mut inside = Vec::with_capacity(8);
     for k in order {
-        let corners: Vec<[f64; 3]> = scene.polygon(k).iter().map(|&p| layout.map(p)).collect();
+        let polygon = scene.polygon(k);
+        clip::polygon(polygon, window, &mut inside);
+        if inside.is_empty() {
+            continue;
+        }
         let c = scene.colours[k];
         let _ = write!(doc, "<polygon points=\"");
         let mut len = 0.0;
-        for (i, p) in corners.iter().enumerate() {
-            let q = corners[(i + 1) % corners.len()];
-            len += (q[0] - p[0]).hypot(q[1] - p[1]);
+        for (i, &p) in polygon.iter().enumerate() {
+            len += layout.length(p, polygon[(i + 1) % polygon.len()]);
+        }
+        for &p in &inside {
+            let p = layout.map(p);
             let _ = write!(doc, "{:.2},{:.2} ", p[0], p[1]);
         }
         let _ = write!(doc, "\" fill=\"#{:02x}{:02x}{:02x}\"", c[0], c[1], c[2]);
         if options.edges {
-            let alpha = colour::edge_alpha(len / corners.len() as f64);
+            let alpha = colour::edge_alpha(len / polygon.len() as f64);
             let _ = write!(
                 doc,
                 " stroke=\"#{:02x}{:02x}{:02x}\" stroke-opacity=\"{alpha:.2}\" stroke-width=\"0.7\"",
@@ -246,13 +265,13 @@ pub fn write(path: &Path, scene: &Scene, options: &Options) -> Result<()> {
 }
 
 /// An animated GIF being written, one [`Image`] per frame; every frame must
-/// have the first one's size. The frames go to a temporary file beside the
-/// target, renamed over it by [`Gif::finish`]: until then (a failed or killed
-/// run) the target is untouched, and a dropped `Gif` removes its temporary.
+/// have the first one's size. The frames are spooled to an anonymous
+/// temporary file (gone with the process, however it ends) and
+/// [`Gif::finish`] writes the whole GIF with [`write_atomic`]: until then (a
+/// failed or killed run) the target keeps what it held.
 pub struct Gif {
     path: PathBuf,
-    tmp: PathBuf,
-    encoder: Option<gif::Encoder<BufWriter<File>>>,
+    encoder: gif::Encoder<BufWriter<File>>,
     size: (u32, u32),
     delay: u16,
 }
@@ -267,47 +286,38 @@ impl Gif {
                 "a GIF frame of {width} × {height} pixels (at most 65535 each way)"
             )));
         };
-        if is_special(path) {
-            return Err(Error::InvalidSetting(format!(
-                "{}: a device, FIFO or socket (a GIF is written to a regular file)",
-                path.display()
-            )));
-        }
-        let target = link_target(path);
-        let tmp = temp_path(&target);
-        let file = File::create(&tmp).map_err(|source| Error::Io {
-            path: path.to_path_buf(),
+        let spool = tempfile::tempfile().map_err(|source| Error::Io {
+            path: std::env::temp_dir(),
             source,
         })?;
-        let mut gif = Gif {
-            path: target,
-            tmp,
-            encoder: None,
-            size: (width, height),
-            delay,
-        };
         let mut encoder =
-            gif::Encoder::new(BufWriter::new(file), w, h, &[]).map_err(|e| gif_error(path, e))?;
+            gif::Encoder::new(BufWriter::new(spool), w, h, &[]).map_err(|e| gif_error(path, e))?;
         encoder
             .set_repeat(gif::Repeat::Infinite)
             .map_err(|e| gif_error(path, e))?;
-        gif.encoder = Some(encoder);
-        Ok(gif)
+        Ok(Gif {
+            path: path.to_path_buf(),
+            encoder,
+            size: (width, height),
+            delay,
+        })
     }
 
-    /// Ends the GIF and renames it over the target.
-    pub fn finish(mut self) -> Result<()> {
+    /// Ends the GIF and writes it to its target (atomically).
+    pub fn finish(self) -> Result<()> {
         let io = |source| Error::Io {
             path: self.path.clone(),
             source,
         };
-        let encoder = self.encoder.take().expect("taken only here");
-        let file = encoder
+        let mut spool = self
+            .encoder
             .into_inner()
             .and_then(|w| w.into_inner().map_err(|e| e.into_error()))
             .map_err(io)?;
-        file.sync_all().map_err(io)?;
-        std::fs::rename(&self.tmp, &self.path).map_err(io)
+        spool.seek(SeekFrom::Start(0)).map_err(io)?;
+        write_atomic(&self.path, |w: &mut dyn Write| {
+            std::io::copy(&mut spool, w).map(|_| ())
+        })
     }
 
     /// Appends a frame, quantised to 255 colours learnt from it (NeuQuant)
@@ -348,17 +358,8 @@ impl Gif {
         );
         frame.delay = self.delay;
         self.encoder
-            .as_mut()
-            .expect("set until finish")
             .write_frame(&frame)
             .map_err(|e| gif_error(&self.path, e))
-    }
-}
-
-impl Drop for Gif {
-    fn drop(&mut self) {
-        // Renamed by `finish`: nothing left to remove then.
-        let _ = std::fs::remove_file(&self.tmp);
     }
 }
 
