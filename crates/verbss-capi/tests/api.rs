@@ -189,8 +189,13 @@ fn library_deformer(points: &[f64], nodes: &[i64], robust: Robust) -> Deformer {
         facets,
     };
     let mesh = Mesh::new(2, points.to_vec(), cells, vec![group]).unwrap();
-    // The C defaults: the command line's, one worker thread per core.
-    let mut settings = Settings::new(1);
+    // The C defaults: the robust preset (anchored reference) or the paper's
+    // method, one worker thread per core.
+    let mut settings = if robust == Robust::recommended() {
+        Settings::robust(1)
+    } else {
+        Settings::new(1)
+    };
     settings.solve.threads = 0;
     settings.robust = robust;
     let given = Motion::Positions(verbss::motion::PositionSource::Given(Default::default()));

@@ -150,7 +150,7 @@ mod tests {
             "method": "verbss",
             "steps": 10,
             "dt": 0.1,
-            "reference": "updated",
+            "reference": "anchored",
             "solve": {
                 "method": "verbss", "solver": "sor", "omega": 1.6, "tolerance": 1e-6,
                 "absolute_tolerance": false, "max_iterations": 2000, "threads": 1,
