@@ -16,6 +16,9 @@ use crate::motion::{Attachment, Motion, PositionSource};
 use crate::robust::Layer;
 use crate::solve::{Accel, SolveParams, Solver};
 
+/// The largest case file [`Case::read`] reads (1 MiB).
+pub const MAX_CASE_BYTES: u64 = 1 << 20;
+
 /// A parsed case file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Case {
@@ -214,10 +217,24 @@ fn line_of(text: &str, offset: usize) -> usize {
 impl Case {
     /// Reads and checks a case file.
     pub fn read(path: &Path) -> Result<Case> {
-        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
+        let io = |source| Error::Io {
             path: path.to_path_buf(),
             source,
-        })?;
+        };
+        // Case files hold settings: a large one is refused before its TOML
+        // tree (some hundred bytes a key) is built.
+        let size = std::fs::metadata(path).map_err(io)?.len();
+        if size > MAX_CASE_BYTES {
+            return Err(Error::Parse {
+                path: path.to_path_buf(),
+                line: 1,
+                message: format!(
+                    "the case file is {size} bytes (at most {MAX_CASE_BYTES}: a case file holds \
+                     settings; positions go in their own files)"
+                ),
+            });
+        }
+        let text = std::fs::read_to_string(path).map_err(io)?;
         Case::parse(&text, path)
     }
 

@@ -129,6 +129,7 @@ pub fn parse(bytes: &[u8], path: &Path, dim: usize) -> Result<Positions> {
     };
     let mut first_content = true;
     let mut fields: Vec<&str> = Vec::with_capacity(dim + 1);
+    let bytes = &bytes[super::bom(bytes)..];
     for (k, raw) in bytes.split(|&b| b == b'\n').enumerate() {
         let line = k + 1;
         let raw = raw.strip_suffix(b"\r").unwrap_or(raw);

@@ -1,14 +1,16 @@
 //! The `.vtu` reader (what it accepts is in the parent module's doc).
 
+use std::cell::Cell;
 use std::collections::HashMap;
 use std::path::Path;
 
-use super::binary::{decode_base64, BlockError, Layout, Ty, Values};
+use super::binary::{decode_base64, inflate_budget, BlockError, Layout, Ty, Values};
 use super::xml::{collect_offsets, parse_tree, Appended, Ctx, Element};
 use super::{
     kind_of_vtk, Fields, VtuData, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY, UNNAMED_GROUP,
 };
 use crate::error::Result;
+use crate::io::MAX_GROUPS;
 use crate::mesh::{Cells, Group, Mesh};
 
 /// Parses a `.vtu` file's bytes; `path` is only used in error messages.
@@ -44,6 +46,8 @@ struct VtkFile<'a, 'c> {
     appended: Option<Appended<'a>>,
     /// Sorted `offset`s of the appended arrays (to cut base64 appended data).
     offsets: Vec<usize>,
+    /// Bytes the zlib blocks not yet read may still inflate to.
+    budget: Cell<u64>,
 }
 
 impl<'a, 'c> VtkFile<'a, 'c> {
@@ -91,6 +95,7 @@ impl<'a, 'c> VtkFile<'a, 'c> {
             },
             appended,
             offsets,
+            budget: Cell::new(inflate_budget(ctx.bytes.len())),
         })
     }
 
@@ -134,7 +139,7 @@ impl<'a, 'c> VtkFile<'a, 'c> {
             })?,
         };
         let values = match el.attr("format").unwrap_or("ascii") {
-            "ascii" => Some(self.ascii(el, ty, &name)?),
+            "ascii" => self.ascii(el, ty, &name, max)?,
             "binary" => {
                 let text: Vec<u8> = el
                     .text
@@ -145,7 +150,7 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                     .collect();
                 let stream = decode_base64(&text).map_err(|(_, m)| err(m))?;
                 self.layout
-                    .block_values(&stream, ty, max)
+                    .block_values(&stream, ty, max, &self.budget)
                     .map_err(|(_, m)| err(m))?
             }
             "appended" => {
@@ -174,11 +179,11 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                         .map_or(app.data.len(), |&o| o.min(app.data.len()));
                     let stream = decode_base64(&app.data[offset..end]).map_err(at)?;
                     self.layout
-                        .block_values(&stream, ty, max)
+                        .block_values(&stream, ty, max, &self.budget)
                         .map_err(|(_, m)| at((0, m)))?
                 } else {
                     self.layout
-                        .block_values(&app.data[offset..], ty, max)
+                        .block_values(&app.data[offset..], ty, max, &self.budget)
                         .map_err(at)?
                 }
             }
@@ -192,9 +197,9 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         }))
     }
 
-    /// Parses the whitespace-separated numbers of an ascii array (as many as
-    /// the file holds: counts are checked by the caller, with the count).
-    fn ascii(&self, el: &Element, ty: Ty, name: &str) -> Result<Values> {
+    /// Parses the whitespace-separated numbers of an ascii array; `None` as
+    /// soon as there are more than `max` (the caller checks the count).
+    fn ascii(&self, el: &Element, ty: Ty, name: &str, max: usize) -> Result<Option<Values>> {
         let mut ints = Vec::new();
         let mut floats = Vec::new();
         for &(start, end) in &el.text {
@@ -204,6 +209,9 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                 i += token.len() + 1;
                 if token.is_empty() {
                     continue;
+                }
+                if ints.len() + floats.len() == max {
+                    return Ok(None);
                 }
                 let text = std::str::from_utf8(token).unwrap_or("");
                 let ok = if ty.is_float() {
@@ -222,11 +230,11 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                 }
             }
         }
-        Ok(if ty.is_float() {
+        Ok(Some(if ty.is_float() {
             Values::Float(floats)
         } else {
             Values::Int(ints)
-        })
+        }))
     }
 
     /// The mesh and fields of the file.
@@ -235,16 +243,9 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         let grid = root
             .child("UnstructuredGrid")
             .ok_or_else(|| ctx.at(root.pos, "missing <UnstructuredGrid> in <VTKFile>".into()))?;
-        let mut pieces = grid.children_named("Piece");
-        let piece = pieces
-            .next()
+        let piece = grid
+            .child("Piece")
             .ok_or_else(|| ctx.at(grid.pos, "missing <Piece> in <UnstructuredGrid>".into()))?;
-        if let Some(second) = pieces.next() {
-            return Err(ctx.at(
-                second.pos,
-                "a second <Piece> (only single-piece files are supported)".into(),
-            ));
-        }
         let count = |key: &str| -> Result<usize> {
             let v = piece.attr(key).unwrap_or("");
             v.parse()
@@ -479,6 +480,12 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                 },
                 _ => continue,
             };
+            if names.len() == MAX_GROUPS {
+                return Err(self.ctx.at(
+                    el.pos,
+                    format!("more than {MAX_GROUPS} group names in <FieldData> (the most verbss reads)"),
+                ));
+            }
             names.push((v[0], a.name, tag));
         }
         names.sort_by_key(|g| g.0);
@@ -634,6 +641,7 @@ fn assemble(
         groups,
         su2_skipped: Vec::new(),
     };
-    mesh.validate()?;
+    mesh.validate()
+        .map_err(|e| crate::io::invalid_at(e, |m| ctx.at(piece.pos, m)))?;
     Ok(VtuData { mesh, fields })
 }

@@ -417,7 +417,7 @@ fn error_counts_that_disagree() {
     );
     assert_eq!(
         broken(">3</DataArray>", ">3 3</DataArray>"),
-        "x.vtu:10: DataArray 'offsets': 2 values but NumberOfCells=1"
+        "x.vtu:10: DataArray 'offsets': holds more than the 1 tuples that NumberOfCells=1 needs"
     );
     assert_eq!(
         broken(">5</DataArray>", ">9</DataArray>"),
