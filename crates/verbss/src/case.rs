@@ -16,7 +16,8 @@ use crate::motion::{Attachment, Motion, PositionSource};
 use crate::robust::Layer;
 use crate::solve::{Accel, SolveParams, Solver};
 
-/// The largest case file [`Case::read`] reads (1 MiB).
+/// The largest case file [`Case::read`] reads (1 MiB: it holds settings;
+/// positions go in their own files).
 pub const MAX_CASE_BYTES: u64 = 1 << 20;
 
 /// A parsed case file.
@@ -217,21 +218,18 @@ fn line_of(text: &str, offset: usize) -> usize {
 impl Case {
     /// Reads and checks a case file.
     pub fn read(path: &Path) -> Result<Case> {
-        let io = |source| Error::Io {
-            path: path.to_path_buf(),
+        let (path_buf, io) = (path.to_path_buf(), |source| Error::Io {
+            path: path.into(),
             source,
-        };
-        // Case files hold settings: a large one is refused before its TOML
-        // tree (some hundred bytes a key) is built.
+        });
+        // Refused before its TOML tree (some hundred bytes a key) is built.
         let size = std::fs::metadata(path).map_err(io)?.len();
         if size > MAX_CASE_BYTES {
+            let message = format!("the case file is {size} bytes (at most {MAX_CASE_BYTES})");
             return Err(Error::Parse {
-                path: path.to_path_buf(),
+                path: path_buf,
                 line: 1,
-                message: format!(
-                    "the case file is {size} bytes (at most {MAX_CASE_BYTES}: a case file holds \
-                     settings; positions go in their own files)"
-                ),
+                message,
             });
         }
         let text = std::fs::read_to_string(path).map_err(io)?;

@@ -335,6 +335,12 @@ mod tests {
     }
 
     #[test]
+    fn a_byte_order_mark_is_skipped() {
+        let p = parse("\u{feff}3 0.5 1\n".as_bytes(), Path::new("p.dat"), 2).unwrap();
+        assert_eq!((p.ids, p.coords), (vec![3], vec![0.5, 1.0]));
+    }
+
+    #[test]
     fn missing_file() {
         let path = format!("{DIR}no_such_positions.dat");
         assert_eq!(

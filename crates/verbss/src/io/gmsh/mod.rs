@@ -51,6 +51,8 @@ mod v41;
 mod write;
 
 #[cfg(test)]
+mod hostile_tests;
+#[cfg(test)]
 mod tests;
 
 use std::io::Write;

@@ -308,7 +308,9 @@ impl<'a> Parser<'a> {
                 if n > MAX_GROUPS {
                     return Err(self.err(
                         line,
-                        format!("NMARK= {n} is more than {MAX_GROUPS} markers (the most verbss reads)"),
+                        format!(
+                            "NMARK= {n} is more than {MAX_GROUPS} markers (the most verbss reads)"
+                        ),
                     ));
                 }
                 self.nmark = Some((n, line));

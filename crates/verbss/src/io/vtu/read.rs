@@ -465,7 +465,9 @@ impl<'a, 'c> VtkFile<'a, 'c> {
     fn group_names(&self, field_data: &Element) -> Result<Vec<(i64, String, Option<i32>)>> {
         let mut names = Vec::new();
         for el in field_data.children_named("DataArray") {
-            if el.attr("type").and_then(Ty::parse).is_none_or(Ty::is_float) {
+            // Float arrays are decoded too (never beyond 3 values), so that
+            // a zlib bomb is refused wherever it is.
+            if el.attr("type").and_then(Ty::parse).is_none() {
                 continue;
             }
             let Some(a) = self.decode(el, Limit::Values(3), "a group name")? else {
@@ -483,7 +485,9 @@ impl<'a, 'c> VtkFile<'a, 'c> {
             if names.len() == MAX_GROUPS {
                 return Err(self.ctx.at(
                     el.pos,
-                    format!("more than {MAX_GROUPS} group names in <FieldData> (the most verbss reads)"),
+                    format!(
+                        "more than {MAX_GROUPS} group names in <FieldData> (the most verbss reads)"
+                    ),
                 ));
             }
             names.push((v[0], a.name, tag));

@@ -146,16 +146,15 @@ fn fate(ctx: &Ctx, parent: &Element, e: &BytesStart, pos: usize) -> Result<Fate>
             };
             ["connectivity", "offsets", "types"].iter().any(|&n| {
                 array.as_deref() == Some(n)
-                    && parent.children_named(child).all(|c| c.attr("Name") != Some(n))
+                    && parent
+                        .children_named(child)
+                        .all(|c| c.attr("Name") != Some(n))
             })
         }
         "FieldData" | "PointData" | "CellData" if parent.children.len() == MAX_ARRAYS => {
             return Err(ctx.at(
                 pos,
-                format!(
-                    "more than {MAX_ARRAYS} <DataArray>s in <{}>",
-                    parent.name
-                ),
+                format!("more than {MAX_ARRAYS} <DataArray>s in <{}>", parent.name),
             ))
         }
         _ => true,
@@ -229,7 +228,10 @@ pub(super) fn parse_tree<'a>(ctx: &Ctx<'a>) -> Result<(Element, Option<Appended<
                 continue;
             }
             Event::CData(t) => {
-                if let Some(el) = stack.last_mut().filter(|el| skipped == 0 && el.name == "DataArray") {
+                if let Some(el) = stack
+                    .last_mut()
+                    .filter(|el| skipped == 0 && el.name == "DataArray")
+                {
                     // The text between `<![CDATA[` and `]]>`.
                     el.text.push((pos + 9, pos + 9 + t.len()));
                 }
