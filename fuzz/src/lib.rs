@@ -1,10 +1,12 @@
 //! What the fuzz targets share: the checks every successfully read mesh must
-//! pass, a byte reader for structured inputs, and small generated meshes.
+//! pass, a byte reader for structured inputs, small generated meshes and the
+//! structure-aware file generators.
 
 use std::path::Path;
 
 use verbss::Mesh;
 
+pub mod gen;
 mod grid;
 pub use grid::grid;
 

@@ -98,6 +98,12 @@ impl Values {
         data: &[u8],
     ) -> std::result::Result<(), BlockError> {
         let size = ty.size();
+        let n = data.len() / size;
+        let failed = |_| (0, format!("cannot allocate memory for {n} more values"));
+        match self {
+            Values::Int(v) => v.try_reserve(n).map_err(failed)?,
+            Values::Float(v) => v.try_reserve(n).map_err(failed)?,
+        }
         macro_rules! conv {
             ($t:ty) => {
                 data.chunks_exact(size).map(|c| {
@@ -264,7 +270,10 @@ impl Layout {
             return Err(not_whole(claimed));
         }
         budget.set(budget.get() - decoded);
-        let mut values = Values::with_capacity(ty, claimed as usize / size)?;
+        // Deflate inflates at most 1032 times: what the data can hold is
+        // reserved, not what a lying header claims.
+        let can_hold = (s.len() - header) as u64 * 1032 + 64;
+        let mut values = Values::with_capacity(ty, claimed.min(can_hold) as usize / size)?;
         let mut start = header;
         let mut buf = vec![0u8; 1 << 16];
         // Bytes of a value split between two reads.
