@@ -141,7 +141,8 @@ impl Writer<'_> {
             let n = lie.map_or(data.len() as u64, |l| l.blocks.of(data.len()));
             return (self.words(&[n]), data.to_vec());
         }
-        let size = 1 + usize::from(e.block);
+        // At most 16 blocks (a compressor costs some hundred kilobytes).
+        let size = (1 + usize::from(e.block)).max(data.len().div_ceil(16));
         let chunks: Vec<Vec<u8>> = data.chunks(size).map(zlib).collect();
         let last = data.len() - size * chunks.len().saturating_sub(1);
         let mut words = vec![chunks.len() as u64, size as u64, last as u64];
@@ -204,30 +205,28 @@ impl Writer<'_> {
             escaped(name),
             e.components.text(components)
         );
-        let (header, body) = self.block(&data, &e);
-        match e.format {
-            Format::Ascii => format!(r#"{head} format="ascii">{text}</DataArray>"#),
-            Format::Binary => {
-                let encoded = if e.block % 2 == 1 {
-                    STANDARD.encode([header, body].concat())
-                } else {
-                    STANDARD.encode(header) + &STANDARD.encode(body)
-                };
-                format!(r#"{head} format="binary">{encoded}</DataArray>"#)
-            }
-            Format::Appended => {
-                let offset = e.lie.as_ref().map_or(self.appended.len() as u64, |l| {
-                    l.offset.of(self.appended.len())
-                });
-                let bytes = [header, body].concat();
-                if self.file.appended_base64 {
-                    self.appended.extend(STANDARD.encode(bytes).bytes());
-                } else {
-                    self.appended.extend(bytes);
-                }
-                format!(r#"{head} format="appended" offset="{offset}"/>"#)
-            }
+        let (header, body) = match e.format {
+            Format::Ascii => return format!(r#"{head} format="ascii">{text}</DataArray>"#),
+            _ => self.block(&data, &e),
+        };
+        if let Format::Binary = e.format {
+            let encoded = if e.block % 2 == 1 {
+                STANDARD.encode([header, body].concat())
+            } else {
+                STANDARD.encode(header) + &STANDARD.encode(body)
+            };
+            return format!(r#"{head} format="binary">{encoded}</DataArray>"#);
         }
+        let offset = e.lie.as_ref().map_or(self.appended.len() as u64, |l| {
+            l.offset.of(self.appended.len())
+        });
+        let bytes = [header, body].concat();
+        if self.file.appended_base64 {
+            self.appended.extend(STANDARD.encode(bytes).bytes());
+        } else {
+            self.appended.extend(bytes);
+        }
+        format!(r#"{head} format="appended" offset="{offset}"/>"#)
     }
 }
 

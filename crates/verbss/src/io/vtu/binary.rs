@@ -63,7 +63,7 @@ pub(super) enum Values {
 impl Values {
     /// No values yet, room for `n` of type `ty`; an error instead of an abort
     /// when that room cannot be had.
-    fn with_capacity(ty: Ty, n: usize) -> std::result::Result<Values, BlockError> {
+    pub(super) fn with_capacity(ty: Ty, n: usize) -> std::result::Result<Values, BlockError> {
         let failed = |_| (0, format!("cannot allocate memory for {n} values"));
         Ok(if ty.is_float() {
             let mut v = Vec::new();

@@ -197,11 +197,22 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         }))
     }
 
-    /// Parses the whitespace-separated numbers of an ascii array; `None` as
-    /// soon as there are more than `max` (the caller checks the count).
+    /// Parses the whitespace-separated numbers of an ascii array; `None`,
+    /// before any parsing, when there are more than `max` (the caller checks
+    /// the count). The numbers are counted first and get exactly their room.
     fn ascii(&self, el: &Element, ty: Ty, name: &str, max: usize) -> Result<Option<Values>> {
-        let mut ints = Vec::new();
-        let mut floats = Vec::new();
+        let tokens = |&(start, end): &(usize, usize)| {
+            self.ctx.bytes[start..end]
+                .split(|b| b.is_ascii_whitespace())
+                .filter(|t| !t.is_empty())
+                .count()
+        };
+        let count: usize = el.text.iter().map(tokens).sum();
+        if count > max {
+            return Ok(None);
+        }
+        let mut values = Values::with_capacity(ty, count)
+            .map_err(|(_, m)| self.ctx.at(el.pos, format!("DataArray '{name}': {m}")))?;
         for &(start, end) in &el.text {
             let mut i = start;
             for token in self.ctx.bytes[start..end].split(|b| b.is_ascii_whitespace()) {
@@ -210,14 +221,10 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                 if token.is_empty() {
                     continue;
                 }
-                if ints.len() + floats.len() == max {
-                    return Ok(None);
-                }
                 let text = std::str::from_utf8(token).unwrap_or("");
-                let ok = if ty.is_float() {
-                    text.parse().map(|x| floats.push(x)).is_ok()
-                } else {
-                    text.parse().map(|x| ints.push(x)).is_ok()
+                let ok = match &mut values {
+                    Values::Float(v) => text.parse().map(|x| v.push(x)).is_ok(),
+                    Values::Int(v) => text.parse().map(|x| v.push(x)).is_ok(),
                 };
                 if !ok {
                     return Err(self.ctx.at(
@@ -230,11 +237,7 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                 }
             }
         }
-        Ok(Some(if ty.is_float() {
-            Values::Float(floats)
-        } else {
-            Values::Int(ints)
-        }))
+        Ok(Some(values))
     }
 
     /// The mesh and fields of the file.
@@ -296,6 +299,7 @@ impl<'a, 'c> VtkFile<'a, 'c> {
             cell_array("types")?,
         ];
         let all = self.cells(&arrays, n, ncells)?;
+        drop(arrays);
 
         let point_data = self.data(piece.child("PointData"), "NumberOfPoints", n)?;
         let cell_data = self.data(piece.child("CellData"), "NumberOfCells", ncells)?;
@@ -371,6 +375,9 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         let ends = self.ints(offsets, Some(ncells))?;
         let kinds = self.ints(types, Some(ncells))?;
         let mut cells = Cells::new();
+        cells.kinds.reserve_exact(ncells);
+        cells.offsets.reserve_exact(ncells);
+        cells.nodes.reserve_exact(nodes.len());
         let mut start = 0;
         for (c, (&end, &t)) in ends.iter().zip(kinds).enumerate() {
             let kind = kind_of_vtk(t).ok_or_else(|| {
@@ -503,14 +510,22 @@ fn take_array<'e>(arrays: &mut Vec<Array<'e>>, name: &str) -> Option<Array<'e>> 
     Some(arrays.remove(i))
 }
 
-/// Tags from an integer array (each ≥ 1), or `1..=count` when there is none.
-fn tags(file: &VtkFile, array: Option<Array>, what: &str, keep: &[usize]) -> Result<Vec<u64>> {
+/// Tags from an integer array (each ≥ 1), or `1..=count` when there is none,
+/// of the `count` entries at `keep` (all when `None`).
+fn tags(
+    file: &VtkFile,
+    array: Option<Array>,
+    what: &str,
+    count: usize,
+    keep: Option<&[usize]>,
+) -> Result<Vec<u64>> {
     let Some(a) = array else {
-        return Ok((1..=keep.len() as u64).collect());
+        return Ok((1..=count as u64).collect());
     };
     let values = file.ints(&a, None)?;
-    keep.iter()
-        .map(|&i| {
+    (0..count)
+        .map(|k| keep.map_or(k, |keep| keep[k]))
+        .map(|i| {
             u64::try_from(values[i])
                 .ok()
                 .filter(|&t| t >= 1)
@@ -562,9 +577,10 @@ fn assemble(
         return Err(ctx.at(piece.pos, message));
     }
 
-    let group_ids = match take_array(&mut cell_data, GROUP_ARRAY) {
-        Some(a) => file.ints(&a, None)?.to_vec(),
-        None => vec![0; all.len()],
+    let group_array = take_array(&mut cell_data, GROUP_ARRAY);
+    let group_ids = match &group_array {
+        Some(a) => Some(file.ints(a, None)?),
+        None => None,
     };
     let mut groups: Vec<Group> = names
         .iter()
@@ -579,41 +595,48 @@ fn assemble(
     for (k, g) in names.iter().enumerate() {
         by_id.entry(g.0).or_insert(k);
     }
-    let mut volume = Vec::new();
-    let mut cells = Cells::new();
-    let mut unnamed = None;
-    for (c, (kind, nodes)) in all.iter().enumerate() {
-        if kind.dim() == dim {
-            volume.push(c);
-            cells.push(kind, nodes);
-            continue;
+    // All cells volume cells (no group facets): no copy.
+    let (volume, cells) = if all.kinds.iter().all(|k| k.dim() == dim) {
+        ((0..all.len()).collect(), all)
+    } else {
+        let mut volume = Vec::new();
+        let mut cells = Cells::new();
+        let mut unnamed = None;
+        for (c, (kind, nodes)) in all.iter().enumerate() {
+            if kind.dim() == dim {
+                volume.push(c);
+                cells.push(kind, nodes);
+                continue;
+            }
+            let named = by_id.get(&group_ids.map_or(0, |g| g[c])).copied();
+            let k = named.unwrap_or_else(|| {
+                *unnamed.get_or_insert_with(|| {
+                    groups.push(Group {
+                        name: UNNAMED_GROUP.to_string(),
+                        tag: None,
+                        facets: Cells::new(),
+                    });
+                    groups.len() - 1
+                })
+            });
+            groups[k].facets.push(kind, nodes);
         }
-        let named = by_id.get(&group_ids[c]).copied();
-        let k = named.unwrap_or_else(|| {
-            *unnamed.get_or_insert_with(|| {
-                groups.push(Group {
-                    name: UNNAMED_GROUP.to_string(),
-                    tag: None,
-                    facets: Cells::new(),
-                });
-                groups.len() - 1
-            })
-        });
-        groups[k].facets.push(kind, nodes);
-    }
+        (volume, cells)
+    };
 
-    let all_points: Vec<usize> = (0..n).collect();
     let node_tags = tags(
         file,
         take_array(&mut point_data, NODE_TAG_ARRAY),
         "point",
-        &all_points,
+        n,
+        None,
     )?;
     let cell_tags = tags(
         file,
         take_array(&mut cell_data, CELL_TAG_ARRAY),
         "cell",
-        &volume,
+        volume.len(),
+        Some(&volume),
     )?;
     let fields = Fields {
         point: point_data
@@ -631,11 +654,15 @@ fn assemble(
             })
             .collect(),
     };
-    let coords = if dim == 3 {
-        coords
-    } else {
-        coords.chunks_exact(3).flat_map(|p| [p[0], p[1]]).collect()
-    };
+    let mut coords = coords;
+    if dim == 2 {
+        // x y z to x y, in place.
+        for i in 0..n {
+            coords.copy_within(3 * i..3 * i + 2, 2 * i);
+        }
+        coords.truncate(2 * n);
+        coords.shrink_to_fit();
+    }
     let mesh = Mesh {
         dim,
         coords,
