@@ -231,7 +231,7 @@ fn a_duplicated_element_is_refused_by_every_reader() {
     let text = msh_with_tags(1, 1).replace("3 1 3 4\n", "3 3 2 1\n");
     refused(
         &file(dir.path(), "twice.msh", text),
-        &format!("twice.msh:21: invalid mesh: elements 2 and 3 have the same nodes"),
+        "twice.msh:21: invalid mesh: elements 2 and 3 have the same nodes",
     );
 }
 

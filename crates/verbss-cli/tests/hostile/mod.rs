@@ -115,6 +115,10 @@ pub struct Run {
 
 /// Runs `verbss ARGS` in a child killed after 30 s (a hang fails the test
 /// instead of stalling the suite).
+#[expect(
+    clippy::zombie_processes,
+    reason = "the child is reaped by wait4, which also gives its resource usage"
+)]
 pub fn run(args: &[&str]) -> Run {
     let mut child = Command::new(env!("CARGO_BIN_EXE_verbss"))
         .args(args)

@@ -291,7 +291,13 @@ pub(super) fn finish(
                 ),
             ));
         }
-        coords = coords.chunks_exact(3).flat_map(|p| [p[0], p[1]]).collect();
+        // x y z to x y, in place.
+        let n = coords.len() / 3;
+        for i in 0..n {
+            coords.copy_within(3 * i..3 * i + 2, 2 * i);
+        }
+        coords.truncate(2 * n);
+        coords.shrink_to_fit();
     }
     let top = std::mem::take(&mut elements.buckets[dim]);
     let (cells, cell_tags) = if copies {
