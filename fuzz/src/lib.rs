@@ -1,10 +1,12 @@
 //! What the fuzz targets share: the checks every successfully read mesh must
-//! pass and a byte reader for structured inputs (the generated meshes are
-//! [`verbss::mesh::samples`]).
+//! pass, a byte reader for structured inputs and the structure-aware file
+//! generators (the generated meshes are [`verbss::mesh::samples`]).
 
 use std::path::Path;
 
 use verbss::Mesh;
+
+pub mod gen;
 
 /// A mesh that a reader accepted must pass `Mesh::validate`, and what the
 /// writer makes of it (when it can store it) must read back.

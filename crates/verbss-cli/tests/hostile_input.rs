@@ -320,12 +320,11 @@ fn a_duplicated_element_is_refused() {
         SQUARE.replace("NELEM= 8\n5 0 1 4\n", "NELEM= 9\n5 0 1 4\n5 1 4 0\n"),
     )
     .expect("write the mesh");
-    rejected(
-        &mesh,
-        "left",
-        &["--translate", "0.1,0"],
-        "invalid mesh: elements 1 and 2 have the same nodes (a duplicated element)",
+    let message = format!(
+        "{}:2: invalid mesh: elements 1 and 2 have the same nodes (a duplicated element)",
+        mesh.display()
     );
+    rejected(&mesh, "left", &["--translate", "0.1,0"], &message);
 }
 
 #[test]

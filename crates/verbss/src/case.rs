@@ -14,6 +14,10 @@ use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Motion, PositionSource};
 
+/// The largest case file [`Case::read`] reads (1 MiB: it holds settings;
+/// positions go in their own files).
+pub const MAX_CASE_BYTES: u64 = 1 << 20;
+
 /// A parsed case file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Case {
@@ -204,10 +208,21 @@ fn line_of(text: &str, offset: usize) -> usize {
 impl Case {
     /// Reads and checks a case file.
     pub fn read(path: &Path) -> Result<Case> {
-        let text = std::fs::read_to_string(path).map_err(|source| Error::Io {
-            path: path.to_path_buf(),
+        let (path_buf, io) = (path.to_path_buf(), |source| Error::Io {
+            path: path.into(),
             source,
-        })?;
+        });
+        // Refused before its TOML tree (some hundred bytes a key) is built.
+        let size = std::fs::metadata(path).map_err(io)?.len();
+        if size > MAX_CASE_BYTES {
+            let message = format!("the case file is {size} bytes (at most {MAX_CASE_BYTES})");
+            return Err(Error::Parse {
+                path: path_buf,
+                line: 1,
+                message,
+            });
+        }
+        let text = std::fs::read_to_string(path).map_err(io)?;
         Case::parse(&text, path)
     }
 

@@ -18,6 +18,11 @@ use crate::error::{Error, Result};
 use crate::geometry::{cross, dot, norm};
 use crate::io::positions;
 
+mod pattern;
+
+use pattern::step_fields;
+pub use pattern::step_path;
+
 /// Step `step` of a run of `steps` steps, with physical time `step × dt`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Clock {
@@ -263,13 +268,9 @@ impl Motion {
                 }
             }
             Motion::Slide { normal: Some(n) } => unit(n, "the slide normal").map(|_| ()),
-            Motion::Positions(PositionSource::PerStep(pattern)) => match step_width(pattern) {
-                Some(w) if w > MAX_STEP_WIDTH => bad(format!(
-                    "the file pattern \"{}\" asks for {w} digits (at most {MAX_STEP_WIDTH})",
-                    pattern.display()
-                )),
-                _ => Ok(()),
-            },
+            Motion::Positions(PositionSource::PerStep(pattern)) => {
+                step_fields(&pattern.to_string_lossy()).map_or_else(bad, |_| Ok(()))
+            }
             _ => Ok(()),
         }
     }
@@ -447,42 +448,6 @@ fn unit_or_z(axis: &[f64; 3], dim: usize) -> [f64; 3] {
         return [0.0, 0.0, 1.0];
     }
     unit(axis, "the rotation axis").unwrap_or([0.0, 0.0, 1.0])
-}
-
-/// The widest `{step:0W}` a pattern may ask for (a step number has at
-/// most 20 digits).
-const MAX_STEP_WIDTH: usize = 20;
-
-/// The `{step` … `}` of a pattern: its start and length.
-fn step_field(s: &str) -> Option<(usize, usize)> {
-    let start = s.find("{step")?;
-    Some((start, s[start..].find('}')?))
-}
-
-/// The `W` of a pattern's `{step:0W}`.
-fn step_width(pattern: &std::path::Path) -> Option<usize> {
-    let s = pattern.to_string_lossy();
-    let (start, len) = step_field(&s)?;
-    s[start + 5..start + len].strip_prefix(":0")?.parse().ok()
-}
-
-/// The file of step `step` for a pattern with `{step}` or `{step:0W}` (W
-/// at most 20, checked by [`Motion::validate`]).
-pub fn step_path(pattern: &std::path::Path, step: usize) -> PathBuf {
-    let s = pattern.to_string_lossy();
-    let Some((start, len)) = step_field(&s) else {
-        return pattern.to_path_buf();
-    };
-    let number = match step_width(pattern) {
-        Some(width) => format!("{step:0width$}", width = width.min(MAX_STEP_WIDTH)),
-        None => step.to_string(),
-    };
-    PathBuf::from(format!(
-        "{}{}{}",
-        &s[..start],
-        number,
-        &s[start + len + 1..]
-    ))
 }
 
 #[cfg(test)]

@@ -15,6 +15,30 @@ pub mod pvd;
 pub mod su2;
 pub mod vtu;
 
+/// The most groups (SU2 markers, Gmsh physical groups, VTU group names) a
+/// reader accepts: real meshes have tens to thousands, and each group costs
+/// a few hundred bytes however small the file that names it.
+pub const MAX_GROUPS: usize = 1 << 16;
+
+/// The length of the UTF-8 byte-order mark that `bytes` starts with (3), or 0:
+/// text readers start after it.
+fn bom(bytes: &[u8]) -> usize {
+    if bytes.starts_with(b"\xef\xbb\xbf") {
+        3
+    } else {
+        0
+    }
+}
+
+/// Names the place in the file (`at`) of a [`Mesh::validate`] failure of a
+/// mesh just read; other errors pass unchanged.
+fn invalid_at(e: Error, at: impl FnOnce(String) -> Error) -> Error {
+    match e {
+        Error::InvalidMesh(m) => at(format!("invalid mesh: {m}")),
+        e => e,
+    }
+}
+
 /// Options for [`write()`].
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]

@@ -129,6 +129,7 @@ pub fn parse(bytes: &[u8], path: &Path, dim: usize) -> Result<Positions> {
     };
     let mut first_content = true;
     let mut fields: Vec<&str> = Vec::with_capacity(dim + 1);
+    let bytes = &bytes[super::bom(bytes)..];
     for (k, raw) in bytes.split(|&b| b == b'\n').enumerate() {
         let line = k + 1;
         let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
@@ -331,6 +332,12 @@ mod tests {
         let past = parse(b"6 0 0\n1 1 1\n", Path::new("p.dat"), 2).unwrap();
         let e = past.check_against(5, Path::new("p.dat")).unwrap_err();
         assert!(!e.to_string().contains("1-based"), "{e}");
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_skipped() {
+        let p = parse("\u{feff}3 0.5 1\n".as_bytes(), Path::new("p.dat"), 2).unwrap();
+        assert_eq!((p.ids, p.coords), (vec![3], vec![0.5, 1.0]));
     }
 
     #[test]

@@ -56,6 +56,8 @@ use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 
 mod binary;
+#[cfg(test)]
+mod hostile_tests;
 mod read;
 #[cfg(test)]
 mod tests;

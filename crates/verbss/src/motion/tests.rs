@@ -150,14 +150,6 @@ fn final_positions_are_reached_exactly() {
 }
 
 #[test]
-fn step_file_patterns() {
-    let p = std::path::Path::new("d/pos_{step:04}.csv");
-    assert_eq!(step_path(p, 7), PathBuf::from("d/pos_0007.csv"));
-    let p = std::path::Path::new("pos_{step}.dat");
-    assert_eq!(step_path(p, 12), PathBuf::from("pos_12.dat"));
-}
-
-#[test]
 fn invalid_settings_are_named() {
     let m = Motion::Bending {
         root: [0.0; 3],

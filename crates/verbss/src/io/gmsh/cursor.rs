@@ -36,11 +36,11 @@ pub(super) fn show(bytes: &[u8]) -> String {
 }
 
 impl<'a> Cursor<'a> {
-    /// A cursor at the start of `bytes`, in ASCII mode.
+    /// A cursor at the start of `bytes` (after a byte-order mark), in ASCII mode.
     pub fn new(bytes: &'a [u8], path: &'a Path) -> Self {
         Cursor {
             bytes,
-            pos: 0,
+            pos: crate::io::bom(bytes),
             line: 1,
             mark: Mark { offset: 0, line: 1 },
             binary: false,

@@ -51,15 +51,17 @@ mod v41;
 mod write;
 
 #[cfg(test)]
+mod hostile_tests;
+#[cfg(test)]
 mod tests;
 
 use std::io::Write;
 use std::path::Path;
 
-use super::MshVersion;
+use super::{MshVersion, MAX_GROUPS};
 use crate::error::Result;
 use crate::mesh::Mesh;
-use cursor::{show, Cursor};
+use cursor::{show, Cursor, Mark};
 use model::{finish, Elements, Names, NodeIndex, Nodes};
 
 /// Parses a Gmsh file's bytes; `path` is only used in error messages.
@@ -69,7 +71,7 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
     let mut names = Names::new();
     let mut entities = v41::Entities::default();
     let mut nodes: Option<(Nodes, NodeIndex)> = None;
-    let mut elements: Option<Elements> = None;
+    let mut elements: Option<(Elements, Mark)> = None;
     while let Some(tok) = c.next_token() {
         let section = c.mark();
         match tok {
@@ -97,10 +99,11 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
                 let Some((_, index)) = &nodes else {
                     return Err(c.error("$Elements comes before $Nodes"));
                 };
-                elements = Some(match version {
+                let read = match version {
                     MshVersion::V22 => v22::read_elements(&mut c, index)?,
                     MshVersion::V41 => v41::read_elements(&mut c, index, &entities)?,
-                });
+                };
+                elements = Some((read, section));
             }
             t if t.len() > 1 && t[0] == b'$' && !t.starts_with(b"$End") => {
                 let name = String::from_utf8_lossy(&t[1..]).into_owned();
@@ -222,6 +225,13 @@ fn read_names(c: &mut Cursor, names: &mut Names) -> Result<()> {
             }
         };
         names.insert((dim, tag), name);
+        if names.len() > 4 * MAX_GROUPS {
+            return Err(c.error(format!(
+                "more than {} physical names ({MAX_GROUPS} groups of each dimension are \
+                 the most verbss reads)",
+                4 * MAX_GROUPS
+            )));
+        }
     }
     close(c, "$EndPhysicalNames", n, "names")
 }

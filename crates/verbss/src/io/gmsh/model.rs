@@ -6,6 +6,7 @@ use std::ops::Range;
 
 use super::cursor::{Cursor, Mark};
 use crate::error::Result;
+use crate::io::MAX_GROUPS;
 use crate::mesh::{CellKind, Cells, Group, Mesh};
 
 /// Element types verbss reads, as Gmsh numbers them: `(type, kind)`.
@@ -171,6 +172,10 @@ pub(super) struct Elements {
     seen: HashSet<(usize, i32)>,
     /// The `(dimension, range)`s of `physicals` already in `order`.
     listed: HashSet<(usize, Range<usize>)>,
+    /// Where each single tag of [`Elements::set_physical`] is in `physicals`.
+    single: HashMap<i32, usize>,
+    /// How many `(dimension, physical tag)` pairs of each dimension `order` holds.
+    groups: [usize; 4],
 }
 
 impl Elements {
@@ -192,39 +197,51 @@ impl Elements {
         }
     }
 
-    /// The elements of dimension `dim` pushed from now on carry `physicals`.
-    pub fn set_physicals(&mut self, dim: usize, physicals: &[i32]) {
-        let current = self.buckets[dim]
-            .runs
-            .last()
-            .map_or(&[][..], |(_, r)| &self.physicals[r.clone()]);
-        if current == physicals {
-            return;
-        }
-        let start = self.physicals.len();
-        self.physicals.extend_from_slice(physicals);
-        self.set_run(dim, start..self.physicals.len());
+    /// The elements of dimension `dim` pushed from now on carry the one
+    /// physical tag `physical`, or none when it is 0 (MSH 2.2).
+    pub fn set_physical(&mut self, dim: usize, physical: i32) -> std::result::Result<(), String> {
+        let range = match physical {
+            0 => 0..0,
+            p => {
+                let next = self.physicals.len();
+                let start = *self.single.entry(p).or_insert(next);
+                if start == next {
+                    self.physicals.push(p);
+                }
+                start..start + 1
+            }
+        };
+        self.set_run(dim, range)
     }
 
     /// The elements of dimension `dim` pushed from now on carry
-    /// `physicals[range]` (of [`Elements::with_physicals`]).
-    pub fn set_run(&mut self, dim: usize, range: Range<usize>) {
+    /// `physicals[range]` (of [`Elements::with_physicals`]); fails when a
+    /// dimension gets more than [`MAX_GROUPS`] physical groups.
+    pub fn set_run(&mut self, dim: usize, range: Range<usize>) -> std::result::Result<(), String> {
         let b = &mut self.buckets[dim];
         let same = match b.runs.last() {
             None => range.is_empty(),
             Some((_, r)) => *r == range || (r.is_empty() && range.is_empty()),
         };
         if same {
-            return;
+            return Ok(());
         }
         b.runs.push((b.cells.len(), range.clone()));
         if self.listed.insert((dim, range.clone())) {
             for &p in &self.physicals[range] {
                 if self.seen.insert((dim, p)) {
+                    if self.groups[dim] == MAX_GROUPS {
+                        return Err(format!(
+                            "more than {MAX_GROUPS} physical groups of dimension {dim} \
+                             (the most verbss reads)"
+                        ));
+                    }
+                    self.groups[dim] += 1;
                     self.order.push((dim, p));
                 }
             }
         }
+        Ok(())
     }
 
     /// Appends element `tag` of `kind` on node indices `nodes`.
@@ -241,11 +258,12 @@ impl Elements {
 ///
 /// `copies`: MSH 2 writes an element once per physical group it belongs to;
 /// consecutive identical cells are then one cell. `end` locates errors that
-/// concern the file as a whole.
+/// concern the file as a whole, the `$Elements` mark those of
+/// [`Mesh::validate`].
 pub(super) fn finish(
     c: &Cursor,
     nodes: Nodes,
-    mut elements: Elements,
+    (mut elements, at): (Elements, Mark),
     names: &Names,
     copies: bool,
     end: Mark,
@@ -273,7 +291,13 @@ pub(super) fn finish(
                 ),
             ));
         }
-        coords = coords.chunks_exact(3).flat_map(|p| [p[0], p[1]]).collect();
+        // x y z to x y, in place.
+        let n = coords.len() / 3;
+        for i in 0..n {
+            coords.copy_within(3 * i..3 * i + 2, 2 * i);
+        }
+        coords.truncate(2 * n);
+        coords.shrink_to_fit();
     }
     let top = std::mem::take(&mut elements.buckets[dim]);
     let (cells, cell_tags) = if copies {
@@ -285,6 +309,13 @@ pub(super) fn finish(
         return Err(c.error_at(end, format!("element tag {t} is used by two elements")));
     }
     check_copies(c, &elements, dim, end)?;
+    let groups: usize = elements.groups[..dim].iter().sum();
+    if groups > MAX_GROUPS {
+        return Err(c.error_at(
+            end,
+            format!("{groups} physical groups below dimension {dim}, more than {MAX_GROUPS} (the most verbss reads)"),
+        ));
+    }
     let mut index = HashMap::new();
     let mut groups: Vec<Group> = Vec::new();
     for &(d, p) in elements.order.iter().filter(|(d, _)| *d < dim) {
@@ -315,7 +346,8 @@ pub(super) fn finish(
         groups,
         su2_skipped: Vec::new(),
     };
-    mesh.validate()?;
+    mesh.validate()
+        .map_err(|e| crate::io::invalid_at(e, |m| c.error_at(at, m)))?;
     Ok(mesh)
 }
 

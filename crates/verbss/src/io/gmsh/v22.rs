@@ -114,7 +114,9 @@ pub(super) fn read_elements(c: &mut Cursor, index: &NodeIndex) -> Result<Element
                         .ok_or_else(|| c.error_at_offset(at, unknown_node(tag, node)))?;
                 }
                 let physical = if ntags > 0 { i32_at(rec, 4) } else { 0 };
-                set_physical(&mut elements, kind.dim(), physical);
+                elements
+                    .set_physical(kind.dim(), physical)
+                    .map_err(|m| c.error_at_offset(at, m))?;
                 elements.push(kind, tag, &ids[..nn]);
             }
             read += count;
@@ -145,21 +147,14 @@ pub(super) fn read_elements(c: &mut Cursor, index: &NodeIndex) -> Result<Element
                     .get(node)
                     .ok_or_else(|| c.error(unknown_node(tag, node)))?;
             }
-            set_physical(&mut elements, kind.dim(), physical);
+            elements
+                .set_physical(kind.dim(), physical)
+                .map_err(|m| c.error(m))?;
             elements.push(kind, tag, &ids[..nn]);
         }
     }
     close(c, "$EndElements", n, "elements")?;
     Ok(elements)
-}
-
-/// MSH 2.2 gives one physical tag per element; 0 means none.
-fn set_physical(elements: &mut Elements, dim: usize, physical: i32) {
-    if physical == 0 {
-        elements.set_physicals(dim, &[]);
-    } else {
-        elements.set_physicals(dim, &[physical]);
-    }
 }
 
 /// A tag as MSH 2.2's 32-bit integer.

@@ -281,7 +281,9 @@ pub(super) fn read_elements(
                 ))
             }
         };
-        elements.set_run(dim, physicals);
+        elements
+            .set_run(dim, physicals)
+            .map_err(|m| c.error_at(mark, m))?;
         let nn = kind.node_count();
         if c.binary() {
             let size = 8 * (1 + nn);

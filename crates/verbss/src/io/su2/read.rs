@@ -7,6 +7,7 @@ use std::path::Path;
 
 use super::{shown, Anchor, Skipped};
 use crate::error::{Error, Result};
+use crate::io::MAX_GROUPS;
 use crate::mesh::{Cells, Group, Mesh};
 
 /// One non-blank line with its comment removed.
@@ -93,7 +94,7 @@ pub(super) struct Parser<'a> {
     cells: Cells,
     markers: Vec<Marker>,
     /// The line of each marker's `MARKER_TAG=`, by name.
-    marker_lines: HashMap<String, usize>,
+    marker_lines: HashMap<&'a str, usize>,
     /// One entry per element or marker section, in file order.
     max_refs: Vec<MaxRef>,
     /// The section whose data lines are being read.
@@ -101,7 +102,7 @@ pub(super) struct Parser<'a> {
     /// The section just read to its end, for "more data than announced" messages.
     closed: Option<Section>,
     /// The last keyword line: `(keyword, line)`.
-    last_keyword: Option<(String, usize)>,
+    last_keyword: Option<(&'a str, usize)>,
     /// Inside sections verbss does not use: where they began (byte offset)
     /// and the section before them. Their data lines are not parsed.
     skipping: Option<(usize, Anchor)>,
@@ -116,7 +117,7 @@ impl<'a> Parser<'a> {
         Parser {
             bytes,
             path,
-            pos: 0,
+            pos: crate::io::bom(bytes),
             line: 0,
             line_start: 0,
             gap_start: 0,
@@ -147,10 +148,11 @@ impl<'a> Parser<'a> {
         }
     }
 
-    /// A capacity for `n` announced entries of `per` numbers each, capped by
-    /// what the file can hold (every number takes at least two bytes).
+    /// Room for `n` announced entries of at least `per` numbers each, capped
+    /// by what the rest of the file can hold (every number takes at least
+    /// two bytes).
     fn capacity(&self, n: usize, per: usize) -> usize {
-        n.saturating_mul(per).min(self.bytes.len() / 2)
+        n.min(self.bytes.len().saturating_sub(self.pos) / (2 * per))
     }
 
     /// The spatial dimension (`NDIME=` was read before any section that needs it).
@@ -251,7 +253,7 @@ impl<'a> Parser<'a> {
     }
 
     /// A keyword line: opens a section, or starts skipping an unknown one.
-    fn keyword(&mut self, raw: &str, key: String, value: &str) -> Result<()> {
+    fn keyword(&mut self, raw: &'a str, key: String, value: &'a str) -> Result<()> {
         let line = self.line;
         if let Some(open) = &self.open {
             return Err(self.err(
@@ -283,7 +285,7 @@ impl<'a> Parser<'a> {
                 self.need_dim("NPOIN=")?;
                 self.once(self.npoin, "NPOIN=")?;
                 let n = self.count(value, "NPOIN=")?;
-                self.coords = Vec::with_capacity(self.capacity(n, self.dim()));
+                self.coords = Vec::with_capacity(self.capacity(n, self.dim()) * self.dim());
                 self.npoin = Some((n, line));
                 self.anchor = Anchor::Points;
                 self.start(Block::Points, n);
@@ -292,7 +294,7 @@ impl<'a> Parser<'a> {
                 self.need_dim("NELEM=")?;
                 self.once(self.nelem, "NELEM=")?;
                 let n = self.count(value, "NELEM=")?;
-                let cap = self.capacity(n, 1);
+                let cap = self.capacity(n, 4);
                 self.cells.kinds.reserve(cap);
                 self.cells.offsets.reserve(cap);
                 self.nelem = Some((n, line));
@@ -302,7 +304,16 @@ impl<'a> Parser<'a> {
             "NMARK" => {
                 self.need_dim("NMARK=")?;
                 self.once(self.nmark, "NMARK=")?;
-                self.nmark = Some((self.count(value, "NMARK=")?, line));
+                let n = self.count(value, "NMARK=")?;
+                if n > MAX_GROUPS {
+                    return Err(self.err(
+                        line,
+                        format!(
+                            "NMARK= {n} is more than {MAX_GROUPS} markers (the most verbss reads)"
+                        ),
+                    ));
+                }
+                self.nmark = Some((n, line));
                 self.anchor = Anchor::MarkerCount;
             }
             "MARKERTAG" => self.marker_tag(value)?,
@@ -320,7 +331,7 @@ impl<'a> Parser<'a> {
                     ));
                 }
                 let n = self.count(value, "MARKER_ELEMS=")?;
-                let cap = self.capacity(n, 1);
+                let cap = self.capacity(n, 2);
                 let m = self.markers.last_mut().expect("checked above");
                 m.elems_seen = true;
                 m.facets.kinds.reserve(cap);
@@ -334,7 +345,7 @@ impl<'a> Parser<'a> {
         if let (None, Some(from)) = (self.skipping, skipped_from) {
             self.keep_skipped(from, self.line_start);
         }
-        self.last_keyword = Some((raw.to_string(), line));
+        self.last_keyword = Some((raw, line));
         Ok(())
     }
 
@@ -348,7 +359,7 @@ impl<'a> Parser<'a> {
     }
 
     /// `MARKER_TAG= name`: starts a new marker.
-    fn marker_tag(&mut self, name: &str) -> Result<()> {
+    fn marker_tag(&mut self, name: &'a str) -> Result<()> {
         let line = self.line;
         let Some((nmark, nmark_line)) = self.nmark else {
             return Err(self.err(line, "MARKER_TAG= before NMARK=".into()));
@@ -366,7 +377,7 @@ impl<'a> Parser<'a> {
         if name.is_empty() {
             return Err(self.err(line, "empty MARKER_TAG= (expected a name)".into()));
         }
-        if let Some(first) = self.marker_lines.insert(name.to_string(), line) {
+        if let Some(first) = self.marker_lines.insert(name, line) {
             return Err(self.err(
                 line,
                 format!("marker '{name}' given twice (first at line {first})"),
@@ -511,6 +522,7 @@ impl<'a> Parser<'a> {
                 ),
             ));
         }
+        let (path, nelem) = (self.path, self.nelem);
         let mesh = Mesh {
             dim,
             node_tags: (1..=npoin as u64).collect(),
@@ -528,7 +540,14 @@ impl<'a> Parser<'a> {
                 .collect(),
             su2_skipped: self.skipped,
         };
-        mesh.validate()?;
+        let line = nelem.map_or(last, |(_, line)| line);
+        mesh.validate().map_err(|e| {
+            crate::io::invalid_at(e, |message| Error::Parse {
+                path: path.to_path_buf(),
+                line,
+                message,
+            })
+        })?;
         Ok(mesh)
     }
 }

@@ -1,7 +1,7 @@
 //! Binary `<DataArray>` blocks of the `.vtu` reader: number types, the block
 //! header, zlib inflation capped by what the array may hold, and base64.
 
-use std::borrow::Cow;
+use std::cell::Cell;
 use std::io::Read;
 
 use base64::engine::general_purpose::{GeneralPurpose, GeneralPurposeConfig};
@@ -61,6 +61,21 @@ pub(super) enum Values {
 }
 
 impl Values {
+    /// No values yet, room for `n` of type `ty`; an error instead of an abort
+    /// when that room cannot be had.
+    pub(super) fn with_capacity(ty: Ty, n: usize) -> std::result::Result<Values, BlockError> {
+        let failed = |_| (0, format!("cannot allocate memory for {n} values"));
+        Ok(if ty.is_float() {
+            let mut v = Vec::new();
+            v.try_reserve_exact(n).map_err(failed)?;
+            Values::Float(v)
+        } else {
+            let mut v = Vec::new();
+            v.try_reserve_exact(n).map_err(failed)?;
+            Values::Int(v)
+        })
+    }
+
     pub(super) fn len(&self) -> usize {
         match self {
             Values::Int(v) => v.len(),
@@ -74,6 +89,54 @@ impl Values {
             Values::Float(v) => v,
         }
     }
+
+    /// Appends the values stored in `data` (a whole number of them) as `ty`.
+    fn append(
+        &mut self,
+        ty: Ty,
+        big_endian: bool,
+        data: &[u8],
+    ) -> std::result::Result<(), BlockError> {
+        let size = ty.size();
+        let n = data.len() / size;
+        let failed = |_| (0, format!("cannot allocate memory for {n} more values"));
+        match self {
+            Values::Int(v) => v.try_reserve(n).map_err(failed)?,
+            Values::Float(v) => v.try_reserve(n).map_err(failed)?,
+        }
+        macro_rules! conv {
+            ($t:ty) => {
+                data.chunks_exact(size).map(|c| {
+                    let b = c.try_into().expect("chunk of the type's size");
+                    if big_endian {
+                        <$t>::from_be_bytes(b)
+                    } else {
+                        <$t>::from_le_bytes(b)
+                    }
+                })
+            };
+        }
+        match (self, ty) {
+            (Values::Int(v), Ty::I8) => v.extend(conv!(i8).map(i64::from)),
+            (Values::Int(v), Ty::U8) => v.extend(conv!(u8).map(i64::from)),
+            (Values::Int(v), Ty::I16) => v.extend(conv!(i16).map(i64::from)),
+            (Values::Int(v), Ty::U16) => v.extend(conv!(u16).map(i64::from)),
+            (Values::Int(v), Ty::I32) => v.extend(conv!(i32).map(i64::from)),
+            (Values::Int(v), Ty::U32) => v.extend(conv!(u32).map(i64::from)),
+            (Values::Int(v), Ty::I64) => v.extend(conv!(i64)),
+            (Values::Int(v), Ty::U64) => {
+                for x in conv!(u64) {
+                    let x = i64::try_from(x)
+                        .map_err(|_| (0, format!("UInt64 value {x} is too large")))?;
+                    v.push(x);
+                }
+            }
+            (Values::Float(v), Ty::F32) => v.extend(conv!(f32).map(f64::from)),
+            (Values::Float(v), Ty::F64) => v.extend(conv!(f64)),
+            _ => unreachable!("values are made for their type"),
+        }
+        Ok(())
+    }
 }
 
 /// A failure inside a binary block: offset in the block's byte stream, message.
@@ -85,6 +148,14 @@ pub(super) struct Layout {
     pub(super) big_endian: bool,
     pub(super) header64: bool,
     pub(super) zlib: bool,
+}
+
+/// How many bytes the values of all zlib blocks of a file may take once
+/// decoded (8 bytes a value, whatever its type): 64 MiB plus 64 times the
+/// file's size. Meshes compress by a few times; a stream of zeros by a
+/// thousand.
+pub(super) fn inflate_budget(file_size: usize) -> u64 {
+    (64 << 20) + 64 * file_size as u64
 }
 
 impl Layout {
@@ -108,15 +179,21 @@ impl Layout {
         })
     }
 
-    /// The data bytes of a binary block `s` (header, then data): sliced out,
-    /// or inflated block by block when zlib-compressed; `None` when the
-    /// header claims more than `max` bytes (nothing is inflated then).
-    fn block<'s>(
+    /// The values of type `ty` in a binary block `s` (header, then data):
+    /// sliced out, or inflated block by block when zlib-compressed; `None`
+    /// when the header claims more than `max` values (nothing is inflated
+    /// then). The values zlib blocks claim are taken from `budget` (8 bytes
+    /// each) before they are inflated, and no block inflates past its claim.
+    pub(super) fn block_values(
         &self,
-        s: &'s [u8],
+        s: &[u8],
+        ty: Ty,
         max: usize,
-    ) -> std::result::Result<Option<Cow<'s, [u8]>>, BlockError> {
+        budget: &Cell<u64>,
+    ) -> std::result::Result<Option<Values>, BlockError> {
         let h = if self.header64 { 8 } else { 4 };
+        let size = ty.size();
+        let max = max.saturating_mul(size);
         let too_long = |at: usize, claim: u64| {
             (
                 at,
@@ -126,13 +203,25 @@ impl Layout {
                 ),
             )
         };
+        let not_whole = |n: u64| {
+            (
+                0,
+                format!("{n} bytes is not a whole number of {size}-byte values"),
+            )
+        };
         if !self.zlib {
             let n = self.word(s, 0)?;
-            return match usize::try_from(n) {
-                Ok(n) if n > max => Ok(None),
-                Ok(n) if n <= s.len() - h => Ok(Some(Cow::Borrowed(&s[h..h + n]))),
-                _ => Err(too_long(h, n)),
+            let data = match usize::try_from(n) {
+                Ok(n) if n > max => return Ok(None),
+                Ok(n) if n <= s.len() - h => &s[h..h + n],
+                _ => return Err(too_long(h, n)),
             };
+            if data.len() % size != 0 {
+                return Err(not_whole(n));
+            }
+            let mut values = Values::with_capacity(ty, data.len() / size)?;
+            values.append(ty, self.big_endian, data)?;
+            return Ok(Some(values));
         }
         let blocks = self.word(s, 0)?;
         let full = self.word(s, h)?;
@@ -144,7 +233,7 @@ impl Layout {
             _ => return Err(too_long(3 * h, blocks.saturating_mul(h as u64))),
         };
         // What the header says the blocks inflate to, checked before inflating.
-        let size = |k: usize| {
+        let size_of = |k: usize| {
             if k + 1 == count && last != 0 {
                 last
             } else {
@@ -155,90 +244,83 @@ impl Layout {
             0 => Some(0),
             _ => full
                 .checked_mul(blocks - 1)
-                .and_then(|b| b.checked_add(size(count - 1))),
+                .and_then(|b| b.checked_add(size_of(count - 1))),
         };
-        if claimed.is_none_or(|c| c > max as u64) {
-            return Ok(None);
+        // 8 bytes a value once decoded: more than the budget left is an
+        // error, more than `max` values is left to the caller.
+        let decoded = claimed.map_or(u64::MAX, |c| (c / size as u64).saturating_mul(8));
+        if decoded > budget.get() {
+            return Err((
+                0,
+                format!(
+                    "zlib blocks claiming {} bytes ({} bytes once decoded) exceed what is \
+                     left ({} bytes) of the file's budget for zlib data (64 MiB plus 64 times \
+                     the file's size)",
+                    claimed.map_or("more than 2^64".to_string(), |c| c.to_string()),
+                    claimed.map_or("more than 2^64".to_string(), |_| decoded.to_string()),
+                    budget.get()
+                ),
+            ));
         }
+        let claimed = match claimed {
+            Some(c) if c <= max as u64 => c,
+            _ => return Ok(None),
+        };
+        if claimed % size as u64 != 0 {
+            return Err(not_whole(claimed));
+        }
+        budget.set(budget.get() - decoded);
+        // Deflate inflates at most 1032 times: what the data can hold is
+        // reserved, not what a lying header claims.
+        let can_hold = (s.len() - header) as u64 * 1032 + 64;
+        let mut values = Values::with_capacity(ty, claimed.min(can_hold) as usize / size)?;
         let mut start = header;
-        let mut out = Vec::new();
+        let mut buf = vec![0u8; 1 << 16];
+        // Bytes of a value split between two reads.
+        let mut carry = Vec::with_capacity(size);
         for k in 0..count {
             let bytes = self.word(s, (3 + k) * h)?;
             let end = match usize::try_from(bytes) {
                 Ok(bytes) if bytes <= s.len() - start => start + bytes,
                 _ => return Err(too_long(start, bytes)),
             };
-            let expected = size(k);
-            let before = out.len();
-            flate2::read::ZlibDecoder::new(&s[start..end])
-                .take(expected.saturating_add(1))
-                .read_to_end(&mut out)
-                .map_err(|e| (start, format!("zlib block {k}: {e}")))?;
-            if (out.len() - before) as u64 != expected {
+            let expected = size_of(k);
+            let mut z = flate2::read::ZlibDecoder::new(&s[start..end]).take(expected + 1);
+            let mut inflated = 0u64;
+            loop {
+                let n = z
+                    .read(&mut buf)
+                    .map_err(|e| (start, format!("zlib block {k}: {e}")))?;
+                if n == 0 {
+                    break;
+                }
+                inflated += n as u64;
+                if inflated > expected {
+                    break;
+                }
+                let mut chunk = &buf[..n];
+                if !carry.is_empty() {
+                    let take = (size - carry.len()).min(chunk.len());
+                    carry.extend_from_slice(&chunk[..take]);
+                    chunk = &chunk[take..];
+                    if carry.len() == size {
+                        values.append(ty, self.big_endian, &carry)?;
+                        carry.clear();
+                    }
+                }
+                let whole = chunk.len() / size * size;
+                values.append(ty, self.big_endian, &chunk[..whole])?;
+                carry.extend_from_slice(&chunk[whole..]);
+            }
+            if inflated != expected {
                 return Err((
                     start,
-                    format!(
-                        "zlib block {k} inflates to {} bytes (header says {expected})",
-                        out.len() - before
-                    ),
+                    format!("zlib block {k} inflates to {inflated} bytes (header says {expected})"),
                 ));
             }
             start = end;
         }
-        Ok(Some(Cow::Owned(out)))
-    }
-
-    /// The values of a binary block, `None` when it holds more than `max`.
-    pub(super) fn block_values(
-        &self,
-        s: &[u8],
-        ty: Ty,
-        max: usize,
-    ) -> std::result::Result<Option<Values>, BlockError> {
-        let size = ty.size();
-        let Some(data) = self.block(s, max.saturating_mul(size))? else {
-            return Ok(None);
-        };
-        if data.len() % size != 0 {
-            return Err((
-                0,
-                format!(
-                    "{} bytes is not a whole number of {size}-byte values",
-                    data.len()
-                ),
-            ));
-        }
-        let be = self.big_endian;
-        macro_rules! conv {
-            ($t:ty) => {
-                data.chunks_exact(size).map(|c| {
-                    let b = c.try_into().expect("chunk of the type's size");
-                    if be {
-                        <$t>::from_be_bytes(b)
-                    } else {
-                        <$t>::from_le_bytes(b)
-                    }
-                })
-            };
-        }
-        Ok(Some(match ty {
-            Ty::I8 => Values::Int(conv!(i8).map(i64::from).collect()),
-            Ty::U8 => Values::Int(conv!(u8).map(i64::from).collect()),
-            Ty::I16 => Values::Int(conv!(i16).map(i64::from).collect()),
-            Ty::U16 => Values::Int(conv!(u16).map(i64::from).collect()),
-            Ty::I32 => Values::Int(conv!(i32).map(i64::from).collect()),
-            Ty::U32 => Values::Int(conv!(u32).map(i64::from).collect()),
-            Ty::I64 => Values::Int(conv!(i64).collect()),
-            Ty::U64 => Values::Int(
-                conv!(u64)
-                    .map(|v| {
-                        i64::try_from(v).map_err(|_| (0, format!("UInt64 value {v} is too large")))
-                    })
-                    .collect::<std::result::Result<_, _>>()?,
-            ),
-            Ty::F32 => Values::Float(conv!(f32).map(f64::from).collect()),
-            Ty::F64 => Values::Float(conv!(f64).collect()),
-        }))
+        Ok(Some(values))
     }
 }
 

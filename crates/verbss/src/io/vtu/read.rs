@@ -1,12 +1,14 @@
 //! The `.vtu` reader (what it accepts is in the parent module's doc).
 
+use std::cell::Cell;
 use std::collections::HashMap;
 use std::path::Path;
 
-use super::binary::{decode_base64, BlockError, Layout, Ty, Values};
+use super::binary::{decode_base64, inflate_budget, BlockError, Layout, Ty, Values};
 use super::xml::{collect_offsets, parse_tree, Appended, Ctx, Element};
 use super::{Fields, VtuData, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY, UNNAMED_GROUP};
 use crate::error::Result;
+use crate::io::MAX_GROUPS;
 use crate::mesh::{CellKind, Cells, Group, Mesh};
 
 /// Parses a `.vtu` file's bytes; `path` is only used in error messages.
@@ -42,6 +44,8 @@ struct VtkFile<'a, 'c> {
     appended: Option<Appended<'a>>,
     /// Sorted `offset`s of the appended arrays (to cut base64 appended data).
     offsets: Vec<usize>,
+    /// Bytes the zlib blocks not yet read may still inflate to.
+    budget: Cell<u64>,
 }
 
 impl<'a, 'c> VtkFile<'a, 'c> {
@@ -89,6 +93,7 @@ impl<'a, 'c> VtkFile<'a, 'c> {
             },
             appended,
             offsets,
+            budget: Cell::new(inflate_budget(ctx.bytes.len())),
         })
     }
 
@@ -132,7 +137,7 @@ impl<'a, 'c> VtkFile<'a, 'c> {
             })?,
         };
         let values = match el.attr("format").unwrap_or("ascii") {
-            "ascii" => Some(self.ascii(el, ty, &name)?),
+            "ascii" => self.ascii(el, ty, &name, max)?,
             "binary" => {
                 let text: Vec<u8> = el
                     .text
@@ -143,7 +148,7 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                     .collect();
                 let stream = decode_base64(&text).map_err(|(_, m)| err(m))?;
                 self.layout
-                    .block_values(&stream, ty, max)
+                    .block_values(&stream, ty, max, &self.budget)
                     .map_err(|(_, m)| err(m))?
             }
             "appended" => {
@@ -172,11 +177,11 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                         .map_or(app.data.len(), |&o| o.min(app.data.len()));
                     let stream = decode_base64(&app.data[offset..end]).map_err(at)?;
                     self.layout
-                        .block_values(&stream, ty, max)
+                        .block_values(&stream, ty, max, &self.budget)
                         .map_err(|(_, m)| at((0, m)))?
                 } else {
                     self.layout
-                        .block_values(&app.data[offset..], ty, max)
+                        .block_values(&app.data[offset..], ty, max, &self.budget)
                         .map_err(at)?
                 }
             }
@@ -190,11 +195,22 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         }))
     }
 
-    /// Parses the whitespace-separated numbers of an ascii array (as many as
-    /// the file holds: counts are checked by the caller, with the count).
-    fn ascii(&self, el: &Element, ty: Ty, name: &str) -> Result<Values> {
-        let mut ints = Vec::new();
-        let mut floats = Vec::new();
+    /// Parses the whitespace-separated numbers of an ascii array; `None`,
+    /// before any parsing, when there are more than `max` (the caller checks
+    /// the count). The numbers are counted first and get exactly their room.
+    fn ascii(&self, el: &Element, ty: Ty, name: &str, max: usize) -> Result<Option<Values>> {
+        let tokens = |&(start, end): &(usize, usize)| {
+            self.ctx.bytes[start..end]
+                .split(|b| b.is_ascii_whitespace())
+                .filter(|t| !t.is_empty())
+                .count()
+        };
+        let count: usize = el.text.iter().map(tokens).sum();
+        if count > max {
+            return Ok(None);
+        }
+        let mut values = Values::with_capacity(ty, count)
+            .map_err(|(_, m)| self.ctx.at(el.pos, format!("DataArray '{name}': {m}")))?;
         for &(start, end) in &el.text {
             let mut i = start;
             for token in self.ctx.bytes[start..end].split(|b| b.is_ascii_whitespace()) {
@@ -204,10 +220,9 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                     continue;
                 }
                 let text = std::str::from_utf8(token).unwrap_or("");
-                let ok = if ty.is_float() {
-                    text.parse().map(|x| floats.push(x)).is_ok()
-                } else {
-                    text.parse().map(|x| ints.push(x)).is_ok()
+                let ok = match &mut values {
+                    Values::Float(v) => text.parse().map(|x| v.push(x)).is_ok(),
+                    Values::Int(v) => text.parse().map(|x| v.push(x)).is_ok(),
                 };
                 if !ok {
                     return Err(self.ctx.at(
@@ -220,11 +235,7 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                 }
             }
         }
-        Ok(if ty.is_float() {
-            Values::Float(floats)
-        } else {
-            Values::Int(ints)
-        })
+        Ok(Some(values))
     }
 
     /// The mesh and fields of the file.
@@ -233,16 +244,9 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         let grid = root
             .child("UnstructuredGrid")
             .ok_or_else(|| ctx.at(root.pos, "missing <UnstructuredGrid> in <VTKFile>".into()))?;
-        let mut pieces = grid.children_named("Piece");
-        let piece = pieces
-            .next()
+        let piece = grid
+            .child("Piece")
             .ok_or_else(|| ctx.at(grid.pos, "missing <Piece> in <UnstructuredGrid>".into()))?;
-        if let Some(second) = pieces.next() {
-            return Err(ctx.at(
-                second.pos,
-                "a second <Piece> (only single-piece files are supported)".into(),
-            ));
-        }
         let count = |key: &str| -> Result<usize> {
             let v = piece.attr(key).unwrap_or("");
             v.parse()
@@ -293,6 +297,7 @@ impl<'a, 'c> VtkFile<'a, 'c> {
             cell_array("types")?,
         ];
         let all = self.cells(&arrays, n, ncells)?;
+        drop(arrays);
 
         let point_data = self.data(piece.child("PointData"), "NumberOfPoints", n)?;
         let cell_data = self.data(piece.child("CellData"), "NumberOfCells", ncells)?;
@@ -368,6 +373,9 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         let ends = self.ints(offsets, Some(ncells))?;
         let kinds = self.ints(types, Some(ncells))?;
         let mut cells = Cells::new();
+        cells.kinds.reserve_exact(ncells);
+        cells.offsets.reserve_exact(ncells);
+        cells.nodes.reserve_exact(nodes.len());
         let mut start = 0;
         for (c, (&end, &t)) in ends.iter().zip(kinds).enumerate() {
             let kind = CellKind::from_vtk_id(t).ok_or_else(|| {
@@ -462,7 +470,9 @@ impl<'a, 'c> VtkFile<'a, 'c> {
     fn group_names(&self, field_data: &Element) -> Result<Vec<(i64, String, Option<i32>)>> {
         let mut names = Vec::new();
         for el in field_data.children_named("DataArray") {
-            if el.attr("type").and_then(Ty::parse).is_none_or(Ty::is_float) {
+            // Float arrays are decoded too (never beyond 3 values), so that
+            // a zlib bomb is refused wherever it is.
+            if el.attr("type").and_then(Ty::parse).is_none() {
                 continue;
             }
             let Some(a) = self.decode(el, Limit::Values(3), "a group name")? else {
@@ -477,6 +487,14 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                 },
                 _ => continue,
             };
+            if names.len() == MAX_GROUPS {
+                return Err(self.ctx.at(
+                    el.pos,
+                    format!(
+                        "more than {MAX_GROUPS} group names in <FieldData> (the most verbss reads)"
+                    ),
+                ));
+            }
             names.push((v[0], a.name, tag));
         }
         names.sort_by_key(|g| g.0);
@@ -490,14 +508,22 @@ fn take_array<'e>(arrays: &mut Vec<Array<'e>>, name: &str) -> Option<Array<'e>> 
     Some(arrays.remove(i))
 }
 
-/// Tags from an integer array (each ≥ 1), or `1..=count` when there is none.
-fn tags(file: &VtkFile, array: Option<Array>, what: &str, keep: &[usize]) -> Result<Vec<u64>> {
+/// Tags from an integer array (each ≥ 1), or `1..=count` when there is none,
+/// of the `count` entries at `keep` (all when `None`).
+fn tags(
+    file: &VtkFile,
+    array: Option<Array>,
+    what: &str,
+    count: usize,
+    keep: Option<&[usize]>,
+) -> Result<Vec<u64>> {
     let Some(a) = array else {
-        return Ok((1..=keep.len() as u64).collect());
+        return Ok((1..=count as u64).collect());
     };
     let values = file.ints(&a, None)?;
-    keep.iter()
-        .map(|&i| {
+    (0..count)
+        .map(|k| keep.map_or(k, |keep| keep[k]))
+        .map(|i| {
             u64::try_from(values[i])
                 .ok()
                 .filter(|&t| t >= 1)
@@ -549,9 +575,10 @@ fn assemble(
         return Err(ctx.at(piece.pos, message));
     }
 
-    let group_ids = match take_array(&mut cell_data, GROUP_ARRAY) {
-        Some(a) => file.ints(&a, None)?.to_vec(),
-        None => vec![0; all.len()],
+    let group_array = take_array(&mut cell_data, GROUP_ARRAY);
+    let group_ids = match &group_array {
+        Some(a) => Some(file.ints(a, None)?),
+        None => None,
     };
     let mut groups: Vec<Group> = names
         .iter()
@@ -566,41 +593,48 @@ fn assemble(
     for (k, g) in names.iter().enumerate() {
         by_id.entry(g.0).or_insert(k);
     }
-    let mut volume = Vec::new();
-    let mut cells = Cells::new();
-    let mut unnamed = None;
-    for (c, (kind, nodes)) in all.iter().enumerate() {
-        if kind.dim() == dim {
-            volume.push(c);
-            cells.push(kind, nodes);
-            continue;
+    // All cells volume cells (no group facets): no copy.
+    let (volume, cells) = if all.kinds.iter().all(|k| k.dim() == dim) {
+        ((0..all.len()).collect(), all)
+    } else {
+        let mut volume = Vec::new();
+        let mut cells = Cells::new();
+        let mut unnamed = None;
+        for (c, (kind, nodes)) in all.iter().enumerate() {
+            if kind.dim() == dim {
+                volume.push(c);
+                cells.push(kind, nodes);
+                continue;
+            }
+            let named = by_id.get(&group_ids.map_or(0, |g| g[c])).copied();
+            let k = named.unwrap_or_else(|| {
+                *unnamed.get_or_insert_with(|| {
+                    groups.push(Group {
+                        name: UNNAMED_GROUP.to_string(),
+                        tag: None,
+                        facets: Cells::new(),
+                    });
+                    groups.len() - 1
+                })
+            });
+            groups[k].facets.push(kind, nodes);
         }
-        let named = by_id.get(&group_ids[c]).copied();
-        let k = named.unwrap_or_else(|| {
-            *unnamed.get_or_insert_with(|| {
-                groups.push(Group {
-                    name: UNNAMED_GROUP.to_string(),
-                    tag: None,
-                    facets: Cells::new(),
-                });
-                groups.len() - 1
-            })
-        });
-        groups[k].facets.push(kind, nodes);
-    }
+        (volume, cells)
+    };
 
-    let all_points: Vec<usize> = (0..n).collect();
     let node_tags = tags(
         file,
         take_array(&mut point_data, NODE_TAG_ARRAY),
         "point",
-        &all_points,
+        n,
+        None,
     )?;
     let cell_tags = tags(
         file,
         take_array(&mut cell_data, CELL_TAG_ARRAY),
         "cell",
-        &volume,
+        volume.len(),
+        Some(&volume),
     )?;
     let fields = Fields {
         point: point_data
@@ -618,11 +652,15 @@ fn assemble(
             })
             .collect(),
     };
-    let coords = if dim == 3 {
-        coords
-    } else {
-        coords.chunks_exact(3).flat_map(|p| [p[0], p[1]]).collect()
-    };
+    let mut coords = coords;
+    if dim == 2 {
+        // x y z to x y, in place.
+        for i in 0..n {
+            coords.copy_within(3 * i..3 * i + 2, 2 * i);
+        }
+        coords.truncate(2 * n);
+        coords.shrink_to_fit();
+    }
     let mesh = Mesh {
         dim,
         coords,
@@ -632,6 +670,7 @@ fn assemble(
         groups,
         su2_skipped: Vec::new(),
     };
-    mesh.validate()?;
+    mesh.validate()
+        .map_err(|e| crate::io::invalid_at(e, |m| ctx.at(piece.pos, m)))?;
     Ok(VtuData { mesh, fields })
 }

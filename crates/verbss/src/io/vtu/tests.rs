@@ -408,7 +408,7 @@ fn error_counts_that_disagree() {
     );
     assert_eq!(
         broken(">3</DataArray>", ">3 3</DataArray>"),
-        "x.vtu:10: DataArray 'offsets': 2 values but NumberOfCells=1"
+        "x.vtu:10: DataArray 'offsets': holds more than the 1 tuples that NumberOfCells=1 needs"
     );
     assert_eq!(
         broken(">5</DataArray>", ">9</DataArray>"),
@@ -425,7 +425,7 @@ fn error_counts_that_disagree() {
     let cell_data = "</Cells>\n<CellData><DataArray type=\"Float64\" Name=\"p\" format=\"ascii\">1 2</DataArray></CellData>";
     assert_eq!(
         broken("</Cells>", cell_data),
-        "x.vtu:13: DataArray 'p': 2 values but 1 × NumberOfCells=1 are needed"
+        "x.vtu:13: DataArray 'p': holds more than the 1 tuples that NumberOfCells=1 needs"
     );
 }
 

@@ -1,7 +1,12 @@
-//! The XML side of the `.vtu` reader: the element tree, built without
-//! recursion and at most [`MAX_DEPTH`] elements deep, and error positions.
+//! The XML side of the `.vtu` reader: the tree of the elements the reader
+//! uses, built without recursion, and error positions.
+//!
+//! Only `VTKFile`, `UnstructuredGrid`, `FieldData`, `Piece`, its `Points`,
+//! `Cells`, `PointData` and `CellData`, their `DataArray`s and `AppendedData`
+//! are kept, each with the attributes the reader needs; any other element is
+//! skipped with everything inside it. What the tree holds is thus bounded by
+//! [`MAX_ARRAYS`] arrays per section, whatever the file holds.
 
-use std::collections::HashSet;
 use std::path::Path;
 
 use quick_xml::errors::SyntaxError;
@@ -12,6 +17,9 @@ use crate::error::{Error, Result};
 
 /// How deep elements may nest (a `.vtu` file needs 6 levels).
 const MAX_DEPTH: usize = 64;
+
+/// The most `<DataArray>`s a `<FieldData>`, `<PointData>` or `<CellData>` may hold.
+pub(super) const MAX_ARRAYS: usize = 1 << 17;
 
 /// The file being read, for error messages.
 pub(super) struct Ctx<'a> {
@@ -40,10 +48,11 @@ impl Ctx<'_> {
     }
 }
 
-/// One XML element: name, attributes, the byte ranges of its text, children.
+/// One kept XML element: name, the attributes the reader uses, the byte
+/// ranges of its text (`DataArray` only), its kept children.
 pub(super) struct Element {
-    pub(super) name: String,
-    attrs: Vec<(String, String)>,
+    pub(super) name: &'static str,
+    attrs: Vec<(&'static str, String)>,
     pub(super) text: Vec<(usize, usize)>,
     pub(super) children: Vec<Element>,
     /// Byte offset of its `<`.
@@ -54,7 +63,7 @@ impl Element {
     pub(super) fn attr(&self, key: &str) -> Option<&str> {
         self.attrs
             .iter()
-            .find(|(k, _)| k == key)
+            .find(|(k, _)| *k == key)
             .map(|(_, v)| v.as_str())
     }
 
@@ -70,6 +79,89 @@ impl Element {
     }
 }
 
+/// The attributes the reader uses, by element.
+fn known_attrs(name: &str) -> &'static [&'static str] {
+    match name {
+        "VTKFile" => &["type", "byte_order", "header_type", "compressor"],
+        "Piece" => &["NumberOfPoints", "NumberOfCells"],
+        "DataArray" => &["type", "Name", "NumberOfComponents", "format", "offset"],
+        "AppendedData" => &["encoding"],
+        _ => &[],
+    }
+}
+
+/// What becomes of a child element named `name` of `parent`.
+enum Fate {
+    Keep(&'static str),
+    Skip,
+}
+
+/// Decides whether a child named `name` joins `parent` (the first of each
+/// section, the arrays of the sections, the first `DataArray` of `Points`
+/// and the first `connectivity`, `offsets` and `types` of `Cells`), fails
+/// on a second `<Piece>` or too many arrays.
+fn fate(ctx: &Ctx, parent: &Element, e: &BytesStart, pos: usize) -> Result<Fate> {
+    const SECTIONS: [&str; 8] = [
+        "UnstructuredGrid",
+        "AppendedData",
+        "FieldData",
+        "Points",
+        "Cells",
+        "PointData",
+        "CellData",
+        "Piece",
+    ];
+    let name = e.name();
+    let name = name.as_ref();
+    if name == b"AppendedData" {
+        return Ok(Fate::Keep("AppendedData"));
+    }
+    let allowed: &[&'static str] = match parent.name {
+        "VTKFile" => &["UnstructuredGrid"],
+        "UnstructuredGrid" => &["FieldData", "Piece"],
+        "Piece" => &["Points", "Cells", "PointData", "CellData"],
+        "FieldData" | "Points" | "Cells" | "PointData" | "CellData" => &["DataArray"],
+        _ => &[],
+    };
+    let Some(&child) = allowed.iter().find(|n| n.as_bytes() == name) else {
+        return Ok(Fate::Skip);
+    };
+    if SECTIONS.contains(&child) && parent.child(child).is_some() {
+        if child == "Piece" {
+            return Err(ctx.at(
+                pos,
+                "a second <Piece> (only single-piece files are supported)".into(),
+            ));
+        }
+        return Ok(Fate::Skip);
+    }
+    let keep = match parent.name {
+        "Points" => parent.children.is_empty(),
+        "Cells" => {
+            let malformed = |e: String| ctx.at(pos, format!("malformed XML: {e}"));
+            let array = match e.try_get_attribute("Name") {
+                Ok(Some(a)) => Some(a.unescape_value().map_err(|e| malformed(e.to_string()))?),
+                Ok(None) => None,
+                Err(e) => return Err(malformed(e.to_string())),
+            };
+            ["connectivity", "offsets", "types"].iter().any(|&n| {
+                array.as_deref() == Some(n)
+                    && parent
+                        .children_named(child)
+                        .all(|c| c.attr("Name") != Some(n))
+            })
+        }
+        "FieldData" | "PointData" | "CellData" if parent.children.len() == MAX_ARRAYS => {
+            return Err(ctx.at(
+                pos,
+                format!("more than {MAX_ARRAYS} <DataArray>s in <{}>", parent.name),
+            ))
+        }
+        _ => true,
+    };
+    Ok(if keep { Fate::Keep(child) } else { Fate::Skip })
+}
+
 /// The `<AppendedData>` section: the bytes after its `_`.
 #[derive(Clone, Copy)]
 pub(super) struct Appended<'a> {
@@ -79,12 +171,17 @@ pub(super) struct Appended<'a> {
     pub(super) base64: bool,
 }
 
-/// Reads the XML into a tree, up to the end of `<VTKFile>` or the start of
-/// the appended data (which need not be XML).
+/// Reads the XML into a tree of the kept elements, up to the end of
+/// `<VTKFile>` or the start of the appended data (which need not be XML).
 pub(super) fn parse_tree<'a>(ctx: &Ctx<'a>) -> Result<(Element, Option<Appended<'a>>)> {
     let bytes = ctx.bytes;
-    let mut reader = Reader::from_reader(bytes);
+    // quick-xml skips a byte-order mark but leaves it out of its positions.
+    let skip = crate::io::bom(bytes);
+    let mut reader = Reader::from_reader(&bytes[skip..]);
+    let at = |r: &Reader<&[u8]>| skip + r.buffer_position() as usize;
     let mut stack: Vec<Element> = Vec::new();
+    // Depth of the skipped element being read through (0: none), and of all.
+    let (mut skipped, mut depth) = (0usize, 0usize);
     let not_vtk = |pos| {
         ctx.at(
             pos,
@@ -92,55 +189,54 @@ pub(super) fn parse_tree<'a>(ctx: &Ctx<'a>) -> Result<(Element, Option<Appended<
         )
     };
     let appended = loop {
-        let pos = reader.buffer_position() as usize;
+        let pos = at(&reader);
         let event = match reader.read_event() {
             Ok(event) => event,
             Err(quick_xml::Error::Syntax(e)) if e != SyntaxError::InvalidBangMarkup => {
                 return Err(ctx.at(bytes.len(), format!("truncated file: {e}")))
             }
             Err(e) => {
-                let at = reader.error_position() as usize;
+                let at = skip + reader.error_position() as usize;
                 return Err(ctx.at(at, format!("malformed XML: {e}")));
             }
         };
-        match event {
-            Event::Start(e) | Event::Empty(e)
-                if stack.is_empty() && e.name().as_ref() != b"VTKFile" =>
-            {
-                return Err(not_vtk(pos))
-            }
-            Event::Start(_) if stack.len() == MAX_DEPTH => {
-                return Err(ctx.at(pos, format!("elements nested more than {MAX_DEPTH} deep")))
-            }
-            Event::Start(e) => {
-                let el = element(ctx, &e, pos)?;
-                if el.name == "AppendedData" {
-                    let start = reader.buffer_position() as usize;
-                    let appended = appended_section(ctx, &el, start)?;
-                    stack.push(el);
-                    break appended;
-                }
-                stack.push(el);
-            }
-            Event::Empty(e) => {
-                let el = element(ctx, &e, pos)?;
-                match stack.last_mut() {
-                    Some(parent) => parent.children.push(el),
-                    None => return Ok((el, None)),
-                }
-            }
+        let (e, open) = match event {
+            Event::Start(e) => (e, true),
+            Event::Empty(e) => (e, false),
             Event::End(_) => {
+                depth -= 1;
+                if skipped > 0 {
+                    skipped -= 1;
+                    continue;
+                }
                 let el = stack.pop().expect("quick-xml checks end tags");
                 match stack.last_mut() {
                     Some(parent) => parent.children.push(el),
                     None => return Ok((el, None)),
                 }
+                continue;
             }
-            Event::Text(t) => match stack.last_mut() {
-                Some(el) => el.text.push((pos, reader.buffer_position() as usize)),
-                None if t.iter().all(u8::is_ascii_whitespace) => {}
-                None => return Err(not_vtk(pos)),
-            },
+            Event::Text(t) => {
+                match stack.last_mut() {
+                    Some(el) if skipped == 0 && el.name == "DataArray" => {
+                        el.text.push((pos, at(&reader)));
+                    }
+                    Some(_) => {}
+                    None if t.iter().all(u8::is_ascii_whitespace) => {}
+                    None => return Err(not_vtk(pos)),
+                }
+                continue;
+            }
+            Event::CData(t) => {
+                if let Some(el) = stack
+                    .last_mut()
+                    .filter(|el| skipped == 0 && el.name == "DataArray")
+                {
+                    // The text between `<![CDATA[` and `]]>`.
+                    el.text.push((pos + 9, pos + 9 + t.len()));
+                }
+                continue;
+            }
             Event::Eof => match stack.last() {
                 None => return Err(not_vtk(pos)),
                 Some(el) => {
@@ -150,7 +246,40 @@ pub(super) fn parse_tree<'a>(ctx: &Ctx<'a>) -> Result<(Element, Option<Appended<
                     ))
                 }
             },
-            _ => {}
+            _ => continue,
+        };
+        if open {
+            if depth == MAX_DEPTH {
+                return Err(ctx.at(pos, format!("elements nested more than {MAX_DEPTH} deep")));
+            }
+            depth += 1;
+        }
+        let name = match stack.last() {
+            _ if skipped > 0 => {
+                skipped += usize::from(open);
+                continue;
+            }
+            None if e.name().as_ref() == b"VTKFile" => "VTKFile",
+            None => return Err(not_vtk(pos)),
+            Some(parent) => match fate(ctx, parent, &e, pos)? {
+                Fate::Keep(name) => name,
+                Fate::Skip => {
+                    skipped = usize::from(open);
+                    continue;
+                }
+            },
+        };
+        let el = element(ctx, &e, name, pos)?;
+        if open && name == "AppendedData" {
+            let start = at(&reader);
+            let appended = appended_section(ctx, &el, start)?;
+            stack.push(el);
+            break appended;
+        }
+        match (open, stack.last_mut()) {
+            (true, _) => stack.push(el),
+            (false, Some(parent)) => parent.children.push(el),
+            (false, None) => return Ok((el, None)),
         }
     };
     let mut root = stack.pop().expect("AppendedData was pushed");
@@ -161,23 +290,27 @@ pub(super) fn parse_tree<'a>(ctx: &Ctx<'a>) -> Result<(Element, Option<Appended<
     Ok((root, Some(appended)))
 }
 
-/// An element from a start tag at byte `pos`.
-fn element(ctx: &Ctx, e: &BytesStart, pos: usize) -> Result<Element> {
+/// The element `name` from a start tag at byte `pos`, with the attributes
+/// the reader uses (each at most once); every attribute is checked.
+fn element(ctx: &Ctx, e: &BytesStart, name: &'static str, pos: usize) -> Result<Element> {
     let malformed = |e: String| ctx.at(pos, format!("malformed XML: {e}"));
-    let mut attrs = Vec::new();
-    // quick-xml's duplicate check is quadratic: a hash set instead.
-    let mut seen = HashSet::new();
+    let known = known_attrs(name);
+    let mut attrs: Vec<(&'static str, String)> = Vec::new();
+    // quick-xml's duplicate check is quadratic: only the attributes used are
+    // checked, against the few already kept.
     for a in e.attributes().with_checks(false) {
         let a = a.map_err(|e| malformed(e.to_string()))?;
-        let value = a.unescape_value().map_err(|e| malformed(e.to_string()))?;
-        let key = String::from_utf8_lossy(a.key.as_ref()).into_owned();
-        if !seen.insert(key.clone()) {
+        let Some(&key) = known.iter().find(|k| k.as_bytes() == a.key.as_ref()) else {
+            continue;
+        };
+        if attrs.iter().any(|(k, _)| *k == key) {
             return Err(malformed(format!("duplicated attribute {key}")));
         }
+        let value = a.unescape_value().map_err(|e| malformed(e.to_string()))?;
         attrs.push((key, value.into_owned()));
     }
     Ok(Element {
-        name: String::from_utf8_lossy(e.name().as_ref()).into_owned(),
+        name,
         attrs,
         text: Vec::new(),
         children: Vec::new(),
