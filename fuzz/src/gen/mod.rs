@@ -8,7 +8,6 @@ pub mod su2;
 pub mod vtu;
 
 use arbitrary::Arbitrary;
-use verbss::mesh::CellKind;
 use verbss::Mesh;
 
 use verbss::mesh::samples::jittered_grid;
@@ -62,20 +61,6 @@ impl Base {
                 .get(k - 1)
                 .map_or(0.0, |&j| 0.3 * f64::from(j) / 127.0)
         })
-    }
-}
-
-/// The VTK (and SU2) cell-type number of a kind.
-pub fn vtk_id(kind: CellKind) -> u8 {
-    match kind {
-        CellKind::Vertex => 1,
-        CellKind::Line => 3,
-        CellKind::Triangle => 5,
-        CellKind::Quad => 9,
-        CellKind::Tetra => 10,
-        CellKind::Hexahedron => 12,
-        CellKind::Wedge => 13,
-        CellKind::Pyramid => 14,
     }
 }
 

@@ -5,7 +5,7 @@
 
 use arbitrary::Arbitrary;
 
-use super::{vtk_id, Base, Count, Name};
+use super::{Base, Count, Name};
 
 /// An SU2 file, described.
 #[derive(Arbitrary, Debug)]
@@ -95,7 +95,7 @@ impl Su2File {
                 Section::Elements => {
                     lines.push(format!("NELEM= {}", self.counts[1].text(mesh.cell_count())));
                     for (c, (kind, nodes)) in mesh.cells.iter().enumerate() {
-                        let mut t = vec![vtk_id(kind).to_string()];
+                        let mut t = vec![kind.vtk_id().to_string()];
                         t.extend((0..nodes.len()).map(|k| nodes[kind.vtk_local(k)].to_string()));
                         t.push(c.to_string());
                         push_data(&mut lines, t);
@@ -120,7 +120,7 @@ impl Su2File {
                         lines.push(format!("MARKER_TAG= {name}"));
                         lines.push(format!("MARKER_ELEMS= {}", g.facets.len()));
                         for (kind, nodes) in g.facets.iter() {
-                            let mut t = vec![vtk_id(kind).to_string()];
+                            let mut t = vec![kind.vtk_id().to_string()];
                             t.extend(nodes.iter().map(|i| i.to_string()));
                             push_data(&mut lines, t);
                         }

@@ -10,7 +10,7 @@ use arbitrary::Arbitrary;
 use base64::engine::general_purpose::STANDARD;
 use base64::Engine;
 
-use super::{vtk_id, Base, Count, Name};
+use super::{Base, Count, Name};
 
 /// A VTU file, described.
 #[derive(Arbitrary, Debug)]
@@ -264,7 +264,7 @@ impl VtuFile {
         for (g, kind, nodes) in mesh.cells.iter().map(|(k, c)| (0, k, c)).chain(facets) {
             conn.extend((0..nodes.len()).map(|k| nodes[kind.vtk_local(k)] as i64));
             offsets.push(conn.len() as i64);
-            types.push(i64::from(vtk_id(kind)));
+            types.push(i64::from(kind.vtk_id()));
             group.push(g);
         }
         let total = types.len();
