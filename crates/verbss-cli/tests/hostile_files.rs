@@ -236,6 +236,20 @@ fn a_duplicated_element_is_refused_by_every_reader() {
 }
 
 #[test]
+fn msh_element_tags_at_the_top_convert_to_a_readable_msh() {
+    // Found by fuzzing: the facets' fresh tags wrapped to 0 past u64::MAX.
+    let dir = tempfile::tempdir().unwrap();
+    let text = msh_with_tags(1, 1)
+        .replace("\n2 1 2 3\n", "\n18446744073709551614 1 2 3\n")
+        .replace("\n3 1 3 4\n", "\n18446744073709551615 1 3 4\n");
+    let input = file(dir.path(), "top.msh", text);
+    let out = dir.path().join("out.msh");
+    let r = run(&["convert", input.to_str().unwrap(), out.to_str().unwrap()]);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+    read(&out);
+}
+
+#[test]
 fn case_step_patterns_are_checked() {
     // Issue 23, 3, and other patterns the step number cannot fill.
     let dir = tempfile::tempdir().unwrap();

@@ -57,6 +57,29 @@ fn the_worst_hostile_files_stay_under_512_mib() {
     );
     let (head, tail) = around.split_once('|').unwrap();
     let comments = repeated(d, "comments.vtu", head, "1<!---->", 6_000_000, tail);
+    // 48 MB of ascii VTU points at the origin, one triangle: read.
+    let around = vtu("", "", "")
+        .replace(
+            VTU_POINTS,
+            "<DataArray type=\"Float64\" NumberOfComponents=\"3\">|</DataArray>",
+        )
+        .replace("NumberOfPoints=\"4\"", "NumberOfPoints=\"8000000\"");
+    let (head, tail) = around.split_once('|').unwrap();
+    let points = repeated(d, "points.vtu", head, "0 0 0 ", 8_000_000, tail);
+    // 48 MB of MSH 2.2 nodes (tags of 7 digits), one triangle: read.
+    let head = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2700000\n";
+    let tail = "$EndNodes\n$Elements\n1\n1 2 0 1000000 1000001 1001000\n$EndElements\n";
+    let nodes = {
+        let path = d.join("nodes.msh");
+        let mut w = std::io::BufWriter::new(std::fs::File::create(&path).unwrap());
+        w.write_all(head.as_bytes()).unwrap();
+        for k in 0..2_700_000 {
+            writeln!(w, "{} {} {} 0", 1_000_000 + k, k % 1000, k / 1000).unwrap();
+        }
+        w.write_all(tail.as_bytes()).unwrap();
+        w.flush().unwrap();
+        path
+    };
     let gmsh_groups = {
         let n = 65_536;
         let mut s = format!(
@@ -72,6 +95,8 @@ fn the_worst_hostile_files_stay_under_512_mib() {
     let fixtures = [
         file(d, "budget.vtu", bomb),
         dense,
+        points,
+        nodes,
         comments,
         file(
             d,

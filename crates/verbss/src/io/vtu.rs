@@ -55,6 +55,7 @@ use std::path::Path;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 
+mod assemble;
 mod binary;
 #[cfg(test)]
 mod hostile_tests;

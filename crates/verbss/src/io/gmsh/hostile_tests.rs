@@ -80,3 +80,39 @@ fn a_byte_order_mark_is_skipped_and_a_duplicated_element_named() {
         "t.msh:10: invalid mesh: elements 1 and 3 have the same nodes (a duplicated element)"
     );
 }
+
+#[test]
+fn extreme_tags_are_written_so_that_they_read_back() {
+    // Found by the `gmsh` fuzz target: a cell tagged u64::MAX numbered the
+    // group facets on from 0 (it wrapped), which no reader accepts.
+    let mut mesh = read(&msh22(1, |_| i32::MAX as usize)).unwrap();
+    mesh.cell_tags = vec![u64::MAX];
+    for version in [MshVersion::V22, MshVersion::V41] {
+        let mut out = Vec::new();
+        let written = write_to(&mut out, &mesh, version, false);
+        if version == MshVersion::V22 {
+            // MSH 2.2 stores 32-bit tags.
+            assert!(written.unwrap_err().to_string().contains("does not fit"));
+            continue;
+        }
+        written.unwrap();
+        let back = parse(&out, Path::new("t.msh")).unwrap();
+        assert_eq!(back.cell_tags, [u64::MAX]);
+        // The group keeps its physical tag i32::MAX; the cells' own group
+        // ("domain") gets a fresh one below it.
+        assert_eq!(back.groups[0].tag, Some(i32::MAX));
+    }
+    // Cell tags 1 and u64::MAX leave no room for a facet's tag.
+    let mut two = read(&msh22(1, |_| 3)).unwrap();
+    two.coords.extend([1.0, 1.0]);
+    two.node_tags.push(4);
+    two.cells.push(CellKind::Triangle, &[1, 3, 2]);
+    two.cell_tags = vec![1, u64::MAX];
+    let mut out = Vec::new();
+    assert_eq!(
+        write_to(&mut out, &two, MshVersion::V41, true)
+            .unwrap_err()
+            .to_string(),
+        "element tags 1 to 18446744073709551615 leave no room for the tags of the 1 group facets"
+    );
+}

@@ -47,14 +47,22 @@ impl<'a> Plan<'a> {
     /// Checks the mesh and assigns physical tags and entities.
     pub fn new(mesh: &'a Mesh) -> io::Result<Plan<'a>> {
         mesh.validate().map_err(|e| invalid(e.to_string()))?;
-        let mut next = mesh
-            .groups
+        // Fresh physical tags: after the groups' own, from 1 when those reach
+        // i32::MAX, never one a group has.
+        let taken: HashSet<i32> = mesh.groups.iter().filter_map(|g| g.tag).collect();
+        let mut next = taken
             .iter()
-            .filter_map(|g| g.tag)
             .max()
-            .unwrap_or(0)
-            .max(0)
-            + 1;
+            .map_or(1, |&t| t.max(0).checked_add(1).unwrap_or(1));
+        let mut fresh = || loop {
+            let t = next;
+            next = next
+                .checked_add(1)
+                .ok_or_else(|| invalid("no physical tag is left for the groups".into()))?;
+            if !taken.contains(&t) {
+                return Ok::<i32, io::Error>(t);
+            }
+        };
         let mut used = HashSet::new();
         let mut entities = [0i32; 4];
         let mut groups = Vec::with_capacity(mesh.groups.len());
@@ -76,12 +84,7 @@ impl<'a> Plan<'a> {
             }
             let physical = match group.tag {
                 Some(t) if t > 0 && used.insert((dim, t)) => t,
-                _ => {
-                    let t = next;
-                    next += 1;
-                    used.insert((dim, t));
-                    t
-                }
+                _ => fresh()?,
             };
             entities[dim] += 1;
             groups.push(PlannedGroup {
@@ -91,12 +94,26 @@ impl<'a> Plan<'a> {
                 entity: entities[dim],
             });
         }
-        let first_facet_tag = mesh.cell_tags.iter().copied().max().unwrap_or(0) + 1;
+        // Facets are numbered on from the largest cell tag, or from 1 when
+        // that would pass u64::MAX and the cell tags leave room below.
+        let facets: u64 = groups.iter().map(|g| g.group.facets.len() as u64).sum();
+        let max = mesh.cell_tags.iter().copied().max().unwrap_or(0);
+        let min = mesh.cell_tags.iter().copied().min().unwrap_or(0);
+        let first_facet_tag = match max.checked_add(facets) {
+            Some(_) => max + 1,
+            None if min > facets => 1,
+            None => {
+                return Err(invalid(format!(
+                    "element tags {min} to {max} leave no room for the tags of the {facets} \
+                     group facets"
+                )))
+            }
+        };
         Ok(Plan {
             mesh,
             groups,
             first_facet_tag,
-            domain: next,
+            domain: fresh()?,
         })
     }
 

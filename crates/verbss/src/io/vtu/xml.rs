@@ -113,11 +113,8 @@ fn fate(ctx: &Ctx, parent: &Element, e: &BytesStart, pos: usize) -> Result<Fate>
     ];
     let name = e.name();
     let name = name.as_ref();
-    if name == b"AppendedData" {
-        return Ok(Fate::Keep("AppendedData"));
-    }
     let allowed: &[&'static str] = match parent.name {
-        "VTKFile" => &["UnstructuredGrid"],
+        "VTKFile" => &["UnstructuredGrid", "AppendedData"],
         "UnstructuredGrid" => &["FieldData", "Piece"],
         "Piece" => &["Points", "Cells", "PointData", "CellData"],
         "FieldData" | "Points" | "Cells" | "PointData" | "CellData" => &["DataArray"],
