@@ -24,14 +24,15 @@
 //!   mesh with `python3 cases/meshes/two_fish.py cases/meshes/two-fish.msh`),
 //!   60 steps a cycle after the case's 10-step ramp.
 //!
-//! `--reference` and `--method` replace the default's; `--direct` solves each
+//! `--reference`, `--predictor` and `--method` replace the default's; `--direct` solves each
 //! step exactly (sparse LU), `--tolerance` sets the eq.-8 stop.
 //!
 //! A cycle ends where it started, so the mesh should be the one it started
 //! from: the input mesh, or for the fish the mesh at the end of the ramp.
 //! Printed per cycle, relative to the diagonal of the input mesh's bounding
-//! box: the largest and the RMS distance of the nodes from that mesh; then
-//! the smallest quality at the end of the cycle and over its steps, the
+//! box: the largest and the RMS distance of the nodes from that mesh, and
+//! the largest distance from the end of the cycle before (the drift per
+//! cycle); then the smallest quality at the end of the cycle and over its steps, the
 //! sweeps, and the resident memory now and at its peak (`VmRSS`, `VmHWM` of
 //! `/proc/self/status`, Linux). Stops with a non-zero exit at the first
 //! inverted step.
@@ -41,7 +42,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use verbss::case::Case;
-use verbss::deform::{Deformer, Preset, Reference};
+use verbss::deform::{Deformer, Predictor, Preset, Reference};
 use verbss::generate::{naca0012, AirfoilGrid};
 use verbss::mesh::Mesh;
 use verbss::motion::{Attachment, Motion};
@@ -152,6 +153,7 @@ struct Options {
     method: Preset,
     reference: Option<Reference>,
     tolerance: Option<f64>,
+    predictor: Option<Predictor>,
     direct: bool,
 }
 
@@ -165,6 +167,7 @@ fn run(p: &Periodic, o: &Options) -> Result<(), String> {
     if let Some(t) = o.tolerance {
         settings.solve.tolerance = t;
     }
+    settings.predictor = o.predictor.unwrap_or(settings.predictor);
     if o.direct {
         settings.solve.method = Method::BallVertex;
         settings.solve.solver = Solver::Direct;
@@ -180,6 +183,7 @@ fn run(p: &Periodic, o: &Options) -> Result<(), String> {
         d.advance().map_err(|e| e.to_string())?;
     }
     let origin = d.current().coords.clone();
+    let mut previous = origin.clone();
     println!(
         "{}: {} nodes, {} cells, size {size:.4}, {} cycles of {} steps after {}, {} reference, {:?}/{:?}, tolerance {:e}; input min quality {q0:.6}, RSS {} KiB",
         p.name,
@@ -194,7 +198,7 @@ fn run(p: &Periodic, o: &Options) -> Result<(), String> {
         d.settings().solve.tolerance,
         status_kib("VmRSS:").unwrap_or(0)
     );
-    println!("cycle  max drift/size  rms drift/size  min q (end)  min q (cycle)  sweeps  seconds  RSS KiB  peak KiB");
+    println!("cycle  max drift/size  rms drift/size  max change/size  min q (end)  min q (cycle)  sweeps  seconds  RSS KiB  peak KiB");
     let start = Instant::now();
     for cycle in 1..=o.cycles {
         let (mut min_q, mut sweeps) = (f64::INFINITY, 0);
@@ -206,10 +210,13 @@ fn run(p: &Periodic, o: &Options) -> Result<(), String> {
         }
         let current = d.current();
         let (max, rms) = drift(mesh.dim, &current.coords, &origin);
+        let (change, _) = drift(mesh.dim, &current.coords, &previous);
+        previous.clone_from(&current.coords);
         println!(
-            "{cycle:5}  {:14.3e}  {:14.3e}  {:11.6}  {min_q:13.6}  {sweeps:6}  {:7.1}  {:7}  {:8}",
+            "{cycle:5}  {:14.3e}  {:14.3e}  {:15.3e}  {:11.6}  {min_q:13.6}  {sweeps:6}  {:7.1}  {:7}  {:8}",
             max / size,
             rms / size,
+            change / size,
             current.report.min_quality,
             t.elapsed().as_secs_f64(),
             status_kib("VmRSS:").unwrap_or(0),
@@ -264,7 +271,16 @@ fn main() -> ExitCode {
         }
         None => None,
     };
+    let predictor = match value("--predictor").map(|r| r.parse::<Predictor>()) {
+        Some(Ok(r)) => Some(r),
+        Some(Err(e)) => {
+            eprintln!("{e}");
+            return ExitCode::from(2);
+        }
+        None => None,
+    };
     let options = Options {
+        predictor,
         cycles,
         method,
         reference,
