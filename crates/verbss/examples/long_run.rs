@@ -78,24 +78,6 @@ fn drift(dim: usize, a: &[f64], b: &[f64]) -> (f64, f64) {
     (max, (sum / (a.len() / dim) as f64).sqrt())
 }
 
-/// The diagonal of the mesh's bounding box.
-fn diagonal(mesh: &Mesh) -> f64 {
-    let (mut lo, mut hi) = (
-        vec![f64::INFINITY; mesh.dim],
-        vec![f64::NEG_INFINITY; mesh.dim],
-    );
-    for p in mesh.coords.chunks(mesh.dim) {
-        for d in 0..mesh.dim {
-            (lo[d], hi[d]) = (lo[d].min(p[d]), hi[d].max(p[d]));
-        }
-    }
-    lo.iter()
-        .zip(&hi)
-        .map(|(a, b)| (b - a) * (b - a))
-        .sum::<f64>()
-        .sqrt()
-}
-
 /// An airfoil pitching by `pitch` degrees and plunging by `plunge` chords
 /// about its quarter chord (its leading edge at `lead_x`), `period` steps a cycle.
 fn pitch_plunge(lead_x: f64, pitch: f64, plunge: f64, period: usize) -> Vec<Attachment> {
@@ -173,7 +155,7 @@ fn run(p: &Periodic, o: &Options) -> Result<(), String> {
         settings.solve.solver = Solver::Direct;
     }
     let mesh = &p.mesh;
-    let size = diagonal(mesh);
+    let size = mesh.diagonal();
     let mut d = Deformer::new(mesh, &p.attachments, settings).map_err(|e| e.to_string())?;
     let orientation = quality::orientation(mesh);
     let q0 = quality::qualities(mesh, &mesh.coords, &orientation)

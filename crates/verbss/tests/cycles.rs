@@ -13,24 +13,6 @@ use verbss::mesh::Mesh;
 use verbss::motion::{Attachment, Motion};
 use verbss::solve::{Method, Solver};
 
-/// The diagonal of the mesh's bounding box.
-fn diagonal(mesh: &Mesh) -> f64 {
-    let (mut lo, mut hi) = (
-        vec![f64::INFINITY; mesh.dim],
-        vec![f64::NEG_INFINITY; mesh.dim],
-    );
-    for p in mesh.coords.chunks(mesh.dim) {
-        for d in 0..mesh.dim {
-            (lo[d], hi[d]) = (lo[d].min(p[d]), hi[d].max(p[d]));
-        }
-    }
-    lo.iter()
-        .zip(&hi)
-        .map(|(a, b)| (b - a) * (b - a))
-        .sum::<f64>()
-        .sqrt()
-}
-
 /// The largest node distance between two coordinate sets.
 fn distance(a: &[f64], b: &[f64]) -> f64 {
     a.iter()
@@ -76,7 +58,7 @@ fn cycles(
     period: usize,
 ) -> Vec<f64> {
     let (origin, ends) = cycle_ends(mesh, attachments, settings, lead, period, 2);
-    let size = diagonal(mesh);
+    let size = mesh.diagonal();
     ends.iter().map(|e| distance(e, &origin) / size).collect()
 }
 
@@ -206,7 +188,7 @@ fn the_undulating_fish_do_not_drift_with_the_default_sweeps() {
     let mut settings = Settings::robust(2 + 3 * 12);
     settings.dt = dt;
     let (origin, ends) = cycle_ends(&mesh, &attachments, settings, 2, 12, 3);
-    let size = diagonal(&mesh);
+    let size = mesh.diagonal();
     let per_cycle: Vec<f64> = ends
         .windows(2)
         .map(|w| distance(&w[1], &w[0]) / size)

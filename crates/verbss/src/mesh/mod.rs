@@ -132,6 +132,22 @@ impl Mesh {
         self.coords.len() / self.dim
     }
 
+    /// The diagonal of the nodes' bounding box, `|max − min|` (0 for no node).
+    pub fn diagonal(&self) -> f64 {
+        let mut lo = vec![f64::INFINITY; self.dim];
+        let mut hi = vec![f64::NEG_INFINITY; self.dim];
+        for p in self.coords.chunks(self.dim) {
+            for d in 0..self.dim {
+                (lo[d], hi[d]) = (lo[d].min(p[d]), hi[d].max(p[d]));
+            }
+        }
+        lo.iter()
+            .zip(&hi)
+            .map(|(a, b)| if b >= a { (b - a) * (b - a) } else { 0.0 })
+            .sum::<f64>()
+            .sqrt()
+    }
+
     /// Number of volume cells.
     pub fn cell_count(&self) -> usize {
         self.cells.len()
