@@ -25,11 +25,6 @@ fn write_read(dir: &Path, name: &str, mesh: &Mesh) -> Mesh {
     read(&path).unwrap()
 }
 
-/// The message of reading `path`, which must fail.
-fn read_error(path: &Path) -> String {
-    read(path).unwrap_err().to_string()
-}
-
 #[test]
 fn a_hybrid_3d_mesh_round_trips_through_a_fresh_file() {
     if !needs(LIBRARY, available()) {
@@ -163,6 +158,11 @@ mod hand_written {
     use super::fixtures::square;
     use super::*;
     use crate::io::cgns::ffi;
+
+    /// The message of reading `path`, which must fail.
+    fn read_error(path: &Path) -> String {
+        read(path).unwrap_err().to_string()
+    }
 
     #[test]
     fn sections_of_edges_are_groups_and_conditions_take_their_family_name() {
