@@ -6,12 +6,13 @@ use std::process::ExitCode;
 use clap::{Args, ValueEnum};
 use verbss::io::{self, MshVersion, WriteOptions};
 
+use crate::input::read_mesh;
 use crate::overwrite::{note_lost_su2_blocks, refuse_input_as_output};
 
 /// Arguments of `verbss convert`.
 #[derive(Args)]
 pub struct ConvertArgs {
-    /// Input mesh (.msh, .su2, .vtu).
+    /// Input mesh (.msh, .su2, .vtu, .cgns).
     input: PathBuf,
     /// Output mesh; its extension chooses the format.
     output: PathBuf,
@@ -37,7 +38,7 @@ enum MshVersionArg {
 /// Runs `verbss convert`.
 pub fn run(args: ConvertArgs) -> anyhow::Result<ExitCode> {
     refuse_input_as_output(&args.input, &args.output, args.overwrite)?;
-    let mesh = io::read(&args.input)?;
+    let mesh = read_mesh(&args.input)?;
     let mut options = WriteOptions::default();
     options.msh_version = match args.msh_version {
         MshVersionArg::V22 => MshVersion::V22,

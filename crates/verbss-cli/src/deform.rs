@@ -12,11 +12,12 @@ use std::process::ExitCode;
 use anyhow::bail;
 use clap::{ArgGroup, Args};
 use verbss::deform::{Predictor, Preset, Reference};
-use verbss::io::{self, Format};
+use verbss::io::Format;
 use verbss::motion::{Attachment, Motion, PositionSource};
 use verbss::robust::Layer;
 use verbss::solve::{Accel, Solver};
 
+use crate::input::read_mesh;
 use crate::overwrite::refuse_input_as_output;
 use crate::render::{PictureArgs, Recorder};
 use crate::run::{file_stem, run_here, Job, Prepared};
@@ -25,7 +26,7 @@ use crate::run::{file_stem, run_here, Job, Prepared};
 #[derive(Args)]
 #[command(group(ArgGroup::new("motion").required(true).args(["translate", "rotate", "positions"])))]
 pub struct DeformArgs {
-    /// The input mesh (.msh, .su2, .vtu).
+    /// The input mesh (.msh, .su2, .vtu, .cgns).
     mesh: PathBuf,
     /// The output mesh; its extension chooses the format.
     #[arg(short, long)]
@@ -185,7 +186,7 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
 pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
     let format = Format::from_path(&args.output)?;
     refuse_input_as_output(&args.mesh, &args.output, args.overwrite)?;
-    let mesh = io::read(&args.mesh)?;
+    let mesh = read_mesh(&args.mesh)?;
     for g in args.moving.iter().chain(&args.slide) {
         mesh.group(g)?;
     }

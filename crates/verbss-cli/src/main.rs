@@ -23,7 +23,7 @@ struct Cli {
 enum Command {
     /// Measure element quality: counts, groups, histogram, inverted elements.
     Quality(quality::QualityArgs),
-    /// Convert a mesh between formats, chosen by extension (.msh, .su2, .vtu).
+    /// Convert a mesh between formats, chosen by extension (.msh, .su2, .vtu, .cgns).
     Convert(convert::ConvertArgs),
     /// Move groups by a translation, a rotation or given positions, in N steps.
     Deform(Box<deform::DeformArgs>),

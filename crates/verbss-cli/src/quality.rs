@@ -5,12 +5,14 @@ use std::process::ExitCode;
 
 use clap::Args;
 use serde_json::Value;
-use verbss::{io, quality};
+use verbss::quality;
+
+use crate::input::read_mesh;
 
 /// Arguments of `verbss quality`.
 #[derive(Args)]
 pub struct QualityArgs {
-    /// The mesh (.msh, .su2, .vtu).
+    /// The mesh (.msh, .su2, .vtu, .cgns).
     mesh: PathBuf,
     /// Print one JSON object instead of a table.
     #[arg(long)]
@@ -19,7 +21,7 @@ pub struct QualityArgs {
 
 /// Runs `verbss quality`.
 pub fn run(args: QualityArgs) -> anyhow::Result<ExitCode> {
-    let mesh = io::read(&args.mesh)?;
+    let mesh = read_mesh(&args.mesh)?;
     let value = quality::summary_json(&mesh);
     if args.json {
         println!("{}", serde_json::to_string(&value)?);

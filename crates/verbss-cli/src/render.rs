@@ -18,7 +18,7 @@ use verbss_render::{Camera, Gif, Image, Layout, Options, Scene, Section, State};
 /// Arguments of `verbss render`.
 #[derive(Args)]
 pub struct RenderArgs {
-    /// The mesh (.msh, .su2, .vtu).
+    /// The mesh (.msh, .su2, .vtu, .cgns).
     mesh: PathBuf,
     /// The picture: .png or .svg.
     #[arg(short, long)]
@@ -98,7 +98,7 @@ fn parse_cut(s: &str) -> Result<(usize, f64), String> {
 
 /// Runs `verbss render`.
 pub fn run(args: RenderArgs) -> anyhow::Result<ExitCode> {
-    let mesh = verbss::io::read(&args.mesh)?;
+    let mesh = crate::input::read_mesh(&args.mesh)?;
     let orientation = quality::orientation(&mesh);
     let q = quality::qualities(&mesh, &mesh.coords, &orientation);
     let mut inverted = vec![false; mesh.cell_count()];

@@ -36,8 +36,17 @@ pub enum Error {
         /// What was found and what was expected.
         message: String,
     },
+    /// A CGNS file does not hold what verbss reads (the message names the
+    /// zone, section or boundary condition), or the CGNS library failed.
+    #[error("{}: {message}", path.display())]
+    Cgns {
+        /// The file.
+        path: PathBuf,
+        /// What was found and what was expected.
+        message: String,
+    },
     /// The file's extension does not name a format verbss knows.
-    #[error("{}: unknown mesh format (expected .msh, .su2 or .vtu)", path.display())]
+    #[error("{}: unknown mesh format (expected .msh, .su2, .vtu or .cgns)", path.display())]
     UnknownFormat {
         /// The file.
         path: PathBuf,

@@ -1,4 +1,5 @@
-//! Mesh files in and out: Gmsh MSH 2.2/4.1, SU2, VTK XML (`.vtu`, `.pvd`).
+//! Mesh files in and out: Gmsh MSH 2.2/4.1, SU2, VTK XML (`.vtu`, `.pvd`),
+//! CGNS (`.cgns`, with the CGNS library).
 //!
 //! [`read`] and [`write()`] choose the format by extension.
 
@@ -9,6 +10,7 @@ use std::path::{Path, PathBuf};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 
+pub mod cgns;
 pub mod gmsh;
 pub mod positions;
 pub mod pvd;
@@ -77,6 +79,8 @@ pub enum Format {
     Su2,
     /// VTK XML unstructured grid `.vtu`.
     Vtu,
+    /// CGNS `.cgns` (unstructured zones).
+    Cgns,
 }
 
 impl Format {
@@ -86,6 +90,7 @@ impl Format {
             Format::Msh => "msh",
             Format::Su2 => "su2",
             Format::Vtu => "vtu",
+            Format::Cgns => "cgns",
         }
     }
 
@@ -95,7 +100,7 @@ impl Format {
             .extension()
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
-        [Format::Msh, Format::Su2, Format::Vtu]
+        [Format::Msh, Format::Su2, Format::Vtu, Format::Cgns]
             .into_iter()
             .find(|f| ext.as_deref() == Some(f.extension()))
             .ok_or_else(|| Error::UnknownFormat {
@@ -107,6 +112,9 @@ impl Format {
 /// Reads a mesh, choosing the format by extension.
 pub fn read(path: &Path) -> Result<Mesh> {
     let format = Format::from_path(path)?;
+    if format == Format::Cgns {
+        return cgns::read(path);
+    }
     let bytes = std::fs::read(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
@@ -115,17 +123,22 @@ pub fn read(path: &Path) -> Result<Mesh> {
         Format::Msh => gmsh::parse(&bytes, path),
         Format::Su2 => su2::parse(&bytes, path),
         Format::Vtu => vtu::parse(&bytes, path).map(|v| v.mesh),
+        Format::Cgns => cgns::read(path),
     }
 }
 
-/// Writes a mesh, choosing the format by extension (atomically, see [`write_atomic`]).
+/// Writes a mesh, choosing the format by extension (atomically, see
+/// [`write_atomic`]; a CGNS mesh read from a CGNS file is a copy of that
+/// file with new coordinates, see [`cgns::write`]).
 pub fn write(path: &Path, mesh: &Mesh, options: &WriteOptions) -> Result<()> {
-    let format = Format::from_path(path)?;
-    write_atomic(path, |w| match format {
-        Format::Msh => gmsh::write_to(w, mesh, options.msh_version, options.binary),
-        Format::Su2 => su2::write_to(w, mesh),
-        Format::Vtu => vtu::write_to(w, mesh, &vtu::Fields::default()),
-    })
+    match Format::from_path(path)? {
+        Format::Msh => write_atomic(path, |w| {
+            gmsh::write_to(w, mesh, options.msh_version, options.binary)
+        }),
+        Format::Su2 => write_atomic(path, |w| su2::write_to(w, mesh)),
+        Format::Vtu => write_atomic(path, |w| vtu::write_to(w, mesh, &vtu::Fields::default())),
+        Format::Cgns => cgns::write(path, mesh),
+    }
 }
 
 /// The temporary file beside `path` that an atomic write fills first

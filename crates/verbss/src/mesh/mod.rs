@@ -108,6 +108,10 @@ pub struct Mesh {
     /// not use (FFD boxes, periodic data, …), verbatim: writing the mesh as
     /// SU2 puts them back. Empty for a mesh from any other source.
     pub su2_skipped: Vec<crate::io::su2::Skipped>,
+    /// The CGNS file the mesh was read from: writing the mesh as CGNS copies
+    /// that file and replaces only its coordinates. `None` for a mesh from
+    /// any other source.
+    pub cgns_source: Option<crate::io::cgns::Source>,
 }
 
 impl Mesh {
@@ -122,6 +126,7 @@ impl Mesh {
             cells,
             groups,
             su2_skipped: Vec::new(),
+            cgns_source: None,
         };
         mesh.validate()?;
         Ok(mesh)

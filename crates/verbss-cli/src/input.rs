@@ -1,0 +1,23 @@
+//! Reading the input mesh, saying on standard error what of the file verbss
+//! leaves out.
+
+use std::path::Path;
+
+use verbss::io;
+use verbss::mesh::Mesh;
+
+/// Reads the mesh at `path` (the format chosen by extension); for a CGNS
+/// file of several zones, notes that only the first was read.
+pub fn read_mesh(path: &Path) -> verbss::Result<Mesh> {
+    let mesh = io::read(path)?;
+    if let Some(source) = mesh.cgns_source.as_ref().filter(|s| s.zones > 1) {
+        eprintln!(
+            "note: {} has {} zones in base '{}'; verbss reads zone 1 ('{}') only",
+            path.display(),
+            source.zones,
+            source.base,
+            source.zone
+        );
+    }
+    Ok(mesh)
+}

@@ -1,0 +1,585 @@
+//! The crate's only `unsafe` code: safe wrappers of the CGNS mid-level
+//! library calls that the reader and the writers use.
+//!
+//! Every wrapper hands the library buffers sized from the counts the library
+//! itself reported (names: 33 bytes, CGNS names having at most 32
+//! characters). The library keeps global state (open files, the last error,
+//! the `cg_gopath` position) and is not thread-safe: a [`File`] holds a
+//! process-wide lock from opening to closing.
+#![allow(unsafe_code)]
+
+use std::ffi::{c_char, c_int, c_void, CStr, CString};
+use std::path::Path;
+use std::sync::{Mutex, MutexGuard};
+
+/// The library's `cgsize_t`: 64 bits wide when it was built so.
+#[cfg(cgns_size64)]
+pub type CgSize = i64;
+/// The library's `cgsize_t`: 64 bits wide when it was built so.
+#[cfg(not(cgns_size64))]
+pub type CgSize = i32;
+
+/// `CG_MODE_READ`, `CG_MODE_WRITE`, `CG_MODE_MODIFY`.
+#[derive(Debug, Clone, Copy)]
+pub enum Mode {
+    Read = 0,
+    Write = 1,
+    Modify = 2,
+}
+
+/// `ZoneType_t` `Structured`.
+pub const STRUCTURED: c_int = 2;
+/// `ZoneType_t` `Unstructured`.
+pub const UNSTRUCTURED: c_int = 3;
+/// `DataType_t` `RealSingle`.
+pub const REAL_SINGLE: c_int = 3;
+/// `DataType_t` `RealDouble`.
+pub const REAL_DOUBLE: c_int = 4;
+/// `ElementType_t` `MIXED`.
+pub const MIXED: c_int = 20;
+/// `ElementType_t` `NGON_n`.
+pub const NGON_N: c_int = 22;
+/// `ElementType_t` `NFACE_n`.
+pub const NFACE_N: c_int = 23;
+/// `BCType_t` `FamilySpecified`.
+pub const FAMILY_SPECIFIED: c_int = 25;
+/// `PointSetType_t` `PointList`.
+pub const POINT_LIST: c_int = 2;
+/// `PointSetType_t` `PointRange`.
+pub const POINT_RANGE: c_int = 4;
+/// `PointSetType_t` `ElementRange`.
+pub const ELEMENT_RANGE: c_int = 6;
+/// `PointSetType_t` `ElementList`.
+pub const ELEMENT_LIST: c_int = 7;
+/// `GridLocation_t` `Vertex`.
+pub const VERTEX: c_int = 2;
+/// `GridLocation_t` `FaceCenter`.
+pub const FACE_CENTER: c_int = 4;
+/// `GridLocation_t` `EdgeCenter`.
+pub const EDGE_CENTER: c_int = 8;
+
+/// `CG_NODE_NOT_FOUND`.
+const NODE_NOT_FOUND: c_int = 2;
+
+mod sys;
+
+use sys::*;
+
+/// The lock every open [`File`] holds.
+static LIBRARY: Mutex<()> = Mutex::new(());
+
+/// A CGNS name buffer: 32 characters and the terminating zero.
+type NameBuf = [c_char; 33];
+
+/// The text of a name buffer the library filled.
+fn name_of(buf: &NameBuf) -> String {
+    // SAFETY: the library wrote a zero-terminated string into the buffer,
+    // and the last byte is zero from its initialisation.
+    unsafe { CStr::from_ptr(buf.as_ptr()) }
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// A name as the library takes it; `None` when it holds a zero byte.
+fn c_name(name: &str) -> Result<CString, String> {
+    CString::new(name).map_err(|_| format!("the name {name:?} holds a zero byte"))
+}
+
+/// An element section's header (`cg_section_read`).
+#[derive(Debug)]
+pub struct SectionInfo {
+    pub name: String,
+    pub kind: c_int,
+    pub start: CgSize,
+    pub end: CgSize,
+    pub has_parents: bool,
+}
+
+/// A boundary condition's header (`cg_boco_info`).
+#[derive(Debug)]
+pub struct BocoInfo {
+    pub name: String,
+    pub point_set: c_int,
+    pub count: CgSize,
+}
+
+/// An open CGNS file; closed when dropped.
+pub struct File {
+    id: c_int,
+    /// Whether `cg_close` is still to be called.
+    open: bool,
+    _lock: MutexGuard<'static, ()>,
+}
+
+impl File {
+    /// Opens `path` (or creates it, in [`Mode::Write`]).
+    pub fn open(path: &Path, mode: Mode) -> Result<File, String> {
+        let lock = LIBRARY.lock().unwrap_or_else(|p| p.into_inner());
+        let name = c_name(&path.to_string_lossy())?;
+        let mut id = 0;
+        // SAFETY: a valid C string and an out-pointer.
+        check(unsafe { cg_open(name.as_ptr(), mode as c_int, &mut id) })?;
+        Ok(File {
+            id,
+            open: true,
+            _lock: lock,
+        })
+    }
+
+    /// Closes the file, reporting the library's error (writes are flushed here).
+    pub fn close(mut self) -> Result<(), String> {
+        self.open = false;
+        // SAFETY: `id` is an open file of this process.
+        check(unsafe { cg_close(self.id) })
+    }
+
+    /// The number of bases.
+    pub fn bases(&self) -> Result<c_int, String> {
+        let mut n = 0;
+        // SAFETY: an out-pointer.
+        check(unsafe { cg_nbases(self.id, &mut n) })?;
+        Ok(n)
+    }
+
+    /// Base `b`'s name, cell dimension and physical dimension.
+    pub fn base(&self, b: c_int) -> Result<(String, c_int, c_int), String> {
+        let mut name: NameBuf = [0; 33];
+        let (mut cell, mut phys) = (0, 0);
+        // SAFETY: a 33-byte name buffer and out-pointers.
+        check(unsafe { cg_base_read(self.id, b, name.as_mut_ptr(), &mut cell, &mut phys) })?;
+        Ok((name_of(&name), cell, phys))
+    }
+
+    /// Writes a base; returns its index.
+    pub fn write_base(&self, name: &str, cell: c_int, phys: c_int) -> Result<c_int, String> {
+        let name = c_name(name)?;
+        let mut b = 0;
+        // SAFETY: a valid C string and an out-pointer.
+        check(unsafe { cg_base_write(self.id, name.as_ptr(), cell, phys, &mut b) })?;
+        Ok(b)
+    }
+
+    /// The number of zones of base `b`.
+    pub fn zones(&self, b: c_int) -> Result<c_int, String> {
+        let mut n = 0;
+        // SAFETY: an out-pointer.
+        check(unsafe { cg_nzones(self.id, b, &mut n) })?;
+        Ok(n)
+    }
+
+    /// Zone `z`'s type (`ZoneType_t`).
+    pub fn zone_type(&self, b: c_int, z: c_int) -> Result<c_int, String> {
+        let mut kind = 0;
+        // SAFETY: an out-pointer.
+        check(unsafe { cg_zone_type(self.id, b, z, &mut kind) })?;
+        Ok(kind)
+    }
+
+    /// An unstructured zone's name and sizes: vertices, cells.
+    pub fn zone(&self, b: c_int, z: c_int) -> Result<(String, CgSize, CgSize), String> {
+        let mut name: NameBuf = [0; 33];
+        // Nine entries: what a 3D structured zone fills, the most there is.
+        let mut size: [CgSize; 9] = [0; 9];
+        // SAFETY: a 33-byte name buffer and a size buffer of the largest kind.
+        check(unsafe { cg_zone_read(self.id, b, z, name.as_mut_ptr(), size.as_mut_ptr()) })?;
+        Ok((name_of(&name), size[0], size[1]))
+    }
+
+    /// Writes a zone of type `kind` ([`UNSTRUCTURED`]: `size` is the
+    /// vertex count, the cell count and 0; [`STRUCTURED`]: three numbers per
+    /// index dimension).
+    pub fn write_zone(
+        &self,
+        b: c_int,
+        name: &str,
+        kind: c_int,
+        size: &[CgSize],
+    ) -> Result<c_int, String> {
+        let name = c_name(name)?;
+        let mut z = 0;
+        // SAFETY: a valid C string, the sizes the library reads for the
+        // base's dimension (the callers pass them all) and an out-pointer.
+        check(unsafe { cg_zone_write(self.id, b, name.as_ptr(), size.as_ptr(), kind, &mut z) })?;
+        Ok(z)
+    }
+
+    /// The names and data types of the zone's coordinate arrays.
+    pub fn coordinates(&self, b: c_int, z: c_int) -> Result<Vec<(String, c_int)>, String> {
+        let mut n = 0;
+        // SAFETY: an out-pointer.
+        check(unsafe { cg_ncoords(self.id, b, z, &mut n) })?;
+        (1..=n)
+            .map(|c| {
+                let mut name: NameBuf = [0; 33];
+                let mut kind = 0;
+                // SAFETY: a 33-byte name buffer and an out-pointer.
+                check(unsafe { cg_coord_info(self.id, b, z, c, &mut kind, name.as_mut_ptr()) })?;
+                Ok((name_of(&name), kind))
+            })
+            .collect()
+    }
+
+    /// Reads the coordinate array `name` of `count` vertices, as doubles.
+    pub fn read_coordinate(
+        &self,
+        b: c_int,
+        z: c_int,
+        name: &str,
+        count: usize,
+    ) -> Result<Vec<f64>, String> {
+        let c = c_name(name)?;
+        let mut data = vec![0.0f64; count];
+        let (min, max): (CgSize, CgSize) = (1, to_size(count)?);
+        // SAFETY: the buffer holds the `count` values of the range 1..=count.
+        check(unsafe {
+            cg_coord_read(
+                self.id,
+                b,
+                z,
+                c.as_ptr(),
+                REAL_DOUBLE,
+                &min,
+                &max,
+                data.as_mut_ptr().cast(),
+            )
+        })?;
+        Ok(data)
+    }
+
+    /// Writes a new coordinate array `name` in double precision.
+    pub fn write_coordinate(
+        &self,
+        b: c_int,
+        z: c_int,
+        name: &str,
+        data: &[f64],
+    ) -> Result<(), String> {
+        let c = c_name(name)?;
+        let mut index = 0;
+        // SAFETY: the zone was written with `data.len()` vertices.
+        check(unsafe {
+            cg_coord_write(
+                self.id,
+                b,
+                z,
+                REAL_DOUBLE,
+                c.as_ptr(),
+                data.as_ptr().cast(),
+                &mut index,
+            )
+        })
+    }
+
+    /// Overwrites the values of the existing coordinate array `name`, kept
+    /// in its data type `kind` ([`REAL_SINGLE`] or [`REAL_DOUBLE`]).
+    pub fn overwrite_coordinate(
+        &self,
+        b: c_int,
+        z: c_int,
+        name: &str,
+        kind: c_int,
+        data: &[f64],
+    ) -> Result<(), String> {
+        let c = c_name(name)?;
+        let (min, max): (CgSize, CgSize) = (1, to_size(data.len())?);
+        let singles: Vec<f32>;
+        let values: *const c_void = if kind == REAL_SINGLE {
+            singles = data.iter().map(|&v| v as f32).collect();
+            singles.as_ptr().cast()
+        } else {
+            data.as_ptr().cast()
+        };
+        let mut index = 0;
+        // SAFETY: `values` holds the `data.len()` values of the range, of type `kind`.
+        check(unsafe {
+            cg_coord_partial_write(
+                self.id,
+                b,
+                z,
+                kind,
+                c.as_ptr(),
+                &min,
+                &max,
+                values,
+                &mut index,
+            )
+        })
+    }
+
+    /// The number of element sections of the zone.
+    pub fn sections(&self, b: c_int, z: c_int) -> Result<c_int, String> {
+        let mut n = 0;
+        // SAFETY: an out-pointer.
+        check(unsafe { cg_nsections(self.id, b, z, &mut n) })?;
+        Ok(n)
+    }
+
+    /// Section `s`'s header.
+    pub fn section(&self, b: c_int, z: c_int, s: c_int) -> Result<SectionInfo, String> {
+        let mut name: NameBuf = [0; 33];
+        let (mut kind, mut start, mut end, mut nbndry, mut parents) = (0, 0, 0, 0, 0);
+        // SAFETY: a 33-byte name buffer and out-pointers.
+        check(unsafe {
+            cg_section_read(
+                self.id,
+                b,
+                z,
+                s,
+                name.as_mut_ptr(),
+                &mut kind,
+                &mut start,
+                &mut end,
+                &mut nbndry,
+                &mut parents,
+            )
+        })?;
+        Ok(SectionInfo {
+            name: name_of(&name),
+            kind,
+            start,
+            end,
+            has_parents: parents != 0,
+        })
+    }
+
+    /// Section `s`'s connectivity as stored (for `MIXED`, each element's
+    /// type before its nodes).
+    pub fn elements(
+        &self,
+        b: c_int,
+        z: c_int,
+        s: &SectionInfo,
+        index: c_int,
+    ) -> Result<Vec<CgSize>, String> {
+        let mut size: CgSize = 0;
+        // SAFETY: an out-pointer.
+        check(unsafe { cg_ElementDataSize(self.id, b, z, index, &mut size) })?;
+        let count = usize::try_from(s.end - s.start + 1)
+            .map_err(|_| format!("the element range {}..{} is empty", s.start, s.end))?;
+        let mut nodes: Vec<CgSize> =
+            vec![0; usize::try_from(size).map_err(|_| format!("{size} connectivity entries"))?];
+        // Parent data: four numbers per element.
+        let mut parents: Vec<CgSize> = vec![0; if s.has_parents { 4 * count } else { 0 }];
+        let parents_ptr = if s.has_parents {
+            parents.as_mut_ptr()
+        } else {
+            std::ptr::null_mut()
+        };
+        let code = if s.kind == MIXED {
+            let mut offsets: Vec<CgSize> = vec![0; count + 1];
+            // SAFETY: buffers of the data size, count + 1 offsets and the parents.
+            unsafe {
+                cg_poly_elements_read(
+                    self.id,
+                    b,
+                    z,
+                    index,
+                    nodes.as_mut_ptr(),
+                    offsets.as_mut_ptr(),
+                    parents_ptr,
+                )
+            }
+        } else {
+            // SAFETY: buffers of the data size and the parents.
+            unsafe { cg_elements_read(self.id, b, z, index, nodes.as_mut_ptr(), parents_ptr) }
+        };
+        check(code)?;
+        Ok(nodes)
+    }
+
+    /// Writes an element section of one `kind` numbered `start..=end`; for
+    /// `MIXED`, `nodes` gives each element's type before its nodes (for
+    /// `NGON_n`/`NFACE_n`, its node count) and `offsets` where each element
+    /// starts in `nodes`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn write_section(
+        &self,
+        b: c_int,
+        z: c_int,
+        name: &str,
+        kind: c_int,
+        (start, end): (CgSize, CgSize),
+        nodes: &[CgSize],
+        offsets: &[CgSize],
+    ) -> Result<(), String> {
+        let c = c_name(name)?;
+        let mut s = 0;
+        // SAFETY: `nodes` (and `offsets` for MIXED) describe the `end - start + 1` elements.
+        let code = unsafe {
+            if matches!(kind, MIXED | NGON_N | NFACE_N) {
+                cg_poly_section_write(
+                    self.id,
+                    b,
+                    z,
+                    c.as_ptr(),
+                    kind,
+                    start,
+                    end,
+                    0,
+                    nodes.as_ptr(),
+                    offsets.as_ptr(),
+                    &mut s,
+                )
+            } else {
+                cg_section_write(
+                    self.id,
+                    b,
+                    z,
+                    c.as_ptr(),
+                    kind,
+                    start,
+                    end,
+                    0,
+                    nodes.as_ptr(),
+                    &mut s,
+                )
+            }
+        };
+        check(code)
+    }
+
+    /// The number of boundary conditions of the zone.
+    pub fn bocos(&self, b: c_int, z: c_int) -> Result<c_int, String> {
+        let mut n = 0;
+        // SAFETY: an out-pointer.
+        check(unsafe { cg_nbocos(self.id, b, z, &mut n) })?;
+        Ok(n)
+    }
+
+    /// Boundary condition `bc`'s header.
+    pub fn boco(&self, b: c_int, z: c_int, bc: c_int) -> Result<BocoInfo, String> {
+        let mut name: NameBuf = [0; 33];
+        let (mut kind, mut set, mut count, mut normal_index) = (0, 0, 0, [0; 3]);
+        let (mut normal_size, mut normal_kind, mut datasets) = (0, 0, 0);
+        // SAFETY: a 33-byte name buffer and out-pointers (three normal indices at most).
+        check(unsafe {
+            cg_boco_info(
+                self.id,
+                b,
+                z,
+                bc,
+                name.as_mut_ptr(),
+                &mut kind,
+                &mut set,
+                &mut count,
+                normal_index.as_mut_ptr(),
+                &mut normal_size,
+                &mut normal_kind,
+                &mut datasets,
+            )
+        })?;
+        Ok(BocoInfo {
+            name: name_of(&name),
+            point_set: set,
+            count,
+        })
+    }
+
+    /// Boundary condition `bc`'s points (2 for a range), its grid location
+    /// and its family name, if any.
+    pub fn boco_points(
+        &self,
+        path: (&str, &str),
+        (b, z, bc): (c_int, c_int, c_int),
+        info: &BocoInfo,
+    ) -> Result<(Vec<CgSize>, c_int, Option<String>), String> {
+        let count = match info.point_set {
+            POINT_RANGE | ELEMENT_RANGE => 2,
+            _ => usize::try_from(info.count).map_err(|_| format!("{} points", info.count))?,
+        };
+        let mut points: Vec<CgSize> = vec![0; count];
+        // SAFETY: a buffer of the point count; no normals asked for.
+        check(unsafe {
+            cg_boco_read(self.id, b, z, bc, points.as_mut_ptr(), std::ptr::null_mut())
+        })?;
+        let mut at = 0;
+        // SAFETY: an out-pointer.
+        check(unsafe { cg_boco_gridlocation_read(self.id, b, z, bc, &mut at) })?;
+        let node = c_name(&format!("/{}/{}/ZoneBC/{}", path.0, path.1, info.name))?;
+        // SAFETY: a valid C string.
+        check(unsafe { cg_gopath(self.id, node.as_ptr()) })?;
+        let mut family: NameBuf = [0; 33];
+        // SAFETY: a 33-byte name buffer.
+        let code = unsafe { cg_famname_read(family.as_mut_ptr()) };
+        let family = match code {
+            NODE_NOT_FOUND => None,
+            code => check(code).map(|()| Some(name_of(&family)))?,
+        };
+        Ok((points, at, family))
+    }
+
+    /// Writes the family `name` under base `b`.
+    pub fn write_family(&self, b: c_int, name: &str) -> Result<(), String> {
+        let c = c_name(name)?;
+        let mut f = 0;
+        // SAFETY: a valid C string and an out-pointer.
+        check(unsafe { cg_family_write(self.id, b, c.as_ptr(), &mut f) })
+    }
+
+    /// Writes a family-specified boundary condition `name` over `points`
+    /// (a point set of type `set`) at grid location `at`, of the family
+    /// `family` (see [`File::write_family`]). `ElementRange`/`ElementList`
+    /// sets take no location: the library stores them at `FaceCenter`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn write_boco(
+        &self,
+        path: (&str, &str),
+        (b, z): (c_int, c_int),
+        (name, family): (&str, &str),
+        set: c_int,
+        points: &[CgSize],
+        at: c_int,
+    ) -> Result<(), String> {
+        let c = c_name(name)?;
+        let family = c_name(family)?;
+        let mut bc = 0;
+        // SAFETY: `points` holds the `points.len()` points of the set.
+        check(unsafe {
+            cg_boco_write(
+                self.id,
+                b,
+                z,
+                c.as_ptr(),
+                FAMILY_SPECIFIED,
+                set,
+                to_size(points.len())?,
+                points.as_ptr(),
+                &mut bc,
+            )
+        })?;
+        if !matches!(set, ELEMENT_RANGE | ELEMENT_LIST) {
+            // SAFETY: plain integers.
+            check(unsafe { cg_boco_gridlocation_write(self.id, b, z, bc, at) })?;
+        }
+        let node = c_name(&format!("/{}/{}/ZoneBC/{name}", path.0, path.1))?;
+        // SAFETY: valid C strings.
+        check(unsafe { cg_gopath(self.id, node.as_ptr()) })?;
+        // SAFETY: a valid C string.
+        check(unsafe { cg_famname_write(family.as_ptr()) })
+    }
+}
+
+impl Drop for File {
+    fn drop(&mut self) {
+        if self.open {
+            // SAFETY: `id` is an open file of this process; an error while
+            // closing a file that already failed leaves nothing to report.
+            unsafe { cg_close(self.id) };
+        }
+    }
+}
+
+/// A count as the library's size type.
+pub fn to_size(n: usize) -> Result<CgSize, String> {
+    CgSize::try_from(n).map_err(|_| format!("{n} is more than the CGNS library's size type holds"))
+}
+
+/// `Ok` for `CG_OK`, else the library's message.
+fn check(code: c_int) -> Result<(), String> {
+    if code == 0 {
+        return Ok(());
+    }
+    // SAFETY: the library returns a static zero-terminated message.
+    let message = unsafe { CStr::from_ptr(cg_get_error()) };
+    Err(message.to_string_lossy().trim().to_string())
+}
