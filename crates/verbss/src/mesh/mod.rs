@@ -108,6 +108,9 @@ pub struct Mesh {
     /// not use (FFD boxes, periodic data, …), verbatim: writing the mesh as
     /// SU2 puts them back. Empty for a mesh from any other source.
     pub su2_skipped: Vec<crate::io::su2::Skipped>,
+    /// The OpenFOAM polyMesh the mesh was read from, which writing it as a
+    /// case keeps (all but its points). `None` for a mesh from any other source.
+    pub foam: Option<Box<crate::io::foam::Origin>>,
 }
 
 impl Mesh {
@@ -122,6 +125,7 @@ impl Mesh {
             cells,
             groups,
             su2_skipped: Vec::new(),
+            foam: None,
         };
         mesh.validate()?;
         Ok(mesh)

@@ -345,6 +345,7 @@ pub(super) fn finish(
         cell_tags,
         groups,
         su2_skipped: Vec::new(),
+        foam: None,
     };
     mesh.validate()
         .map_err(|e| crate::io::invalid_at(e, |m| c.error_at(at, m)))?;

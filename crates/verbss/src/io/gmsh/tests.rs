@@ -95,6 +95,7 @@ fn hybrid_2d() -> Mesh {
             group("corner", 1, &[(Vertex, &[2])]),
         ],
         su2_skipped: Vec::new(),
+        foam: None,
     }
 }
 
@@ -128,6 +129,7 @@ fn mixed_3d() -> Mesh {
             group("edge", 1, &[(Line, &[8, 9])]),
         ],
         su2_skipped: Vec::new(),
+        foam: None,
     }
 }
 
