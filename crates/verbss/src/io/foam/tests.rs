@@ -366,6 +366,11 @@ fn malformed_files_name_the_file_line_and_what_was_expected() {
             "the list holds 12 points, not the 13 announced",
         ),
         (
+            "points",
+            Box::new(|t| t.replace("12\n(", "1000000000000000000\n(")),
+            "the list holds 12 points, not the 1000000000000000000 announced",
+        ),
+        (
             "faces",
             Box::new(|t| t.replacen("4(4 5 6 7)", "4(4 5 6 99)", 1)),
             "faces:14: point label 99 out of range (expected 0 to 11)",
