@@ -98,7 +98,7 @@ pub(super) fn list<'a, T: Clone>(
     per_item: usize,
     mut item: impl FnMut(&mut Lexer<'a>, Token<'a>) -> Result<T>,
 ) -> Result<(Vec<T>, Vec<u32>)> {
-    let start = lx.line();
+    let start = lx.next_line()?;
     let shape = list_start(lx, what, max_uniform)?;
     let mut items = Vec::new();
     let mut lines = Vec::new();

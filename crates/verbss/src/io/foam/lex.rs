@@ -60,6 +60,11 @@ impl<'a> Lexer<'a> {
         self.peeked.map_or(self.line, |t| t.line)
     }
 
+    /// The line of the next token (the current line at the end).
+    pub(super) fn next_line(&mut self) -> Result<usize> {
+        Ok(self.peek()?.map_or(self.line, |t| t.line))
+    }
+
     /// Skips spaces and comments; fails on an unclosed `/*`.
     fn skip_blank(&mut self) -> Result<()> {
         while self.pos < self.bytes.len() {

@@ -151,7 +151,7 @@ fn faces(dir: &Path, n_points: usize) -> Result<(Vec<usize>, Vec<usize>)> {
     let mut nodes = Vec::new();
     let mut offsets = vec![0];
     if class.as_deref() == Some("faceCompactList") {
-        let line = lx.line();
+        let line = lx.next_line()?;
         let (starts, _) = file::list(&mut lx, "face offsets", 0, 2, |lx, t| {
             label_below(lx, t, "face offset", usize::MAX)
         })?;
@@ -160,7 +160,7 @@ fn faces(dir: &Path, n_points: usize) -> Result<(Vec<usize>, Vec<usize>)> {
         })?;
         let bad = starts.first() != Some(&0)
             || starts.last() != Some(&nodes.len())
-            || starts.windows(2).any(|w| w[1] < w[0] + 3);
+            || starts.windows(2).any(|w| w[1] < w[0].saturating_add(3));
         if bad {
             return Err(lx.err(
                 line,

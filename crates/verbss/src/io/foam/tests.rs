@@ -342,6 +342,21 @@ fn a_general_polyhedron_is_refused_naming_the_cell() {
         read(dir.path()).unwrap().cells.kinds,
         [CellKind::Hexahedron]
     );
+    // The same faces as a faceCompactList: the offsets, then the points.
+    files[1].1 = "FoamFile { format ascii; class faceCompactList; }\n7(0 4 8 12 16 20 24)\n\
+                  24(0 3 2 1 4 5 6 7 0 1 5 4 1 2 6 5 2 3 7 6 3 0 4 7)"
+        .into();
+    write_files(dir.path(), &files);
+    let compact = read(dir.path()).unwrap();
+    assert_eq!(compact.cells.kinds, [CellKind::Hexahedron]);
+    assert_eq!(orientation(&compact), [1]);
+    files[1].1 = files[1].1.replace("7(0 4 8", "7(0 2 8");
+    write_files(dir.path(), &files);
+    let e = read(dir.path()).unwrap_err().to_string();
+    assert!(
+        e.contains("faces:2: the face offsets do not start at 0, grow by 3"),
+        "{e}"
+    );
 }
 
 /// A change to a file's text.
