@@ -12,9 +12,9 @@ use crate::overwrite::{note_lost_su2_blocks, refuse_input_as_output};
 /// Arguments of `verbss convert`.
 #[derive(Args)]
 pub struct ConvertArgs {
-    /// Input mesh (.msh, .su2, .vtu, .cgns).
+    /// Input mesh (.msh, .su2, .vtu, .cgns, an OpenFOAM case directory).
     input: PathBuf,
-    /// Output mesh; its extension chooses the format.
+    /// Output mesh; its extension chooses the format (none: an OpenFOAM case).
     output: PathBuf,
     /// Gmsh file-format version of a .msh output.
     #[arg(long, value_enum, default_value = "4.1")]
@@ -37,7 +37,7 @@ enum MshVersionArg {
 
 /// Runs `verbss convert`.
 pub fn run(args: ConvertArgs) -> anyhow::Result<ExitCode> {
-    refuse_input_as_output(&args.input, &args.output, args.overwrite)?;
+    refuse_input_as_output(&args.input, &args.output, args.overwrite, false)?;
     let mesh = read_mesh(&args.input)?;
     let mut options = WriteOptions::default();
     options.msh_version = match args.msh_version {

@@ -26,9 +26,11 @@ use crate::run::{file_stem, run_here, Job, Prepared};
 #[derive(Args)]
 #[command(group(ArgGroup::new("motion").required(true).args(["translate", "rotate", "positions"])))]
 pub struct DeformArgs {
-    /// The input mesh (.msh, .su2, .vtu, .cgns).
+    /// The input mesh (.msh, .su2, .vtu, .cgns, an OpenFOAM case directory).
     mesh: PathBuf,
-    /// The output mesh; its extension chooses the format.
+    /// The output mesh; its extension chooses the format. An OpenFOAM case
+    /// (no extension): the input case itself gets the moved points in
+    /// `CASE/STEPS/polyMesh/points`, another a whole `constant/polyMesh`.
     #[arg(short, long)]
     output: PathBuf,
     /// The moving groups, comma separated; every other boundary node is fixed.
@@ -185,7 +187,7 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
 /// output path, and decides the motion and the settings.
 pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
     let format = Format::from_path(&args.output)?;
-    refuse_input_as_output(&args.mesh, &args.output, args.overwrite)?;
+    refuse_input_as_output(&args.mesh, &args.output, args.overwrite, true)?;
     let mesh = read_mesh(&args.mesh)?;
     for g in args.moving.iter().chain(&args.slide) {
         mesh.group(g)?;
@@ -235,12 +237,17 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
     s.max_iterations = args.max_iterations.unwrap_or(s.max_iterations);
     s.omega = args.omega.unwrap_or(s.omega);
     s.threads = args.threads;
-    let dir = match args.output.parent() {
+    // `-o .` names its directory by its path only.
+    let output = match format {
+        Format::Foam => std::path::absolute(&args.output)?.components().collect(),
+        _ => args.output.clone(),
+    };
+    let dir = match output.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
     };
     let job = Job {
-        name: file_stem(&args.output),
+        name: file_stem(&output),
         source: args.mesh.display().to_string(),
         mesh,
         attachments: slides(&args.slide)
@@ -256,7 +263,7 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
         final_mesh: true,
         report: args.report.clone(),
         // As given (`UP.SU2` stays `UP.SU2`).
-        extension: args.output.extension().map_or_else(
+        extension: output.extension().map_or_else(
             || format.extension().into(),
             |e| e.to_string_lossy().into_owned(),
         ),

@@ -4,17 +4,32 @@
 use std::path::Path;
 
 use anyhow::bail;
-use verbss::io::Format;
+use verbss::io::{foam, Format};
 use verbss::mesh::Mesh;
 
-/// Fails when `output` is the file `input` (same canonical path), unless
-/// `overwrite` (`--overwrite`).
-pub fn refuse_input_as_output(input: &Path, output: &Path, overwrite: bool) -> anyhow::Result<()> {
-    let same = match (input.canonicalize(), output.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
+/// Fails when `output` is the mesh `input` (the same file, or the same
+/// OpenFOAM polyMesh), unless `overwrite` (`--overwrite`). An OpenFOAM
+/// output that gets its points in a new time directory (`time_dir`, as
+/// `deform` writes into the input case) leaves `constant/polyMesh` as it
+/// was, and passes.
+pub fn refuse_input_as_output(
+    input: &Path,
+    output: &Path,
+    overwrite: bool,
+    time_dir: bool,
+) -> anyhow::Result<()> {
+    let both_foam = [input, output]
+        .iter()
+        .all(|p| matches!(Format::from_path(p), Ok(Format::Foam)));
+    let same = if both_foam {
+        foam::same_polymesh(input, output)
+    } else {
+        match (input.canonicalize(), output.canonicalize()) {
+            (Ok(a), Ok(b)) => a == b,
+            _ => false,
+        }
     };
-    if same && !overwrite {
+    if same && !overwrite && !(both_foam && time_dir) {
         bail!(
             "{}: the output is the input mesh {} (give --overwrite to replace it)",
             output.display(),

@@ -68,7 +68,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         .unwrap_or_else(|| "vtu".into());
     if case.output.final_mesh {
         let last = dir.join(format!("{name}.{extension}"));
-        refuse_input_as_output(&case.mesh, &last, args.overwrite)?;
+        refuse_input_as_output(&case.mesh, &last, args.overwrite, false)?;
     }
     let job = Job {
         name,
@@ -154,9 +154,21 @@ pub struct Job {
 }
 
 impl Job {
-    /// Where the final mesh goes: `DIR/NAME.EXT`.
+    /// Where the final mesh goes: `DIR/NAME.EXT` (`DIR/NAME` for an
+    /// OpenFOAM case, which has no extension).
     pub fn final_path(&self) -> PathBuf {
+        if self.extension.is_empty() {
+            return self.dir.join(&self.name);
+        }
         self.dir.join(format!("{}.{}", self.name, self.extension))
+    }
+
+    /// How the final mesh is written after `steps` steps: an OpenFOAM case
+    /// that is the input gets the points in time directory `steps`.
+    fn write_options(&self, steps: usize) -> WriteOptions {
+        let mut options = WriteOptions::default();
+        options.foam_time = Some(steps.to_string());
+        options
     }
 
     /// The settings the deformer runs with: the job's, with the sweep
@@ -308,7 +320,7 @@ pub fn execute<S: SpringSolver>(
                     let mut mesh = job.mesh.clone();
                     mesh.coords.clone_from(&failed.coords);
                     vtu::write(&failed_path, &mesh, &fields(&job.mesh, failed))?;
-                    io::write(&last, &deformer.mesh(), &WriteOptions::default())?;
+                    io::write(&last, &deformer.mesh(), &job.write_options(n - 1))?;
                     report.outcome = e.to_string();
                     if let Some(path) = &job.report {
                         report.write(path)?;
@@ -327,7 +339,7 @@ pub fn execute<S: SpringSolver>(
     if writer {
         if job.final_mesh {
             let path = job.final_path();
-            io::write(&path, &deformer.mesh(), &WriteOptions::default())?;
+            io::write(&path, &deformer.mesh(), &job.write_options(steps))?;
         }
         report.outcome = "completed".into();
         if let Some(path) = &job.report {

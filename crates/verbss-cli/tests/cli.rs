@@ -146,7 +146,9 @@ fn an_unknown_extension_is_exit_2() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        stderr(&o).contains("unknown mesh format (expected .msh, .su2, .vtu or .cgns)"),
+        stderr(&o).contains(
+            "unknown mesh format (expected .msh, .su2, .vtu, .cgns or an OpenFOAM case directory)"
+        ),
         "{}",
         stderr(&o)
     );

@@ -68,6 +68,7 @@ pub fn write_piece(
         groups: Vec::new(),
         su2_skipped: Vec::new(),
         cgns_source: None,
+        foam: None,
     };
     let mut fields = vtu::Fields::default();
     fields.point.push(("displacement".into(), 3, displacement));

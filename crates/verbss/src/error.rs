@@ -46,7 +46,7 @@ pub enum Error {
         message: String,
     },
     /// The file's extension does not name a format verbss knows.
-    #[error("{}: unknown mesh format (expected .msh, .su2, .vtu or .cgns)", path.display())]
+    #[error("{}: unknown mesh format (expected .msh, .su2, .vtu, .cgns or an OpenFOAM case directory)", path.display())]
     UnknownFormat {
         /// The file.
         path: PathBuf,

@@ -1,7 +1,9 @@
 //! Mesh files in and out: Gmsh MSH 2.2/4.1, SU2, VTK XML (`.vtu`, `.pvd`),
 //! CGNS (`.cgns`, with the CGNS library).
+//! OpenFOAM polyMesh.
 //!
-//! [`read`] and [`write()`] choose the format by extension.
+//! [`read`] and [`write()`] choose the format by extension; a directory or
+//! a path without an extension is an OpenFOAM case.
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -11,6 +13,7 @@ use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 
 pub mod cgns;
+pub mod foam;
 pub mod gmsh;
 pub mod positions;
 pub mod pvd;
@@ -32,6 +35,15 @@ fn bom(bytes: &[u8]) -> usize {
     }
 }
 
+/// A token or line as quoted in messages: printable, at most 40 characters.
+fn shown(text: &str) -> String {
+    let mut s: String = text.chars().take(40).flat_map(char::escape_debug).collect();
+    if text.chars().count() > 40 {
+        s.push('…');
+    }
+    s
+}
+
 /// Names the place in the file (`at`) of a [`Mesh::validate`] failure of a
 /// mesh just read; other errors pass unchanged.
 fn invalid_at(e: Error, at: impl FnOnce(String) -> Error) -> Error {
@@ -49,6 +61,10 @@ pub struct WriteOptions {
     pub msh_version: MshVersion,
     /// Binary encoding where the format offers one (Gmsh).
     pub binary: bool,
+    /// An OpenFOAM output that is the case the mesh was read from: the time
+    /// directory its points go to (`CASE/TIME/polyMesh/points`); `None`
+    /// replaces `constant/polyMesh/points` (see [`foam::write`]).
+    pub foam_time: Option<String>,
 }
 
 /// Gmsh MSH file-format version.
@@ -66,6 +82,7 @@ impl Default for WriteOptions {
         WriteOptions {
             msh_version: MshVersion::V41,
             binary: false,
+            foam_time: None,
         }
     }
 }
@@ -81,21 +98,28 @@ pub enum Format {
     Vtu,
     /// CGNS `.cgns` (unstructured zones).
     Cgns,
+    /// An OpenFOAM case directory (its `constant/polyMesh`).
+    Foam,
 }
 
 impl Format {
-    /// The format's file extension, without the dot.
+    /// The format's file extension, without the dot (none for OpenFOAM).
     pub fn extension(self) -> &'static str {
         match self {
             Format::Msh => "msh",
             Format::Su2 => "su2",
             Format::Vtu => "vtu",
             Format::Cgns => "cgns",
+            Format::Foam => "",
         }
     }
 
-    /// The format named by a path's extension.
+    /// The format named by a path's extension; a directory or a path
+    /// without an extension is an OpenFOAM case ([`foam::is_case`]).
     pub fn from_path(path: &Path) -> Result<Format> {
+        if foam::is_case(path) {
+            return Ok(Format::Foam);
+        }
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -112,17 +136,17 @@ impl Format {
 /// Reads a mesh, choosing the format by extension.
 pub fn read(path: &Path) -> Result<Mesh> {
     let format = Format::from_path(path)?;
-    if format == Format::Cgns {
-        return cgns::read(path);
-    }
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = || {
+        std::fs::read(path).map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    };
     match format {
-        Format::Msh => gmsh::parse(&bytes, path),
-        Format::Su2 => su2::parse(&bytes, path),
-        Format::Vtu => vtu::parse(&bytes, path).map(|v| v.mesh),
+        Format::Msh => gmsh::parse(&bytes()?, path),
+        Format::Su2 => su2::parse(&bytes()?, path),
+        Format::Vtu => vtu::parse(&bytes()?, path).map(|v| v.mesh),
+        Format::Foam => foam::read(path),
         Format::Cgns => cgns::read(path),
     }
 }
@@ -138,6 +162,7 @@ pub fn write(path: &Path, mesh: &Mesh, options: &WriteOptions) -> Result<()> {
         Format::Su2 => write_atomic(path, |w| su2::write_to(w, mesh)),
         Format::Vtu => write_atomic(path, |w| vtu::write_to(w, mesh, &vtu::Fields::default())),
         Format::Cgns => cgns::write(path, mesh),
+        Format::Foam => foam::write(path, mesh, options.foam_time.as_deref()),
     }
 }
 

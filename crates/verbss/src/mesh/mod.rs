@@ -112,6 +112,9 @@ pub struct Mesh {
     /// that file and replaces only its coordinates. `None` for a mesh from
     /// any other source.
     pub cgns_source: Option<crate::io::cgns::Source>,
+    /// The OpenFOAM polyMesh the mesh was read from, which writing it as a
+    /// case keeps (all but its points). `None` for a mesh from any other source.
+    pub foam: Option<Box<crate::io::foam::Origin>>,
 }
 
 impl Mesh {
@@ -127,6 +130,7 @@ impl Mesh {
             groups,
             su2_skipped: Vec::new(),
             cgns_source: None,
+            foam: None,
         };
         mesh.validate()?;
         Ok(mesh)

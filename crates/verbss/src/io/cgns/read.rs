@@ -128,6 +128,7 @@ pub fn read(path: &Path) -> Result<Mesh> {
         cell_tags,
         groups,
         su2_skipped: Vec::new(),
+        foam: None,
         cgns_source: Some(Source {
             path: path.to_path_buf(),
             base,

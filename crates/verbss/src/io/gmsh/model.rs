@@ -346,6 +346,7 @@ pub(super) fn finish(
         groups,
         su2_skipped: Vec::new(),
         cgns_source: None,
+        foam: None,
     };
     mesh.validate()
         .map_err(|e| crate::io::invalid_at(e, |m| c.error_at(at, m)))?;

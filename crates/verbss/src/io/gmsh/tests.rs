@@ -96,6 +96,7 @@ fn hybrid_2d() -> Mesh {
         ],
         su2_skipped: Vec::new(),
         cgns_source: None,
+        foam: None,
     }
 }
 
@@ -130,6 +131,7 @@ fn mixed_3d() -> Mesh {
         ],
         su2_skipped: Vec::new(),
         cgns_source: None,
+        foam: None,
     }
 }
 

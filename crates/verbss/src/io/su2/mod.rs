@@ -105,15 +105,6 @@ fn kind_name(kind: CellKind) -> &'static str {
         .expect("every kind has an SU2 name")
 }
 
-/// A token or line as quoted in messages: printable, at most 40 characters.
-fn shown(text: &str) -> String {
-    let mut s: String = text.chars().take(40).flat_map(char::escape_debug).collect();
-    if text.chars().count() > 40 {
-        s.push('…');
-    }
-    s
-}
-
 #[cfg(test)]
 mod hostile_tests;
 #[cfg(test)]

@@ -5,8 +5,9 @@ mod entries;
 use std::collections::HashMap;
 use std::path::Path;
 
-use super::{shown, Anchor, Skipped};
+use super::{Anchor, Skipped};
 use crate::error::{Error, Result};
+use crate::io::shown;
 use crate::io::MAX_GROUPS;
 use crate::mesh::{Cells, Group, Mesh};
 
@@ -540,6 +541,7 @@ impl<'a> Parser<'a> {
                 .collect(),
             su2_skipped: self.skipped,
             cgns_source: None,
+            foam: None,
         };
         let line = nelem.map_or(last, |(_, line)| line);
         mesh.validate().map_err(|e| {

@@ -177,6 +177,7 @@ pub(super) fn assemble(
         groups,
         su2_skipped: Vec::new(),
         cgns_source: None,
+        foam: None,
     };
     mesh.validate()
         .map_err(|e| crate::io::invalid_at(e, |m| ctx.at(piece.pos, m)))?;

@@ -2,7 +2,8 @@
 
 use super::{MaxRef, Parser};
 use crate::error::Result;
-use crate::io::su2::{kind_name, shown, NAMES};
+use crate::io::shown;
+use crate::io::su2::{kind_name, NAMES};
 use crate::mesh::{CellKind, Cells};
 
 impl Parser<'_> {

@@ -1,0 +1,270 @@
+//! OpenFOAM cases end to end: a case made by OpenFOAM's `blockMesh` is
+//! deformed by `verbss deform`, and OpenFOAM's `checkMesh` accepts what it
+//! wrote (a new time directory of the input case, or a whole new case).
+
+use std::path::Path;
+use std::process::Command;
+
+mod common;
+
+use common::{stderr, verbss};
+use verbss_testkit::{needs, program};
+
+/// The OpenFOAM installation the Debian package `openfoam` makes.
+const FOAM_DIR: &str = "/usr/share/openfoam";
+
+/// Whether `blockMesh` and `checkMesh` run.
+fn have_openfoam() -> bool {
+    needs(
+        "OpenFOAM's blockMesh and checkMesh (Debian openfoam)",
+        program(
+            "sh",
+            &[
+                "-c",
+                &format!(
+                    "export WM_PROJECT_DIR=${{WM_PROJECT_DIR:-{FOAM_DIR}}}; \
+                     blockMesh -help >/dev/null && checkMesh -help >/dev/null"
+                ),
+            ],
+        ),
+    )
+}
+
+/// Runs an OpenFOAM utility on `case` with `args`; its standard output.
+fn foam(utility: &str, case: &Path, args: &[&str]) -> String {
+    let out = Command::new(utility)
+        .arg("-case")
+        .arg(case)
+        .args(args)
+        .env(
+            "WM_PROJECT_DIR",
+            std::env::var("WM_PROJECT_DIR").unwrap_or(FOAM_DIR.into()),
+        )
+        .output()
+        .expect("run an OpenFOAM utility");
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{utility} failed:\n{text}{}",
+        stderr(&out)
+    );
+    text
+}
+
+/// The `system` files `blockMesh` and `checkMesh` read.
+fn write_system(case: &Path) {
+    let head = |object: &str| {
+        format!("FoamFile {{ version 2.0; format ascii; class dictionary; object {object}; }}\n")
+    };
+    let system = case.join("system");
+    std::fs::create_dir_all(&system).unwrap();
+    let files = [
+        (
+            "controlDict",
+            "application none; startFrom latestTime; startTime 0; stopAt endTime; \
+             endTime 1; deltaT 1; writeControl timeStep; writeInterval 1;\n",
+        ),
+        (
+            "fvSchemes",
+            "ddtSchemes {} gradSchemes {} divSchemes {} laplacianSchemes {} \
+             interpolationSchemes {} snGradSchemes {}\n",
+        ),
+        ("fvSolution", ""),
+    ];
+    for (name, body) in files {
+        std::fs::write(system.join(name), head(name) + body).unwrap();
+    }
+}
+
+/// A square body (patch `wing`, side 1) in a square box (patch `farfield`,
+/// side 3), 8 blocks of `n × n` cells and `layers` cells in z (0 to 0.2):
+/// with `empty` patches `back` (z = 0) and `front` when `layers` is 1 (a 2D
+/// case), else `wall` ones.
+fn block_case(case: &Path, n: usize, layers: usize) {
+    write_system(case);
+    let x = [-1.5, -0.5, 0.5, 1.5];
+    let v = |i: usize, j: usize, k: usize| k * 16 + j * 4 + i;
+    let mut vertices = String::new();
+    for k in 0..2 {
+        for j in 0..4 {
+            for i in 0..4 {
+                vertices += &format!("({} {} {}) ", x[i], x[j], 0.2 * k as f64);
+            }
+        }
+    }
+    let quad = |a: usize, b: usize, c: usize, d: usize| format!("({a} {b} {c} {d}) ");
+    let (mut blocks, mut wing, mut farfield, mut back, mut front): (
+        String,
+        String,
+        String,
+        String,
+        String,
+    ) = Default::default();
+    for j in 0..3 {
+        for i in 0..3 {
+            if (i, j) == (1, 1) {
+                continue;
+            }
+            let (a, b, c, d) = (
+                v(i, j, 0),
+                v(i + 1, j, 0),
+                v(i + 1, j + 1, 0),
+                v(i, j + 1, 0),
+            );
+            blocks += &format!(
+                "hex ({a} {b} {c} {d} {} {} {} {}) ({n} {n} {layers}) simpleGrading (1 1 1)\n",
+                a + 16,
+                b + 16,
+                c + 16,
+                d + 16
+            );
+            back += &quad(a, d, c, b);
+            front += &quad(a + 16, b + 16, c + 16, d + 16);
+        }
+    }
+    for t in 0..3 {
+        let edges = [
+            (v(t, 0, 0), v(t + 1, 0, 0)),
+            (v(3, t, 0), v(3, t + 1, 0)),
+            (v(t, 3, 0), v(t + 1, 3, 0)),
+            (v(0, t, 0), v(0, t + 1, 0)),
+        ];
+        for (p, q) in edges {
+            farfield += &quad(p, q, q + 16, p + 16);
+        }
+    }
+    for (p, q) in [
+        ((1, 1), (2, 1)),
+        ((2, 1), (2, 2)),
+        ((2, 2), (1, 2)),
+        ((1, 2), (1, 1)),
+    ] {
+        let (p, q) = (v(p.0, p.1, 0), v(q.0, q.1, 0));
+        wing += &quad(p, q, q + 16, p + 16);
+    }
+    let side_type = if layers == 1 { "empty" } else { "wall" };
+    let dict = format!(
+        "FoamFile {{ version 2.0; format ascii; class dictionary; object blockMeshDict; }}\n\
+         convertToMeters 1;\nvertices ( {vertices});\nblocks (\n{blocks});\nboundary (\n\
+         wing {{ type wall; faces ( {wing}); }}\n\
+         farfield {{ type patch; faces ( {farfield}); }}\n\
+         back {{ type {side_type}; faces ( {back}); }}\n\
+         front {{ type {side_type}; faces ( {front}); }}\n);\n"
+    );
+    std::fs::write(case.join("system/blockMeshDict"), dict).unwrap();
+    foam("blockMesh", case, &[]);
+}
+
+/// Whether `checkMesh` passes the mesh of `case` at its latest time.
+fn assert_mesh_ok(case: &Path) {
+    let log = foam("checkMesh", case, &["-latestTime"]);
+    assert!(log.contains("Mesh OK."), "checkMesh:\n{log}");
+}
+
+#[test]
+fn a_2d_case_gets_its_moved_points_in_a_new_time_directory() {
+    if !have_openfoam() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("square");
+    block_case(&case, 4, 1);
+    let constant = case.join("constant/polyMesh");
+    let before: Vec<Vec<u8>> = ["points", "faces", "owner", "neighbour", "boundary"]
+        .iter()
+        .map(|f| std::fs::read(constant.join(f)).unwrap())
+        .collect();
+    let c = case.to_str().unwrap();
+    let o = verbss(&[
+        "deform", c, "-o", c, "--moving", "wing", "--rotate", "20", "--center", "0,0", "--steps",
+        "4", "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let after: Vec<Vec<u8>> = ["points", "faces", "owner", "neighbour", "boundary"]
+        .iter()
+        .map(|f| std::fs::read(constant.join(f)).unwrap())
+        .collect();
+    assert!(before == after, "constant/polyMesh changed");
+    let moved = std::fs::read_to_string(case.join("4/polyMesh/points")).unwrap();
+    assert_ne!(moved.as_bytes(), &before[0][..]);
+    assert!(moved.contains("location    \"4/polyMesh\""), "{moved}");
+    assert_mesh_ok(&case);
+    let log = foam("checkMesh", &case, &["-latestTime"]);
+    assert!(log.contains("Time = 4"), "{log}");
+}
+
+#[test]
+fn a_3d_case_is_written_as_a_whole_new_case() {
+    if !have_openfoam() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("box");
+    block_case(&case, 3, 2);
+    let new = dir.path().join("moved");
+    let o = verbss(&[
+        "deform",
+        case.to_str().unwrap(),
+        "-o",
+        new.to_str().unwrap(),
+        "--moving",
+        "wing",
+        "--translate",
+        "0.1,0.05,0",
+        "--slide",
+        "front,back",
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for f in ["faces", "owner", "neighbour", "boundary"] {
+        assert_eq!(
+            std::fs::read(case.join("constant/polyMesh").join(f)).unwrap(),
+            std::fs::read(new.join("constant/polyMesh").join(f)).unwrap(),
+            "{f}"
+        );
+    }
+    assert!(!case.join("1").exists());
+    write_system(&new);
+    assert_mesh_ok(&new);
+    let log = foam("checkMesh", &new, &[]);
+    assert!(log.contains("hexahedra:     144"), "{log}");
+}
+
+#[test]
+fn a_case_converts_and_is_not_overwritten_without_asking() {
+    if !have_openfoam() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("square");
+    block_case(&case, 2, 1);
+    let vtu = dir.path().join("square.vtu");
+    let c = case.to_str().unwrap();
+    let o = verbss(&["convert", c, vtu.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mesh = verbss::io::read(&vtu).unwrap();
+    assert_eq!((mesh.dim, mesh.cell_count()), (2, 32));
+    assert_eq!(mesh.group_names(), ["wing", "farfield"]);
+    let points = case.join("constant/polyMesh/points");
+    let before = std::fs::read(&points).unwrap();
+    let o = verbss(&["convert", c, c]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("give --overwrite"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&points).unwrap(), before);
+    let o = verbss(&["convert", c, c, "--overwrite"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_mesh_ok(&case);
+    let o = verbss(&[
+        "deform",
+        c,
+        "-o",
+        &format!("{c}/constant/polyMesh"),
+        "--moving",
+        "wing",
+        "--translate",
+        "0.1,0",
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(case.join("1/polyMesh/points").is_file());
+}

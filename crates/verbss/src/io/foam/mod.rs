@@ -1,0 +1,182 @@
+//! OpenFOAM meshes: the `constant/polyMesh` of a case (ASCII).
+//!
+//! A polyMesh is five files: `points` (a list of `(x y z)`), `faces` (a list
+//! of `k(p0 … pk-1)`, point labels from 0), `owner` and `neighbour` (the
+//! cell on each side of each face; only the first `nInternalFaces` faces have
+//! a neighbour, and a face's normal, by the right-hand rule, points from its
+//! owner to its neighbour) and `boundary` (the patches: `name { type T;
+//! nFaces N; startFace S; }`, each a run of the boundary faces):
+//!
+//! ```text
+//! FoamFile { version 2.0; format ascii; class vectorField; object points; }
+//! 8 ( (0 0 0) (1 0 0) (1 1 0) (0 1 0) (0 0 1) (1 0 1) (1 1 1) (0 1 1) )
+//! ```
+//!
+//! The reader takes the `FoamFile` header, `//` and `/* */` comments, lists
+//! with or without their count, `N{item}` lists of one repeated item (where
+//! the mesh bounds N), and `faceCompactList` faces. Binary (`format
+//! binary;`) and compressed (`.gz`) files are refused with a message.
+//!
+//! Each cell must be a tetrahedron, pyramid, prism or hexahedron
+//! ([`cells`](self) recognises them from their faces); each patch becomes a
+//! group of its faces (triangles and quadrilaterals). A case with patches of
+//! type `empty` is a 2D case: it is read as the 2D mesh of its back plane
+//! (see [`Plane`]), and its `empty` patches are not groups.
+//!
+//! Writing ([`write`]) needs a mesh read from a case, whose faces, owners,
+//! neighbours and patches it keeps: only the points change. Into the case
+//! it was read from it writes `CASE/TIME/polyMesh/points` (the time
+//! directory an OpenFOAM solver reads a moved mesh from), leaving
+//! `constant/polyMesh` as it was; into any other directory, a whole
+//! `constant/polyMesh` (the moved points and a copy of the other four files).
+
+mod cells;
+mod file;
+mod lex;
+mod plane;
+mod read;
+mod write;
+
+pub use write::write;
+
+use std::path::{Path, PathBuf};
+
+use crate::error::{Error, Result};
+use crate::mesh::{CellKind, Cells, Group, Mesh};
+
+/// Where a mesh read from an OpenFOAM case came from, for writing its
+/// points back.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Origin {
+    /// The `polyMesh` directory it was read from.
+    pub dir: PathBuf,
+    /// The number of points of the polyMesh.
+    pub n_points: usize,
+    /// For a 2D case, how its points follow the 2D nodes.
+    pub plane: Option<Plane>,
+}
+
+/// How the points of a 2D case follow the nodes of its 2D mesh: point `p`
+/// is at `(x, y)` of node `node_of_point[p]` and at its own `z[p]`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plane {
+    /// The 2D node of each point.
+    pub node_of_point: Vec<usize>,
+    /// The z of each point (its plane).
+    pub z: Vec<f64>,
+}
+
+/// Whether `path` names an OpenFOAM case: an existing directory, or a path
+/// without an extension (a case to be made).
+pub fn is_case(path: &Path) -> bool {
+    path.is_dir() || path.extension().is_none()
+}
+
+/// The `polyMesh` directory of `path`: `path/constant/polyMesh` for a case,
+/// `path` itself when it holds a `faces` file or is named `polyMesh`.
+pub fn polymesh_dir(path: &Path) -> PathBuf {
+    let in_case = path.join("constant").join("polyMesh");
+    if !in_case.is_dir() && (path.join("faces").is_file() || path.ends_with("polyMesh")) {
+        path.to_path_buf()
+    } else {
+        in_case
+    }
+}
+
+/// Whether `a` and `b` name the same polyMesh directory (both existing).
+pub fn same_polymesh(a: &Path, b: &Path) -> bool {
+    match (
+        polymesh_dir(a).canonicalize(),
+        polymesh_dir(b).canonicalize(),
+    ) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => false,
+    }
+}
+
+/// Reads the polyMesh of the case or polyMesh directory `path`.
+///
+/// Every list is checked against the others, with the file and line of a
+/// failure: point labels below the number of points, cell labels below the
+/// number of faces, one owner per face, patches on the boundary faces, and
+/// each cell one of the four kinds.
+pub fn read(path: &Path) -> Result<Mesh> {
+    let dir = polymesh_dir(path);
+    if !dir.is_dir() {
+        return Err(Error::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::new(
+                std::io::ErrorKind::NotFound,
+                "not an OpenFOAM case (no constant/polyMesh directory) nor a polyMesh directory",
+            ),
+        });
+    }
+    let poly = read::read(&dir)?;
+    let cells = cells::cells(&poly)?;
+    let n_points = poly.points.len() / 3;
+    let has_empty = poly
+        .patches
+        .iter()
+        .any(|p| p.kind == "empty" && p.n_faces > 0);
+    let (dim, coords, node_tags, cells, groups, plane) = if has_empty {
+        let flat = plane::flatten(&poly, &cells)?;
+        let tags = flat.points.iter().map(|&p| p as u64 + 1).collect();
+        (
+            2,
+            flat.coords,
+            tags,
+            flat.cells,
+            flat.groups,
+            Some(flat.plane),
+        )
+    } else {
+        let groups = patches(&poly);
+        let tags = (1..=n_points as u64).collect();
+        (3, poly.points, tags, cells, groups, None)
+    };
+    let mesh = Mesh {
+        dim,
+        node_tags,
+        cell_tags: (1..=cells.len() as u64).collect(),
+        coords,
+        cells,
+        groups,
+        su2_skipped: Vec::new(),
+        cgns_source: None,
+        foam: Some(Box::new(Origin {
+            dir: dir.clone(),
+            n_points,
+            plane,
+        })),
+    };
+    mesh.validate().map_err(|e| {
+        crate::io::invalid_at(e, |message| Error::Parse {
+            path: dir.join("owner"),
+            line: 1,
+            message,
+        })
+    })?;
+    Ok(mesh)
+}
+
+/// Each patch as a group of its faces.
+fn patches(poly: &read::PolyMesh) -> Vec<Group> {
+    poly.patches
+        .iter()
+        .map(|p| {
+            let mut facets = Cells::new();
+            for f in p.start_face..p.start_face + p.n_faces {
+                let face = poly.face(f);
+                facets.push(CellKind::facet_kind(face.len()), face);
+            }
+            Group {
+                name: p.name.clone(),
+                tag: None,
+                facets,
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests;

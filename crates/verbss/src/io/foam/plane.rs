@@ -1,0 +1,223 @@
+//! A one-cell-thick 2D case (patches of type `empty` on its front and
+//! back) read as the 2D mesh of its back plane: the points on the plane of
+//! smallest z are the 2D nodes, each point of the other plane follows the
+//! node its extrusion edge joins it to, each prism or hexahedron becomes
+//! its triangle or quadrilateral (counter-clockwise), and each face of the
+//! other patches becomes the line of its two back points.
+
+use super::read::PolyMesh;
+use super::Plane;
+use crate::error::{Error, Result};
+use crate::mesh::{CellKind, Cells, Group};
+
+/// The 2D mesh of a 2D case.
+pub(super) struct Flat {
+    /// `x y` of each 2D node.
+    pub coords: Vec<f64>,
+    /// The foam point label of each 2D node.
+    pub points: Vec<usize>,
+    /// Triangles and quadrilaterals, one per cell.
+    pub cells: Cells,
+    /// The patches that are not `empty`, as lines.
+    pub groups: Vec<Group>,
+    /// How the case's points follow the 2D nodes.
+    pub plane: Plane,
+}
+
+/// Which plane a point lies on: `Some(true)` the back (smallest z),
+/// `Some(false)` the front, `None` neither.
+fn sides(mesh: &PolyMesh) -> (Vec<Option<bool>>, f64) {
+    let z = |p: usize| mesh.points[3 * p + 2];
+    let n = mesh.points.len() / 3;
+    let (lo, hi) = (0..n).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+        (lo.min(z(p)), hi.max(z(p)))
+    });
+    let extent = (0..3)
+        .map(|d| {
+            let (a, b) = (0..n).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(mesh.points[3 * p + d]), b.max(mesh.points[3 * p + d]))
+            });
+            b - a
+        })
+        .fold(0.0, f64::max);
+    let tol = 1e-9 * extent;
+    let side = (0..n)
+        .map(|p| {
+            if (z(p) - lo).abs() <= tol {
+                Some(true)
+            } else if (z(p) - hi).abs() <= tol {
+                Some(false)
+            } else {
+                None
+            }
+        })
+        .collect();
+    (side, tol)
+}
+
+/// The 2D mesh of `mesh`, whose 3D cells are `cells`.
+pub(super) fn flatten(mesh: &PolyMesh, cells: &Cells) -> Result<Flat> {
+    let err = |file: &str, line: usize, message: String| Error::Parse {
+        path: mesh.file(file),
+        line,
+        message,
+    };
+    let (side, tol) = sides(mesh);
+    let n_points = side.len();
+    if let Some(p) = side.iter().position(Option::is_none) {
+        return Err(err(
+            "points",
+            mesh.point_lines[p] as usize,
+            format!(
+                "point {p} lies on neither plane of the 2D case (its empty patches must lie \
+                 on two planes of constant z: verbss reads 2D cases in the x-y plane)"
+            ),
+        ));
+    }
+    let back = |p: usize| side[p] == Some(true);
+    // The back point each front point is extruded from.
+    let mut below = vec![usize::MAX; n_points];
+    let mut flat_cells = Cells::new();
+    let mut line_of_cell = vec![1; cells.len()];
+    for f in (0..mesh.owner.len()).rev() {
+        line_of_cell[mesh.owner[f]] = mesh.owner_lines[f];
+    }
+    for (c, (kind, nodes)) in cells.iter().enumerate() {
+        let line = line_of_cell[c];
+        let refuse = |why: &str| {
+            err(
+                "owner",
+                line as usize,
+                format!("cell {c} ({}) {why}", kind.name()),
+            )
+        };
+        if !matches!(kind, CellKind::Wedge | CellKind::Hexahedron) {
+            return Err(refuse(
+                "in a 2D case (expected prisms and hexahedra one cell thick)",
+            ));
+        }
+        let table = kind.table();
+        for &[a, b] in table.edges {
+            let (a, b) = (nodes[a], nodes[b]);
+            let (lower, upper) = match (back(a), back(b)) {
+                (true, false) => (a, b),
+                (false, true) => (b, a),
+                _ => continue,
+            };
+            let moved = (0..2)
+                .any(|d| (mesh.points[3 * lower + d] - mesh.points[3 * upper + d]).abs() > tol);
+            if moved || (below[upper] != usize::MAX && below[upper] != lower) {
+                return Err(refuse("has an edge between the planes that is not along z"));
+            }
+            below[upper] = lower;
+        }
+        let Some(facet) = table
+            .facets
+            .iter()
+            .find(|f| f.iter().all(|&l| back(nodes[l])))
+        else {
+            return Err(refuse("has no face on the back plane"));
+        };
+        let mut corners: Vec<usize> = facet.iter().map(|&l| nodes[l]).collect();
+        let area2: f64 = (0..corners.len())
+            .map(|i| {
+                let (p, q) = (corners[i], corners[(i + 1) % corners.len()]);
+                mesh.points[3 * p] * mesh.points[3 * q + 1]
+                    - mesh.points[3 * q] * mesh.points[3 * p + 1]
+            })
+            .sum();
+        if area2 < 0.0 {
+            corners.reverse();
+        }
+        flat_cells.push(CellKind::facet_kind(corners.len()), &corners);
+    }
+    // 2D nodes: the back points, in label order.
+    let points: Vec<usize> = (0..n_points).filter(|&p| back(p)).collect();
+    let mut node_of_point = vec![usize::MAX; n_points];
+    for (i, &p) in points.iter().enumerate() {
+        node_of_point[p] = i;
+    }
+    for p in 0..n_points {
+        if !back(p) {
+            if below[p] == usize::MAX {
+                return Err(err(
+                    "points",
+                    mesh.point_lines[p] as usize,
+                    format!("point {p} of the front plane is on no edge from the back plane"),
+                ));
+            }
+            node_of_point[p] = node_of_point[below[p]];
+        }
+    }
+    for k in &mut flat_cells.nodes {
+        *k = node_of_point[*k];
+    }
+    let groups = lines(mesh, &side, &node_of_point)?;
+    Ok(Flat {
+        coords: points
+            .iter()
+            .flat_map(|&p| [mesh.points[3 * p], mesh.points[3 * p + 1]])
+            .collect(),
+        points,
+        cells: flat_cells,
+        groups,
+        plane: Plane {
+            node_of_point,
+            z: (0..n_points).map(|p| mesh.points[3 * p + 2]).collect(),
+        },
+    })
+}
+
+/// The patches that are not `empty`, each face as the line of its two back
+/// points; every face of an `empty` patch must lie in one plane.
+fn lines(mesh: &PolyMesh, side: &[Option<bool>], node_of_point: &[usize]) -> Result<Vec<Group>> {
+    let mut groups = Vec::new();
+    for patch in &mesh.patches {
+        let faces = patch.start_face..patch.start_face + patch.n_faces;
+        let empty = patch.kind == "empty";
+        let mut facets = Cells::new();
+        for f in faces {
+            let face = mesh.face(f);
+            let on_back: Vec<usize> = face
+                .iter()
+                .copied()
+                .filter(|&p| side[p] == Some(true))
+                .collect();
+            let ok = if empty {
+                on_back.is_empty() || on_back.len() == face.len()
+            } else {
+                face.len() == 4 && on_back.len() == 2
+            };
+            if !ok {
+                return Err(Error::Parse {
+                    path: mesh.file("boundary"),
+                    line: patch.line,
+                    message: format!(
+                        "face {f} of patch '{}' ({}) {}",
+                        patch.name,
+                        patch.kind,
+                        if empty {
+                            "is not in the front or back plane of the 2D case"
+                        } else {
+                            "does not join two back points to two front points"
+                        }
+                    ),
+                });
+            }
+            if !empty {
+                facets.push(
+                    CellKind::Line,
+                    &[node_of_point[on_back[0]], node_of_point[on_back[1]]],
+                );
+            }
+        }
+        if !empty {
+            groups.push(Group {
+                name: patch.name.clone(),
+                tag: None,
+                facets,
+            });
+        }
+    }
+    Ok(groups)
+}

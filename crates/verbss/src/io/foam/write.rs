@@ -1,0 +1,117 @@
+//! Writing the moved points of a mesh read from an OpenFOAM case.
+
+use std::path::{Path, PathBuf};
+
+use super::{same_polymesh, Origin};
+use crate::error::{Error, Result};
+use crate::io::write_atomic;
+use crate::mesh::Mesh;
+
+/// The files of a polyMesh that never change.
+const TOPOLOGY: [&str; 4] = ["faces", "owner", "neighbour", "boundary"];
+
+/// Writes the points of `mesh` (read from an OpenFOAM case) to the case or
+/// polyMesh directory `path`:
+///
+/// - `path` is the polyMesh the mesh was read from and `time` is given:
+///   `CASE/TIME/polyMesh/points`, where CASE is the directory above
+///   `constant` (or the polyMesh directory's parent);
+/// - `path` is that polyMesh and no `time`: its `points` are replaced;
+/// - any other `path`: `path/constant/polyMesh` (or `path` itself when it
+///   is named `polyMesh`) gets the points and a copy of the other four files.
+///
+/// A 2D mesh's nodes carry their front and back points (see [`super::Plane`]).
+pub fn write(path: &Path, mesh: &Mesh, time: Option<&str>) -> Result<()> {
+    let refuse = |message: String| Error::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(std::io::ErrorKind::InvalidInput, message),
+    };
+    let Some(origin) = mesh.foam.as_deref() else {
+        return Err(refuse(
+            "an OpenFOAM case is written only from a mesh read from one (verbss writes its \
+             moved points and keeps its faces; give a .msh, .su2 or .vtu output instead)"
+                .into(),
+        ));
+    };
+    let fits = match &origin.plane {
+        None => mesh.dim == 3 && mesh.node_count() == origin.n_points,
+        Some(plane) => mesh.dim == 2 && plane.node_of_point.iter().all(|&i| i < mesh.node_count()),
+    };
+    if !fits {
+        return Err(refuse(format!(
+            "the mesh's {} {}D nodes do not match the {} points of {}",
+            mesh.node_count(),
+            mesh.dim,
+            origin.n_points,
+            origin.dir.display()
+        )));
+    }
+    let xyz = points(mesh, origin);
+    if same_polymesh(path, &origin.dir) {
+        let target = match time {
+            Some(t) => case_root(&origin.dir).join(t).join("polyMesh"),
+            None => origin.dir.clone(),
+        };
+        return write_points(&target, &xyz, time.unwrap_or("constant"));
+    }
+    let target = if path.ends_with("polyMesh") {
+        path.to_path_buf()
+    } else {
+        path.join("constant").join("polyMesh")
+    };
+    write_points(&target, &xyz, "constant")?;
+    for name in TOPOLOGY {
+        let from = origin.dir.join(name);
+        let bytes = std::fs::read(&from).map_err(|source| Error::Io { path: from, source })?;
+        write_atomic(&target.join(name), |w| w.write_all(&bytes))?;
+    }
+    Ok(())
+}
+
+/// The case directory of a polyMesh directory: two levels up from
+/// `CASE/constant/polyMesh`, else its parent.
+fn case_root(dir: &Path) -> PathBuf {
+    let parent = dir.parent().unwrap_or(Path::new("."));
+    match parent.file_name() {
+        Some(n) if n == "constant" => parent.parent().unwrap_or(Path::new(".")).to_path_buf(),
+        _ => parent.to_path_buf(),
+    }
+}
+
+/// `x y z` of every point of the case: the mesh's coordinates, or for a 2D
+/// case each point at its node's `x y` and its own `z`.
+fn points(mesh: &Mesh, origin: &Origin) -> Vec<f64> {
+    match &origin.plane {
+        None => mesh.coords.clone(),
+        Some(plane) => plane
+            .node_of_point
+            .iter()
+            .zip(&plane.z)
+            .flat_map(|(&i, &z)| {
+                let p = mesh.point(i);
+                [p[0], p[1], z]
+            })
+            .collect(),
+    }
+}
+
+/// Writes `dir/points` (creating `dir`), its header's location `TIME/polyMesh`.
+fn write_points(dir: &Path, xyz: &[f64], time: &str) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|source| Error::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    write_atomic(&dir.join("points"), |w| {
+        writeln!(
+            w,
+            "FoamFile\n{{\n    version     2.0;\n    format      ascii;\n    \
+             class       vectorField;\n    location    \"{time}/polyMesh\";\n    \
+             object      points;\n}}\n\n{}\n(",
+            xyz.len() / 3
+        )?;
+        for p in xyz.chunks(3) {
+            writeln!(w, "({:?} {:?} {:?})", p[0], p[1], p[2])?;
+        }
+        writeln!(w, ")")
+    })
+}
