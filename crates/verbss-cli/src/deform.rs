@@ -12,7 +12,7 @@ use std::process::ExitCode;
 use anyhow::bail;
 use clap::{ArgGroup, Args};
 use verbss::deform::{Predictor, Preset, Reference};
-use verbss::io::{self, Format};
+use verbss::io::Format;
 use verbss::motion::{Attachment, Motion, PositionSource};
 use verbss::robust::Layer;
 use verbss::solve::{Accel, Solver};
@@ -20,6 +20,7 @@ use verbss::solve::{Accel, Solver};
 use crate::overwrite::refuse_input_as_output;
 use crate::render::{PictureArgs, Recorder};
 use crate::run::{file_stem, run_here, Job, Prepared};
+use crate::zone::{self, ZoneArg};
 
 /// Arguments of `verbss deform`.
 #[derive(Args)]
@@ -30,6 +31,8 @@ pub struct DeformArgs {
     /// The output mesh; its extension chooses the format.
     #[arg(short, long)]
     output: PathBuf,
+    #[command(flatten)]
+    zone: ZoneArg,
     /// The moving groups, comma separated; every other boundary node is fixed.
     #[arg(long, value_delimiter = ',', required = true)]
     moving: Vec<String>,
@@ -185,7 +188,7 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
 pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
     let format = Format::from_path(&args.output)?;
     refuse_input_as_output(&args.mesh, &args.output, args.overwrite)?;
-    let mesh = io::read(&args.mesh)?;
+    let mesh = zone::read(&args.mesh, args.zone.zone, "--zone K", args.quiet)?;
     for g in args.moving.iter().chain(&args.slide) {
         mesh.group(g)?;
     }

@@ -17,3 +17,4 @@ pub mod progress;
 pub mod quality;
 pub mod render;
 pub mod run;
+pub mod zone;

@@ -53,7 +53,7 @@ pub struct RunArgs {
 /// Runs `verbss run`.
 pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
     let case = Case::read(&args.case)?;
-    let mesh = io::read(&case.mesh)?;
+    let mesh = crate::zone::read(&case.mesh, case.zone, "zone = K", args.quiet)?;
     let attachments = case.attachments(&mesh)?;
     let name = file_stem(&case.mesh);
     let dir = args

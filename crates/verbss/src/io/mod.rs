@@ -104,18 +104,58 @@ impl Format {
     }
 }
 
-/// Reads a mesh, choosing the format by extension.
+/// Reads a mesh, choosing the format by extension; of a multi-zone SU2
+/// file, zone 1 ([`read_zone`] reads another).
 pub fn read(path: &Path) -> Result<Mesh> {
+    read_zone(path, 1).map(|(mesh, _)| mesh)
+}
+
+/// Reads zone `zone` (1-based, SU2's `IZONE=`) of a mesh file and gives its
+/// number of zones. Only SU2 files have several; every other file is zone 1
+/// of 1. The other zones of an SU2 file are kept for an SU2 output
+/// ([`su2::parse_zone`]).
+pub fn read_zone(path: &Path, zone: usize) -> Result<(Mesh, usize)> {
+    let (format, bytes) = read_bytes(path)?;
+    if format == Format::Su2 {
+        return su2::parse_zone(&bytes, path, zone);
+    }
+    let mesh = parse(format, &bytes, path)?;
+    if zone != 1 {
+        return Err(Error::InvalidSetting(format!(
+            "{}: zone {zone} asked for, but only an SU2 file has several zones",
+            path.display()
+        )));
+    }
+    Ok((mesh, 1))
+}
+
+/// Reads every zone of a mesh file, in order: one mesh for every file but a
+/// multi-zone SU2 file.
+pub fn read_zones(path: &Path) -> Result<Vec<Mesh>> {
+    let (format, bytes) = read_bytes(path)?;
+    match format {
+        Format::Su2 => su2::parse_zones(&bytes, path),
+        _ => Ok(vec![parse(format, &bytes, path)?]),
+    }
+}
+
+/// Parses a file's bytes in `format` (an SU2 file: zone 1).
+fn parse(format: Format, bytes: &[u8], path: &Path) -> Result<Mesh> {
+    match format {
+        Format::Msh => gmsh::parse(bytes, path),
+        Format::Su2 => su2::parse(bytes, path),
+        Format::Vtu => vtu::parse(bytes, path).map(|v| v.mesh),
+    }
+}
+
+/// A mesh file's format (by extension) and bytes.
+fn read_bytes(path: &Path) -> Result<(Format, Vec<u8>)> {
     let format = Format::from_path(path)?;
     let bytes = std::fs::read(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
         source,
     })?;
-    match format {
-        Format::Msh => gmsh::parse(&bytes, path),
-        Format::Su2 => su2::parse(&bytes, path),
-        Format::Vtu => vtu::parse(&bytes, path).map(|v| v.mesh),
-    }
+    Ok((format, bytes))
 }
 
 /// Writes a mesh, choosing the format by extension (atomically, see [`write_atomic`]).

@@ -1,0 +1,30 @@
+//! `--zone K`: the zone of a multi-zone SU2 file a command works on.
+
+use std::path::Path;
+
+use clap::Args;
+use verbss::io;
+use verbss::mesh::Mesh;
+
+/// The `--zone` option.
+#[derive(Args, Clone, Copy)]
+pub struct ZoneArg {
+    /// The zone of a multi-zone SU2 file (its IZONE= K) [default: 1, with a
+    /// note when the file has several].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    pub zone: Option<u32>,
+}
+
+/// Reads zone `zone` of `path` (1 when `None`, with a note on standard
+/// error when the file has several zones unless `quiet`); `how` says how
+/// to choose another zone (`--zone K`, `zone = K`).
+pub fn read(path: &Path, zone: Option<u32>, how: &str, quiet: bool) -> anyhow::Result<Mesh> {
+    let (mesh, count) = io::read_zone(path, zone.map_or(1, |k| k as usize))?;
+    if zone.is_none() && count > 1 && !quiet {
+        eprintln!(
+            "note: {} has {count} zones; using zone 1 (choose one with {how})",
+            path.display()
+        );
+    }
+    Ok(mesh)
+}
