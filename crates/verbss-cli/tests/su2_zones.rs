@@ -247,3 +247,13 @@ fn a_case_file_names_its_zone() {
     let written = std::fs::read_to_string(&result).unwrap();
     assert!(written.starts_with(&text[..text.find("IZONE= 2\n").unwrap()]));
 }
+
+#[test]
+fn the_example_file_is_the_fluid_and_solid_zones() {
+    let dir = tempfile::tempdir().unwrap();
+    let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/meshes/fsi_airfoil.su2");
+    assert_eq!(
+        std::fs::read(example).unwrap(),
+        std::fs::read(fsi(dir.path())).unwrap()
+    );
+}
