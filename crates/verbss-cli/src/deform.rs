@@ -190,7 +190,9 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
     refuse_input_as_output(&args.mesh, &args.output, args.overwrite)?;
     let mesh = zone::read(&args.mesh, args.zone.zone, "--zone K", args.quiet)?;
     for g in args.moving.iter().chain(&args.slide) {
-        mesh.group(g)?;
+        if let Err(e) = mesh.group(g) {
+            return Err(zone::missing_group(e, &args.mesh, g));
+        }
     }
     let dim = mesh.dim;
     let motion = if let Some(t) = &args.translate {

@@ -2,6 +2,7 @@
 
 use std::path::Path;
 
+use anyhow::anyhow;
 use clap::Args;
 use verbss::io;
 use verbss::mesh::Mesh;
@@ -27,4 +28,14 @@ pub fn read(path: &Path, zone: Option<u32>, how: &str, quiet: bool) -> anyhow::R
         );
     }
     Ok(mesh)
+}
+
+/// The error of a group missing from the zone read, naming the zone of
+/// `path` that has it when there is one.
+pub fn missing_group(e: verbss::Error, path: &Path, group: &str) -> anyhow::Error {
+    let zones = io::read_zones(path).unwrap_or_default();
+    match zones.iter().position(|m| m.group(group).is_ok()) {
+        Some(k) if zones.len() > 1 => anyhow!("{e}; zone {} has it (give --zone {})", k + 1, k + 1),
+        _ => e.into(),
+    }
 }

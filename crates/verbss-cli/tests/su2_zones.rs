@@ -122,7 +122,7 @@ fn a_3d_zone_is_deformed_and_the_other_kept() {
 }
 
 #[test]
-fn a_zone_that_is_not_there_or_a_group_of_another_zone_is_refused() {
+fn a_zone_that_is_not_there_is_refused_and_a_group_of_another_zone_named() {
     let dir = tempfile::tempdir().unwrap();
     let input = fsi(dir.path());
     let out = dir.path().join("out.su2");
@@ -141,7 +141,9 @@ fn a_zone_that_is_not_there_or_a_group_of_another_zone_is_refused() {
     );
     refused(
         &[&moving[..], &["--zone", "1"]].concat(),
-        "error: unknown group 'interface' (the mesh has: airfoil, farfield)\n".into(),
+        "error: unknown group 'interface' (the mesh has: airfoil, farfield); zone 2 has it \
+         (give --zone 2)\n"
+            .into(),
     );
     let o = verbss(&["quality", s(&input), "--zone", "0"]);
     assert_eq!(o.status.code(), Some(2));
