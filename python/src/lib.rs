@@ -322,12 +322,16 @@ impl Mesh {
     }
 }
 
-/// Reads a mesh file (.msh Gmsh 2.2/4.1, .su2, .vtu), chosen by extension.
+/// Reads a mesh file (.msh Gmsh 2.2/4.1, .su2, .vtu), chosen by extension;
+/// of a multi-zone SU2 file, zone `zone` (its IZONE= K, 1 by default).
 ///
 /// Raises VerbssError naming the file, the line and what was expected.
 #[pyfunction]
-fn read(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
-    let inner = py.detach(|| verbss::io::read(&path)).map_err(raise)?;
+#[pyo3(signature = (path, zone = 1))]
+fn read(py: Python<'_>, path: PathBuf, zone: usize) -> PyResult<Mesh> {
+    let (inner, _) = py
+        .detach(|| verbss::io::read_zone(&path, zone))
+        .map_err(raise)?;
     Ok(Mesh { inner })
 }
 

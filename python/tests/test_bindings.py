@@ -142,6 +142,19 @@ def test_quality_is_the_command_json(cli):
         assert verbss.quality(verbss.read(MESHES / mesh)) == json.loads(done.stdout)
 
 
+def test_a_zone_of_a_multi_zone_file_is_the_command_zone(cli):
+    fsi = ROOT / "cases" / "meshes" / "fsi_airfoil.su2"
+    assert len(verbss.read(fsi).points) == 12
+    solid = verbss.read(fsi, zone=2)
+    assert (len(solid.points), list(solid.groups)) == (5, ["interface"])
+    done = run_cli(cli, "quality", fsi, "--json", "--zone", "2")
+    assert done.returncode == 0, done.stderr
+    assert verbss.quality(solid) == json.loads(done.stdout)
+    with pytest.raises(verbss.VerbssError) as e:
+        verbss.read(fsi, zone=3)
+    assert str(e.value) == f"{fsi}:1: zone 3 asked for, but NZONE= 2 (zones 1 to 2)"
+
+
 def test_errors_carry_the_command_message(cli, tmp_path):
     missing = tmp_path / "missing.su2"
     done = run_cli(cli, "quality", missing)

@@ -185,10 +185,10 @@ class Deformer:
     def info(self) -> Optional[StepInfo]:
         """What the last accepted step did, or None before the first step."""
 
-def read(path: Union[str, os.PathLike]) -> Mesh:
+def read(path: Union[str, os.PathLike], zone: int = 1) -> Mesh:
     """Reads a mesh file (.msh Gmsh 2.2/4.1, .su2, .vtu), chosen by
-    extension. Raises VerbssError naming the file, the line and what was
-    expected."""
+    extension; of a multi-zone SU2 file, zone ``zone`` (its IZONE= K).
+    Raises VerbssError naming the file, the line and what was expected."""
 
 def quality_json(mesh: Mesh) -> str:
     """The ``verbss quality --json`` summary of a mesh, as JSON text."""

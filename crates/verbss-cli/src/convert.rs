@@ -6,8 +6,8 @@ use std::process::ExitCode;
 use clap::{Args, ValueEnum};
 use verbss::io::{self, MshVersion, WriteOptions};
 
-use crate::input::read_mesh;
 use crate::overwrite::{note_lost_su2_blocks, refuse_input_as_output};
+use crate::zone::{self, ZoneArg};
 
 /// Arguments of `verbss convert`.
 #[derive(Args)]
@@ -22,6 +22,8 @@ pub struct ConvertArgs {
     /// Write a binary .msh.
     #[arg(long)]
     binary: bool,
+    #[command(flatten)]
+    zone: ZoneArg,
     /// Allow the output to be the input file.
     #[arg(long)]
     overwrite: bool,
@@ -38,7 +40,8 @@ enum MshVersionArg {
 /// Runs `verbss convert`.
 pub fn run(args: ConvertArgs) -> anyhow::Result<ExitCode> {
     refuse_input_as_output(&args.input, &args.output, args.overwrite, false)?;
-    let mesh = read_mesh(&args.input)?;
+    let su2_out = matches!(io::Format::from_path(&args.output), Ok(io::Format::Su2));
+    let mesh = zone::read(&args.input, args.zone.zone, "--zone K", su2_out)?;
     let mut options = WriteOptions::default();
     options.msh_version = match args.msh_version {
         MshVersionArg::V22 => MshVersion::V22,

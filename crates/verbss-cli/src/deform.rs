@@ -17,10 +17,10 @@ use verbss::motion::{Attachment, Motion, PositionSource};
 use verbss::robust::Layer;
 use verbss::solve::{Accel, Solver};
 
-use crate::input::read_mesh;
 use crate::overwrite::refuse_input_as_output;
 use crate::render::{PictureArgs, Recorder};
 use crate::run::{file_stem, run_here, Job, Prepared};
+use crate::zone::{self, ZoneArg};
 
 /// Arguments of `verbss deform`.
 #[derive(Args)]
@@ -33,6 +33,8 @@ pub struct DeformArgs {
     /// `CASE/STEPS/polyMesh/points`, another a whole `constant/polyMesh`.
     #[arg(short, long)]
     output: PathBuf,
+    #[command(flatten)]
+    zone: ZoneArg,
     /// The moving groups, comma separated; every other boundary node is fixed.
     #[arg(long, value_delimiter = ',', required = true)]
     moving: Vec<String>,
@@ -188,9 +190,11 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
 pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
     let format = Format::from_path(&args.output)?;
     refuse_input_as_output(&args.mesh, &args.output, args.overwrite, true)?;
-    let mesh = read_mesh(&args.mesh)?;
+    let mesh = zone::read(&args.mesh, args.zone.zone, "--zone K", args.quiet)?;
     for g in args.moving.iter().chain(&args.slide) {
-        mesh.group(g)?;
+        if let Err(e) = mesh.group(g) {
+            return Err(zone::missing_group(e, &args.mesh, g));
+        }
     }
     let dim = mesh.dim;
     let motion = if let Some(t) = &args.translate {

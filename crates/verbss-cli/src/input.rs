@@ -6,10 +6,16 @@ use std::path::Path;
 use verbss::io;
 use verbss::mesh::Mesh;
 
-/// Reads the mesh at `path` (the format chosen by extension); for a CGNS
-/// file of several zones, notes that only the first was read.
+/// Reads the mesh at `path` (the format chosen by extension; of a file of
+/// several zones, zone 1), noting what of the file is left out.
 pub fn read_mesh(path: &Path) -> verbss::Result<Mesh> {
     let mesh = io::read(path)?;
+    note_left_out(path, &mesh);
+    Ok(mesh)
+}
+
+/// For a CGNS file of several zones, notes that only the first was read.
+pub fn note_left_out(path: &Path, mesh: &Mesh) {
     if let Some(source) = mesh.cgns_source.as_ref().filter(|s| s.zones > 1) {
         eprintln!(
             "note: {} has {} zones in base '{}'; verbss reads zone 1 ('{}') only",
@@ -19,5 +25,4 @@ pub fn read_mesh(path: &Path) -> verbss::Result<Mesh> {
             source.zone
         );
     }
-    Ok(mesh)
 }

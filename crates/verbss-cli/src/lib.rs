@@ -18,3 +18,4 @@ pub mod progress;
 pub mod quality;
 pub mod render;
 pub mod run;
+pub mod zone;

@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use anyhow::bail;
+use verbss::io::su2::Anchor;
 use verbss::io::{foam, Format};
 use verbss::mesh::Mesh;
 
@@ -40,13 +41,25 @@ pub fn refuse_input_as_output(
 }
 
 /// Says on standard error that `output`, not an SU2 file, leaves out the
-/// sections of the SU2 input that verbss does not use (FFD boxes, periodic
-/// data), naming their first three keywords.
+/// other zones of a multi-zone SU2 input and the sections of the SU2 input
+/// that verbss does not use (FFD boxes, periodic data), naming their first
+/// three keywords.
 pub fn note_lost_su2_blocks(mesh: &Mesh, output: &Path) {
     if mesh.su2_skipped.is_empty() || matches!(Format::from_path(output), Ok(Format::Su2)) {
         return;
     }
-    let keywords = mesh.su2_skipped.iter().flat_map(|b| {
+    let (zones, sections): (Vec<_>, Vec<_>) = mesh
+        .su2_skipped
+        .iter()
+        .partition(|b| matches!(b.after, Anchor::ZonesBefore | Anchor::ZonesAfter));
+    if !zones.is_empty() {
+        eprintln!(
+            "note: {} leaves out the other zones of the multi-zone SU2 input \
+             (only an .su2 output keeps them)",
+            output.display()
+        );
+    }
+    let keywords = sections.iter().flat_map(|b| {
         b.text.lines().filter_map(|l| {
             Some(format!(
                 "{}=",
@@ -63,6 +76,9 @@ pub fn note_lost_su2_blocks(mesh: &Mesh, output: &Path) {
         if !named.contains(&k) {
             named.push(k);
         }
+    }
+    if named.is_empty() {
+        return;
     }
     eprintln!(
         "note: {} leaves out the input's SU2 sections {} (only an .su2 output keeps them)",

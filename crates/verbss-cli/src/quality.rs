@@ -1,38 +1,73 @@
-//! `verbss quality MESH [--json]`: counts, groups, quality histogram, inverted elements.
+//! `verbss quality MESH [--json] [--zone K]`: counts, groups, quality
+//! histogram, inverted elements; of every zone of a multi-zone SU2 file
+//! unless `--zone` names one.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
 use serde_json::Value;
-use verbss::quality;
+use verbss::{io, quality};
 
-use crate::input::read_mesh;
 
 /// Arguments of `verbss quality`.
 #[derive(Args)]
 pub struct QualityArgs {
     /// The mesh (.msh, .su2, .vtu, .cgns).
     mesh: PathBuf,
-    /// Print one JSON object instead of a table.
+    /// Print one JSON object instead of a table (of a multi-zone file
+    /// without --zone: `{"zones": [...]}`, one object per zone with its `zone`).
     #[arg(long)]
     json: bool,
+    /// Only this zone of a multi-zone SU2 file (IZONE= K) [default: every zone].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    zone: Option<u32>,
 }
 
 /// Runs `verbss quality`.
 pub fn run(args: QualityArgs) -> anyhow::Result<ExitCode> {
-    let mesh = read_mesh(&args.mesh)?;
-    let value = quality::summary_json(&mesh);
+    let zones = match args.zone {
+        Some(k) => vec![io::read_zone(&args.mesh, k as usize)?.0],
+        None => io::read_zones(&args.mesh)?,
+    };
+    for mesh in &zones {
+        crate::input::note_left_out(&args.mesh, mesh);
+    }
+    let values: Vec<Value> = zones.iter().map(quality::summary_json).collect();
+    let count = values.len();
+    if count == 1 {
+        if args.json {
+            println!("{}", serde_json::to_string(&values[0])?);
+        } else {
+            println!("{}", args.mesh.display());
+            print_table(&values[0]);
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
     if args.json {
-        println!("{}", serde_json::to_string(&value)?);
+        let zones: Vec<Value> = values
+            .into_iter()
+            .zip(1..)
+            .map(|(mut v, k)| {
+                v["zone"] = k.into();
+                v
+            })
+            .collect();
+        println!(
+            "{}",
+            serde_json::to_string(&serde_json::json!({ "zones": zones }))?
+        );
     } else {
-        print_table(&args.mesh, &value);
+        for (v, k) in values.iter().zip(1..) {
+            println!("{} zone {k} of {count}", args.mesh.display());
+            print_table(v);
+        }
     }
     Ok(ExitCode::SUCCESS)
 }
 
-fn print_table(path: &std::path::Path, v: &Value) {
-    println!("{}", path.display());
+/// The table of one zone's summary.
+fn print_table(v: &Value) {
     println!("  dimension  {}", v["dimension"]);
     println!("  nodes      {}", v["nodes"]);
     println!("  elements   {}", v["elements"]);

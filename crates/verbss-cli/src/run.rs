@@ -28,7 +28,6 @@ use verbss::report::Report;
 use verbss::solve::SpringSolver;
 use verbss::Error;
 
-use crate::input::read_mesh;
 use crate::overwrite::{note_lost_su2_blocks, refuse_input_as_output};
 use crate::progress::Progress;
 use crate::render::{PictureArgs, Recorder};
@@ -54,7 +53,7 @@ pub struct RunArgs {
 /// Runs `verbss run`.
 pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
     let case = Case::read(&args.case)?;
-    let mesh = read_mesh(&case.mesh)?;
+    let mesh = crate::zone::read(&case.mesh, case.zone, "zone = K", args.quiet)?;
     let attachments = case.attachments(&mesh)?;
     let name = file_stem(&case.mesh);
     let dir = args

@@ -350,28 +350,135 @@ fn every_reader_names_the_place_of_what_is_wrong() {
     let msh = msh_with_tags(1, 1);
     let square = vtu("", "", "");
     let cases: Vec<(&str, Vec<u8>, &str)> = vec![
-        ("nan.su2", SQUARE.replace("1 1\n", "nan 1\n").into(), "nan.su2:8: non-finite coordinate 'nan'"),
-        ("big.su2", SQUARE.replace("1 1\n", "1e400 1\n").into(), "big.su2:8: non-finite coordinate '1e400'"),
-        ("neg.su2", SQUARE.replace("NELEM= 2", "NELEM= -2").into(), "neg.su2:2: expected a count after NELEM=, found '-2'"),
-        ("huge.su2", SQUARE.replace("NELEM= 2", "NELEM= 18446744073709551615").into(), "huge.su2:5: found NPOIN= after 2 of the 18446744073709551615 elements"),
-        ("node.su2", SQUARE.replace("5 0 2 3", "5 0 2 9").into(), "node.su2:4: node index 9 out of range (NPOIN= 4 at line 5: indices 0 to 3)"),
-        ("zones.su2", format!("NZONE= 2\nIZONE= 1\n{SQUARE}IZONE= 2\n{SQUARE}").into(), "zones.su2:22: NDIME= given twice (first at line 3; multi-zone files are not supported)"),
-        ("bin.su2", b"NDIME= 2\n\x00\xff\xfe".to_vec(), "bin.su2:2: non-UTF-8 byte 0xff at column 2"),
-        ("nan.msh", msh.replace("\n1 1 0\n0 1 0\n", "\nnan 1 0\n0 1 0\n").into(), "nan.msh:18: node 3 has a non-finite coordinate (NaN)"),
-        ("node.msh", msh.replace("3 1 3 4\n", "3 1 3 9\n").into(), "node.msh:27: element 3 refers to node 9, which $Nodes does not define"),
-        ("count.msh", msh.replace("1 4 1 4\n", "1 18446744073709551615 1 4\n").into(), "count.msh:19: $Nodes declares 18446744073709551615 nodes but its blocks hold 4"),
-        ("order.msh", msh.replace("$Nodes", "$Elements\n$EndElements\n$Nodes").into(), "order.msh:9: $Elements comes before $Nodes"),
-        ("version.msh", msh.replace("4.1 0 8", "4.0 0 8").into(), "version.msh:2: unsupported MSH version 4.0"),
-        ("cut.msh", binary_msh(|_| {}, Some(120)), "cut.msh: byte 49: unexpected end of file: $Nodes needs 112 bytes, only 71 remain"),
-        ("endian.msh", binary_msh(|b| b[20..24].copy_from_slice(&1i32.to_be_bytes()), None), "endian.msh: byte 20: the binary file is big-endian"),
-        ("tags.msh", binary_msh(|b| b[192..196].copy_from_slice(&(-5i32).to_le_bytes()), None), "tags.msh: byte 192: negative number of tags -5"),
-        ("nan.vtu", square.replace("0 0 0 1 0 0 1 1 0", "0 0 0 nan 0 0 1 1 0").into(), "nan.vtu:6: DataArray '': point 1 has a non-finite coordinate (NaN)"),
-        ("node.vtu", square.replace("0 1 2 0 2 3", "0 1 2 0 2 -1").into(), "node.vtu:8: DataArray 'connectivity': cell 1 uses point -1 but NumberOfPoints=4"),
-        ("cells.vtu", square.replace("NumberOfCells=\"2\"", "NumberOfCells=\"18446744073709551615\"").into(), "cells.vtu:9: DataArray 'offsets': 2 values but NumberOfCells=18446744073709551615"),
-        ("pieces.vtu", square.replace("</Piece>", "</Piece><Piece/>").into(), "pieces.vtu:14: a second <Piece> (only single-piece files are supported)"),
-        ("cut.vtu", square[..square.len() / 2].into(), "cut.vtu:6: truncated file"),
-        ("b64.vtu", vtu(&binary("u", "1", "@@@@"), "", "").into(), "b64.vtu:12: DataArray 'u': invalid base64 character '@' at position 0"),
-        ("zlib.vtu", vtu(&binary("u", "1", &block(&[1, 8, 8, 4], b"\x78\x9c\xff\xff")), "", "").into(), "zlib.vtu:12: DataArray 'u': zlib block 0:"),
+        (
+            "nan.su2",
+            SQUARE.replace("1 1\n", "nan 1\n").into(),
+            "nan.su2:8: non-finite coordinate 'nan'",
+        ),
+        (
+            "big.su2",
+            SQUARE.replace("1 1\n", "1e400 1\n").into(),
+            "big.su2:8: non-finite coordinate '1e400'",
+        ),
+        (
+            "neg.su2",
+            SQUARE.replace("NELEM= 2", "NELEM= -2").into(),
+            "neg.su2:2: expected a count after NELEM=, found '-2'",
+        ),
+        (
+            "huge.su2",
+            SQUARE
+                .replace("NELEM= 2", "NELEM= 18446744073709551615")
+                .into(),
+            "huge.su2:5: found NPOIN= after 2 of the 18446744073709551615 elements",
+        ),
+        (
+            "node.su2",
+            SQUARE.replace("5 0 2 3", "5 0 2 9").into(),
+            "node.su2:4: node index 9 out of range (NPOIN= 4 at line 5: indices 0 to 3)",
+        ),
+        (
+            "zones.su2",
+            format!("NZONE= 2\nIZONE= 1\n{SQUARE}IZONE= 3\n{SQUARE}").into(),
+            "zones.su2:21: IZONE= 3 out of order (expected IZONE= 2)",
+        ),
+        (
+            "bin.su2",
+            b"NDIME= 2\n\x00\xff\xfe".to_vec(),
+            "bin.su2:2: non-UTF-8 byte 0xff at column 2",
+        ),
+        (
+            "nan.msh",
+            msh.replace("\n1 1 0\n0 1 0\n", "\nnan 1 0\n0 1 0\n").into(),
+            "nan.msh:18: node 3 has a non-finite coordinate (NaN)",
+        ),
+        (
+            "node.msh",
+            msh.replace("3 1 3 4\n", "3 1 3 9\n").into(),
+            "node.msh:27: element 3 refers to node 9, which $Nodes does not define",
+        ),
+        (
+            "count.msh",
+            msh.replace("1 4 1 4\n", "1 18446744073709551615 1 4\n")
+                .into(),
+            "count.msh:19: $Nodes declares 18446744073709551615 nodes but its blocks hold 4",
+        ),
+        (
+            "order.msh",
+            msh.replace("$Nodes", "$Elements\n$EndElements\n$Nodes")
+                .into(),
+            "order.msh:9: $Elements comes before $Nodes",
+        ),
+        (
+            "version.msh",
+            msh.replace("4.1 0 8", "4.0 0 8").into(),
+            "version.msh:2: unsupported MSH version 4.0",
+        ),
+        (
+            "cut.msh",
+            binary_msh(|_| {}, Some(120)),
+            "cut.msh: byte 49: unexpected end of file: $Nodes needs 112 bytes, only 71 remain",
+        ),
+        (
+            "endian.msh",
+            binary_msh(|b| b[20..24].copy_from_slice(&1i32.to_be_bytes()), None),
+            "endian.msh: byte 20: the binary file is big-endian",
+        ),
+        (
+            "tags.msh",
+            binary_msh(
+                |b| b[192..196].copy_from_slice(&(-5i32).to_le_bytes()),
+                None,
+            ),
+            "tags.msh: byte 192: negative number of tags -5",
+        ),
+        (
+            "nan.vtu",
+            square
+                .replace("0 0 0 1 0 0 1 1 0", "0 0 0 nan 0 0 1 1 0")
+                .into(),
+            "nan.vtu:6: DataArray '': point 1 has a non-finite coordinate (NaN)",
+        ),
+        (
+            "node.vtu",
+            square.replace("0 1 2 0 2 3", "0 1 2 0 2 -1").into(),
+            "node.vtu:8: DataArray 'connectivity': cell 1 uses point -1 but NumberOfPoints=4",
+        ),
+        (
+            "cells.vtu",
+            square
+                .replace(
+                    "NumberOfCells=\"2\"",
+                    "NumberOfCells=\"18446744073709551615\"",
+                )
+                .into(),
+            "cells.vtu:9: DataArray 'offsets': 2 values but NumberOfCells=18446744073709551615",
+        ),
+        (
+            "pieces.vtu",
+            square.replace("</Piece>", "</Piece><Piece/>").into(),
+            "pieces.vtu:14: a second <Piece> (only single-piece files are supported)",
+        ),
+        (
+            "cut.vtu",
+            square[..square.len() / 2].into(),
+            "cut.vtu:6: truncated file",
+        ),
+        (
+            "b64.vtu",
+            vtu(&binary("u", "1", "@@@@"), "", "").into(),
+            "b64.vtu:12: DataArray 'u': invalid base64 character '@' at position 0",
+        ),
+        (
+            "zlib.vtu",
+            vtu(
+                &binary("u", "1", &block(&[1, 8, 8, 4], b"\x78\x9c\xff\xff")),
+                "",
+                "",
+            )
+            .into(),
+            "zlib.vtu:12: DataArray 'u': zlib block 0:",
+        ),
         ("empty.vtu", Vec::new(), "empty.vtu:1: not a VTK XML file"),
     ];
     for (name, text, message) in cases {

@@ -204,7 +204,7 @@ fn case_file_errors_name_the_file_line_and_key() {
     assert_eq!(
         text(&out.stderr),
         format!(
-            "error: {}:3: unknown field `omega`, expected one of `mesh`, `steps`, `dt`, `reference`, `solver`, `motion`, `output`\n",
+            "error: {}:3: unknown field `omega`, expected one of `mesh`, `zone`, `steps`, `dt`, `reference`, `solver`, `motion`, `output`\n",
             case.display()
         )
     );

@@ -25,6 +25,8 @@ pub struct Case {
     pub path: PathBuf,
     /// The mesh file (resolved against the case file's folder).
     pub mesh: PathBuf,
+    /// The zone of a multi-zone SU2 mesh file (`IZONE=`), if given.
+    pub zone: Option<u32>,
     /// Steps, time step, reference and solver settings.
     pub settings: Settings,
     /// The output settings.
@@ -64,6 +66,7 @@ impl Default for Output {
 #[serde(deny_unknown_fields)]
 struct CaseFile {
     mesh: String,
+    zone: Option<u32>,
     steps: usize,
     dt: Option<f64>,
     reference: Option<toml::Value>,
@@ -242,6 +245,9 @@ impl Case {
                 .position(|l| l.trim_start().starts_with(key))
                 .map_or(1, |i| i + 1)
         };
+        if file.zone == Some(0) {
+            return Err(at(top("zone"), "`zone` must be at least 1".into()));
+        }
         if file.steps == 0 {
             return Err(at(top("steps"), "`steps` must be at least 1".into()));
         }
@@ -308,6 +314,7 @@ impl Case {
         Ok(Case {
             path: path.to_path_buf(),
             mesh: base.join(&file.mesh),
+            zone: file.zone,
             settings,
             output: Output {
                 dir: file.output.dir.map(|d| base.join(d)),

@@ -67,8 +67,20 @@ final = false
 fn unknown_top_level_key() {
     assert_eq!(
         err("mesh = \"m.su2\"\nsteps = 3\nstep = 4\n"),
-        "cases/c.toml:3: unknown field `step`, expected one of `mesh`, `steps`, `dt`, `reference`, `solver`, `motion`, `output`"
+        "cases/c.toml:3: unknown field `step`, expected one of `mesh`, `zone`, `steps`, `dt`, `reference`, `solver`, `motion`, `output`"
     );
+}
+
+#[test]
+fn the_zone_of_a_multi_zone_mesh() {
+    let zone = |text: &str| parse(text).unwrap().zone;
+    assert_eq!(zone("mesh = \"fsi.su2\"\nzone = 2\nsteps = 3\n"), Some(2));
+    assert_eq!(zone("mesh = \"fsi.su2\"\nsteps = 3\n"), None);
+    assert_eq!(
+        err("mesh = \"fsi.su2\"\nsteps = 3\nzone = 0\n"),
+        "cases/c.toml:3: `zone` must be at least 1"
+    );
+    assert!(err("mesh = \"fsi.su2\"\nzone = -1\nsteps = 3\n").starts_with("cases/c.toml:2: "));
 }
 
 #[test]

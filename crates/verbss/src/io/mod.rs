@@ -133,22 +133,58 @@ impl Format {
     }
 }
 
-/// Reads a mesh, choosing the format by extension.
+/// Reads a mesh, choosing the format by extension; of a multi-zone SU2
+/// file, zone 1 ([`read_zone`] reads another).
 pub fn read(path: &Path) -> Result<Mesh> {
+    read_zone(path, 1).map(|(mesh, _)| mesh)
+}
+
+/// Reads zone `zone` (1-based, SU2's `IZONE=`) of a mesh file and gives its
+/// number of zones. Only SU2 files have several; every other file is zone 1
+/// of 1. The other zones of an SU2 file are kept for an SU2 output
+/// ([`su2::parse_zone`]).
+pub fn read_zone(path: &Path, zone: usize) -> Result<(Mesh, usize)> {
     let format = Format::from_path(path)?;
-    let bytes = || {
-        std::fs::read(path).map_err(|source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        })
-    };
-    match format {
-        Format::Msh => gmsh::parse(&bytes()?, path),
-        Format::Su2 => su2::parse(&bytes()?, path),
-        Format::Vtu => vtu::parse(&bytes()?, path).map(|v| v.mesh),
-        Format::Foam => foam::read(path),
-        Format::Cgns => cgns::read(path),
+    if format == Format::Su2 {
+        return su2::parse_zone(&read_bytes(path)?, path, zone);
     }
+    let mesh = read_one(format, path)?;
+    if zone != 1 {
+        return Err(Error::InvalidSetting(format!(
+            "{}: zone {zone} asked for, but verbss reads several zones from SU2 files only",
+            path.display()
+        )));
+    }
+    Ok((mesh, 1))
+}
+
+/// Reads every zone of a mesh file, in order: one mesh for every file but a
+/// multi-zone SU2 file.
+pub fn read_zones(path: &Path) -> Result<Vec<Mesh>> {
+    match Format::from_path(path)? {
+        Format::Su2 => su2::parse_zones(&read_bytes(path)?, path),
+        format => Ok(vec![read_one(format, path)?]),
+    }
+}
+
+/// Reads the mesh of a file in `format` (an SU2 file: zone 1; a CGNS file:
+/// its first zone).
+fn read_one(format: Format, path: &Path) -> Result<Mesh> {
+    match format {
+        Format::Msh => gmsh::parse(&read_bytes(path)?, path),
+        Format::Su2 => su2::parse(&read_bytes(path)?, path),
+        Format::Vtu => vtu::parse(&read_bytes(path)?, path).map(|v| v.mesh),
+        Format::Cgns => cgns::read(path),
+        Format::Foam => foam::read(path),
+    }
+}
+
+/// A file's bytes.
+fn read_bytes(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// Writes a mesh, choosing the format by extension (atomically, see

@@ -131,6 +131,74 @@ pub fn hex_wedge_pyramid_tet() -> Mesh {
     Mesh::new(3, coords, volume, groups).expect("a valid 3D mesh")
 }
 
+/// The corners of the diamond airfoil of [`fluid_around_an_airfoil`] and
+/// [`solid_airfoil`], counter-clockwise from the leading edge.
+const AIRFOIL: [[f64; 2]; 4] = [[0., 0.], [0.5, -0.1], [1., 0.], [0.5, 0.1]];
+
+/// The fluid zone of a fluid–structure case: three rings of 4 nodes around a
+/// diamond airfoil with chord `[0, 1]` (nodes `0..4` the airfoil, `4..8`
+/// halfway out, `8..12` the far field, each ring counter-clockwise), 16
+/// triangles between them; groups `airfoil` and `farfield` of lines.
+pub fn fluid_around_an_airfoil() -> Mesh {
+    let far = [[-1., 0.], [0.5, -1.], [2., 0.], [0.5, 1.]];
+    let mut coords = Vec::new();
+    for t in [0., 0.5, 1.] {
+        for (a, f) in AIRFOIL.iter().zip(far) {
+            coords.extend([a[0] + t * (f[0] - a[0]), a[1] + t * (f[1] - a[1])]);
+        }
+    }
+    let ring = |r: usize, k: usize| 4 * r + k % 4;
+    let mut volume = Cells::new();
+    for r in 0..2 {
+        for k in 0..4 {
+            let (a, b) = (ring(r, k), ring(r, k + 1));
+            let (c, d) = (ring(r + 1, k), ring(r + 1, k + 1));
+            volume.push(CellKind::Triangle, &[a, c, d]);
+            volume.push(CellKind::Triangle, &[a, d, b]);
+        }
+    }
+    let lines = |r: usize| {
+        let mut facets = Cells::new();
+        for k in 0..4 {
+            facets.push(CellKind::Line, &[ring(r, k), ring(r, k + 1)]);
+        }
+        facets
+    };
+    let groups = vec![
+        Group {
+            name: "airfoil".into(),
+            tag: None,
+            facets: lines(0),
+        },
+        Group {
+            name: "farfield".into(),
+            tag: None,
+            facets: lines(2),
+        },
+    ];
+    Mesh::new(2, coords, volume, groups).expect("a valid fluid zone")
+}
+
+/// The solid zone of the same case: the diamond airfoil of
+/// [`fluid_around_an_airfoil`] as 4 triangles around its centre (node 4);
+/// group `interface` of its 4 edges.
+pub fn solid_airfoil() -> Mesh {
+    let mut coords: Vec<f64> = AIRFOIL.iter().flatten().copied().collect();
+    coords.extend([0.5, 0.]);
+    let mut volume = Cells::new();
+    let mut edges = Cells::new();
+    for k in 0..4 {
+        volume.push(CellKind::Triangle, &[4, k, (k + 1) % 4]);
+        edges.push(CellKind::Line, &[k, (k + 1) % 4]);
+    }
+    let groups = vec![Group {
+        name: "interface".into(),
+        tag: None,
+        facets: edges,
+    }];
+    Mesh::new(2, coords, volume, groups).expect("a valid solid zone")
+}
+
 /// A structured mesh of `[0, 1]^dim` with `n` nodes a side, cells of the kind
 /// chosen by `kind` (2D: triangles, quads, both; 3D: hexahedra, prisms,
 /// tetrahedra, pyramids, hexahedra and pyramids), every cell positively

@@ -29,6 +29,24 @@
 //! coordinates and node lists, `NPOIN= n n_domain`. Node tags are
 //! `index + 1`, cell tags `element index + 1`.
 //!
+//! A multi-zone file (the usual fluid–structure file) announces its zones
+//! with `NZONE= n` before anything else and gives each after an `IZONE= k`
+//! line, `k` from 1 to `n` in order, with its own `NDIME=`, `NELEM=`,
+//! `NPOIN=` and `NMARK=`:
+//!
+//! ```text
+//! NZONE= 2
+//! IZONE= 1
+//! NDIME= 2
+//! …                             % the fluid zone's sections
+//! IZONE= 2
+//! NDIME= 2
+//! …                             % the solid zone's sections
+//! ```
+//!
+//! [`parse_zone`] reads one zone and keeps the others verbatim; [`parse_zones`]
+//! reads them all.
+//!
 //! Sections it does not use (`FFD_NBOX=`, `NPERIODIC=` and any other unknown
 //! keyword, with their data lines) are kept verbatim in [`Mesh::su2_skipped`],
 //! each with the section it followed, and [`write_to`] puts them back in the
@@ -38,7 +56,7 @@
 mod read;
 mod write;
 
-pub use write::write_to;
+pub use write::{write_to, write_zones_to};
 
 use std::path::Path;
 
@@ -63,8 +81,27 @@ const NAMES: [(CellKind, &str); 8] = [
 /// Checks everything [`Mesh::validate`] checks, but reports it with the line:
 /// every count against its data, every node index against `NPOIN=`, every
 /// coordinate finite, every element type allowed where it stands.
+///
+/// A multi-zone file gives its zone 1, as [`parse_zone`] does.
 pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
-    read::Parser::new(bytes, path).run()
+    parse_zone(bytes, path, 1).map(|(mesh, _)| mesh)
+}
+
+/// Parses zone `zone` (1-based, as `IZONE=` numbers it) of an SU2 file, and
+/// gives the file's number of zones (1 for a file without `NZONE=`).
+///
+/// Every zone is checked as [`parse`] checks a file. The other zones are
+/// kept verbatim in [`Mesh::su2_skipped`] (anchored [`Anchor::ZonesBefore`]
+/// and [`Anchor::ZonesAfter`]), so that writing the mesh as SU2 gives the
+/// whole file back with only this zone rewritten.
+pub fn parse_zone(bytes: &[u8], path: &Path, zone: usize) -> Result<(Mesh, usize)> {
+    read::parse_zone(bytes, path, zone)
+}
+
+/// Parses every zone of an SU2 file, in order (one mesh for a file without
+/// `NZONE=`); none keeps the others' text.
+pub fn parse_zones(bytes: &[u8], path: &Path) -> Result<Vec<Mesh>> {
+    read::parse_zones(bytes, path)
 }
 
 /// A run of sections of an SU2 file that verbss does not use (`FFD_NBOX=`,
@@ -82,6 +119,9 @@ pub struct Skipped {
 /// The section of an SU2 file that a [`Skipped`] block followed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Anchor {
+    /// The start of a multi-zone file up to the `IZONE=` line of the zone
+    /// read: `NZONE=` and the zones before it. Written first.
+    ZonesBefore,
     /// Nothing: the block came before `NDIME=`.
     Start,
     /// The `NDIME=` line.
@@ -94,6 +134,9 @@ pub enum Anchor {
     MarkerCount,
     /// Marker `k` (0-based, in file order) with its elements.
     Marker(usize),
+    /// The zones after the one read in a multi-zone file, from the end of
+    /// its last section. Written last.
+    ZonesAfter,
 }
 
 /// The SU2/VTK name of a kind, as used in messages.
@@ -109,3 +152,5 @@ fn kind_name(kind: CellKind) -> &'static str {
 mod hostile_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod zone_tests;

@@ -1,6 +1,9 @@
 //! The SU2 reader: a line-by-line state machine over the file's sections.
 
 mod entries;
+mod zones;
+
+pub(super) use zones::{parse_zone, parse_zones};
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -203,14 +206,38 @@ impl<'a> Parser<'a> {
         Ok(None)
     }
 
-    pub(super) fn run(mut self) -> Result<Mesh> {
+    /// A parser of the zone in `bytes[start..end]`, whose first line is line
+    /// `first_line` of the file.
+    fn within(
+        bytes: &'a [u8],
+        path: &'a Path,
+        start: usize,
+        end: usize,
+        first_line: usize,
+    ) -> Self {
+        let mut parser = Parser::new(&bytes[..end], path);
+        parser.pos = start;
+        parser.line = first_line - 1;
+        parser.line_start = start;
+        parser.gap_start = start;
+        parser.line_end = start;
+        parser
+    }
+
+    /// Reads to the end: the mesh, and the byte offset where what it read
+    /// ends (past its last line or skipped block; trailing comments not included).
+    pub(super) fn run(mut self) -> Result<(Mesh, usize)> {
         while let Some(line) = self.next_line()? {
             match line {
                 Line::Data(text) => self.data(text)?,
                 Line::Keyword { raw, key, value } => self.keyword(raw, key, value)?,
             }
         }
-        self.finish()
+        let end = match self.skipping {
+            Some(_) => self.bytes.len(),
+            None => self.line_end,
+        };
+        Ok((self.finish()?, end))
     }
 
     /// A data line: the next entry of the open section, skipped, or an error.
@@ -442,8 +469,8 @@ impl<'a> Parser<'a> {
             Some((_, first)) => Err(self.err(
                 self.line,
                 format!(
-                    "{keyword} given twice (first at line {first}; \
-                     multi-zone files are not supported)"
+                    "{keyword} given twice (first at line {first}; a multi-zone file starts \
+                     with NZONE= N and gives each zone after its IZONE= K line)"
                 ),
             )),
         }

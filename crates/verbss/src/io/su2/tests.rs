@@ -590,7 +590,7 @@ fn dimension() {
     );
     assert_eq!(
         error(&format!("{SQUARE}NDIME= 2\n")),
-        "t.su2:14: NDIME= given twice (first at line 1; multi-zone files are not supported)"
+        "t.su2:14: NDIME= given twice (first at line 1; a multi-zone file starts with NZONE= N and gives each zone after its IZONE= K line)"
     );
 }
 

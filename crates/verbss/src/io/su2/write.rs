@@ -10,11 +10,29 @@ use crate::mesh::{CellKind, Mesh};
 /// `NPOIN=` (coordinates in shortest round-trip form, so that reading the file
 /// back gives the same bits, with their index), `NMARK=` and one marker per
 /// group, with the mesh's [`Mesh::su2_skipped`] blocks put back verbatim after
-/// the section each followed (after the last marker when that marker is gone).
+/// the section each followed (after the last marker when that marker is gone;
+/// the other zones of a multi-zone file before and after everything).
 ///
 /// Fails with [`std::io::ErrorKind::InvalidInput`] for a group name an SU2 file
 /// cannot hold (empty, with surrounding spaces, a `%` or a control character).
 pub fn write_to(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
+    write_sections(w, mesh, true)
+}
+
+/// Writes `zones` as one multi-zone SU2 file, as SU2 writes it: `NZONE= n`,
+/// then each zone after its `IZONE= k` line (k from 1), in the layout of
+/// [`write_to`] without the zones a mesh was read beside.
+pub fn write_zones_to(w: &mut dyn Write, zones: &[Mesh]) -> std::io::Result<()> {
+    writeln!(w, "NZONE= {}", zones.len())?;
+    for (k, mesh) in zones.iter().enumerate() {
+        writeln!(w, "IZONE= {}", k + 1)?;
+        write_sections(w, mesh, false)?;
+    }
+    Ok(())
+}
+
+/// Writes the sections of `mesh`, and the other zones of its file when `zones`.
+fn write_sections(w: &mut dyn Write, mesh: &Mesh, zones: bool) -> std::io::Result<()> {
     for g in &mesh.groups {
         let name = g.name.as_str();
         if name.is_empty()
@@ -31,6 +49,9 @@ pub fn write_to(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
     let markers = mesh.groups.len();
     let mut skipped: HashMap<Anchor, Vec<&str>> = HashMap::new();
     for b in &mesh.su2_skipped {
+        if !zones && matches!(b.after, Anchor::ZonesBefore | Anchor::ZonesAfter) {
+            continue;
+        }
         let after = match b.after {
             Anchor::Marker(k) if k >= markers => markers
                 .checked_sub(1)
@@ -48,6 +69,7 @@ pub fn write_to(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
         }
         Ok(())
     };
+    put_back(w, Anchor::ZonesBefore)?;
     put_back(w, Anchor::Start)?;
     writeln!(w, "NDIME= {}", mesh.dim)?;
     put_back(w, Anchor::Dimension)?;
@@ -76,7 +98,7 @@ pub fn write_to(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
         }
         put_back(w, Anchor::Marker(k))?;
     }
-    Ok(())
+    put_back(w, Anchor::ZonesAfter)
 }
 
 /// Writes `type n1 … nk` without the end of line, in SU2's (VTK's) node order.
