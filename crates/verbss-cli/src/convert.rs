@@ -3,9 +3,10 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Args, ValueEnum};
-use verbss::io::{self, MshVersion, WriteOptions};
+use clap::Args;
+use verbss::io;
 
+use crate::msh::MshArgs;
 use crate::overwrite::{note_lost_su2_blocks, refuse_input_as_output};
 
 /// Arguments of `verbss convert`.
@@ -15,36 +16,18 @@ pub struct ConvertArgs {
     input: PathBuf,
     /// Output mesh; its extension chooses the format.
     output: PathBuf,
-    /// Gmsh file-format version of a .msh output.
-    #[arg(long, value_enum, default_value = "4.1")]
-    msh_version: MshVersionArg,
-    /// Write a binary .msh.
-    #[arg(long)]
-    binary: bool,
+    #[command(flatten)]
+    msh: MshArgs,
     /// Allow the output to be the input file.
     #[arg(long)]
     overwrite: bool,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum MshVersionArg {
-    #[value(name = "2.2")]
-    V22,
-    #[value(name = "4.1")]
-    V41,
 }
 
 /// Runs `verbss convert`.
 pub fn run(args: ConvertArgs) -> anyhow::Result<ExitCode> {
     refuse_input_as_output(&args.input, &args.output, args.overwrite)?;
     let mesh = io::read(&args.input)?;
-    let mut options = WriteOptions::default();
-    options.msh_version = match args.msh_version {
-        MshVersionArg::V22 => MshVersion::V22,
-        MshVersionArg::V41 => MshVersion::V41,
-    };
-    options.binary = args.binary;
-    io::write(&args.output, &mesh, &options)?;
+    io::write(&args.output, &mesh, &args.msh.options(&mesh))?;
     note_lost_su2_blocks(&mesh, &args.output);
     println!(
         "wrote {} ({} nodes, {} elements, {} groups)",

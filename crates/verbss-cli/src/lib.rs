@@ -12,6 +12,7 @@
 pub mod convert;
 pub mod deform;
 pub mod demo;
+pub mod msh;
 pub mod overwrite;
 pub mod progress;
 pub mod quality;

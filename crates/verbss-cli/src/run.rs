@@ -28,6 +28,7 @@ use verbss::report::Report;
 use verbss::solve::SpringSolver;
 use verbss::Error;
 
+use crate::msh::MshArgs;
 use crate::overwrite::{note_lost_su2_blocks, refuse_input_as_output};
 use crate::progress::Progress;
 use crate::render::{PictureArgs, Recorder};
@@ -46,6 +47,8 @@ pub struct RunArgs {
     /// Allow the final mesh to replace the input mesh.
     #[arg(long)]
     overwrite: bool,
+    #[command(flatten)]
+    msh: MshArgs,
     #[command(flatten)]
     pictures: PictureArgs,
 }
@@ -69,9 +72,11 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         let last = dir.join(format!("{name}.{extension}"));
         refuse_input_as_output(&case.mesh, &last, args.overwrite)?;
     }
+    let write_options = args.msh.apply(case.output.write_options(&mesh));
     let job = Job {
         name,
         source: case.mesh.display().to_string(),
+        write_options,
         mesh,
         attachments,
         settings: case.settings.clone(),
@@ -148,6 +153,8 @@ pub struct Job {
     pub report: Option<PathBuf>,
     /// Extension (format) of the final mesh.
     pub extension: String,
+    /// How the final mesh is written (MSH version and encoding).
+    pub write_options: WriteOptions,
     /// The output folder.
     pub dir: PathBuf,
 }
@@ -307,7 +314,7 @@ pub fn execute<S: SpringSolver>(
                     let mut mesh = job.mesh.clone();
                     mesh.coords.clone_from(&failed.coords);
                     vtu::write(&failed_path, &mesh, &fields(&job.mesh, failed))?;
-                    io::write(&last, &deformer.mesh(), &WriteOptions::default())?;
+                    io::write(&last, &deformer.mesh(), &job.write_options)?;
                     report.outcome = e.to_string();
                     if let Some(path) = &job.report {
                         report.write(path)?;
@@ -326,7 +333,7 @@ pub fn execute<S: SpringSolver>(
     if writer {
         if job.final_mesh {
             let path = job.final_path();
-            io::write(&path, &deformer.mesh(), &WriteOptions::default())?;
+            io::write(&path, &deformer.mesh(), &job.write_options)?;
         }
         report.outcome = "completed".into();
         if let Some(path) = &job.report {

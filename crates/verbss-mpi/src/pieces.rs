@@ -67,6 +67,7 @@ pub fn write_piece(
         cell_tags: cells.iter().map(|&c| part.cell_tags[c]).collect(),
         groups: Vec::new(),
         su2_skipped: Vec::new(),
+        gmsh_source: None,
     };
     let mut fields = vtu::Fields::default();
     fields.point.push(("displacement".into(), 3, displacement));

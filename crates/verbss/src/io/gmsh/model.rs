@@ -63,6 +63,8 @@ pub(super) struct Nodes {
     pub tags: Vec<u64>,
     /// `x y z` of each node.
     pub xyz: Vec<f64>,
+    /// Byte range of each node's `x y z` in the file.
+    pub spans: Vec<Range<usize>>,
     /// The first node with `z ≠ 0`: its tag, its `z` and where it was read.
     off_plane: Option<(u64, f64, Mark)>,
 }
@@ -72,10 +74,19 @@ impl Nodes {
     pub fn reserve(&mut self, n: usize) {
         self.tags.reserve(n);
         self.xyz.reserve(3 * n);
+        self.spans.reserve(n);
     }
 
-    /// Adds node `tag` at `p`, read at `mark`; rejects non-finite coordinates.
-    pub fn push(&mut self, c: &Cursor, mark: Mark, tag: u64, p: [f64; 3]) -> Result<()> {
+    /// Adds node `tag` at `p`, read from `mark` (the start of `x`) to byte
+    /// `end` (the end of `z`); rejects non-finite coordinates.
+    pub fn push(
+        &mut self,
+        c: &Cursor,
+        mark: Mark,
+        end: usize,
+        tag: u64,
+        p: [f64; 3],
+    ) -> Result<()> {
         if let Some(v) = p.iter().find(|v| !v.is_finite()) {
             return Err(c.error_at(
                 mark,
@@ -87,6 +98,7 @@ impl Nodes {
         }
         self.tags.push(tag);
         self.xyz.extend_from_slice(&p);
+        self.spans.push(mark.offset..end);
         Ok(())
     }
 
@@ -253,8 +265,12 @@ impl Elements {
     }
 }
 
+/// The physical group of a mesh's cells: its tag and name.
+pub(super) type Domain = Option<(i32, String)>;
+
 /// Assembles the mesh: the elements of the highest dimension become the
-/// cells, lower ones with physical tags the groups.
+/// cells, lower ones with physical tags the groups; also returns the cells'
+/// physical group when they have exactly one.
 ///
 /// `copies`: MSH 2 writes an element once per physical group it belongs to;
 /// consecutive identical cells are then one cell. `end` locates errors that
@@ -267,7 +283,7 @@ pub(super) fn finish(
     names: &Names,
     copies: bool,
     end: Mark,
-) -> Result<Mesh> {
+) -> Result<(Mesh, Domain)> {
     let Some(dim) = (0..4)
         .rev()
         .find(|&d| !elements.buckets[d].cells.is_empty())
@@ -345,10 +361,23 @@ pub(super) fn finish(
         cell_tags,
         groups,
         su2_skipped: Vec::new(),
+        gmsh_source: None,
     };
     mesh.validate()
         .map_err(|e| crate::io::invalid_at(e, |m| c.error_at(at, m)))?;
-    Ok(mesh)
+    let domain = match elements
+        .order
+        .iter()
+        .filter(|(d, _)| *d == dim)
+        .collect::<Vec<_>>()[..]
+    {
+        [&(d, p)] => Some((
+            p,
+            names.get(&(d, p)).cloned().unwrap_or_else(|| p.to_string()),
+        )),
+        _ => None,
+    };
+    Ok((mesh, domain))
 }
 
 /// Fails when the groups would hold more than 8 copies per element of a

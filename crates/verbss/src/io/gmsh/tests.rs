@@ -4,6 +4,7 @@
 
 mod errors;
 mod hand_written;
+mod source;
 
 use std::path::Path;
 
@@ -95,6 +96,7 @@ fn hybrid_2d() -> Mesh {
             group("corner", 1, &[(Vertex, &[2])]),
         ],
         su2_skipped: Vec::new(),
+        gmsh_source: None,
     }
 }
 
@@ -128,6 +130,7 @@ fn mixed_3d() -> Mesh {
             group("edge", 1, &[(Line, &[8, 9])]),
         ],
         su2_skipped: Vec::new(),
+        gmsh_source: None,
     }
 }
 

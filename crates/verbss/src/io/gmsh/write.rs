@@ -28,14 +28,16 @@ pub(super) struct Plan<'a> {
     /// Tag of the first group facet (facets are numbered on from here):
     /// one more than the largest cell tag.
     pub first_facet_tag: u64,
-    /// Physical tag of the volume cells, named [`DOMAIN`]: Gmsh saves only
-    /// elements of physical groups once there are any, and meshio expects
-    /// every element block to carry one.
-    pub domain: i32,
+    /// Physical tag and name of the volume cells: Gmsh saves only elements
+    /// of physical groups once there are any, and meshio expects every
+    /// element block to carry one. Those of the file the mesh was read from
+    /// ([`super::Source::domain`]), else a fresh tag named [`DOMAIN`].
+    pub domain: (i32, &'a str),
 }
 
-/// Name of the physical group of the volume cells. The readers ignore
-/// physical groups of the mesh's own dimension, so it never becomes a group.
+/// Name of the physical group of the volume cells when the mesh's file gave
+/// none. The readers ignore physical groups of the mesh's own dimension, so
+/// it never becomes a group.
 pub(super) const DOMAIN: &str = "domain";
 
 /// An `InvalidInput` error.
@@ -109,11 +111,16 @@ impl<'a> Plan<'a> {
                 )))
             }
         };
+        // Groups have a lower dimension: the file's tag cannot clash.
+        let domain = match mesh.gmsh_source.as_ref().and_then(|s| s.domain()) {
+            Some((tag, name)) if tag > 0 && !name.contains(['"', '\n', '\r']) => (tag, name),
+            _ => (fresh()?, DOMAIN),
+        };
         Ok(Plan {
             mesh,
             groups,
             first_facet_tag,
-            domain: fresh()?,
+            domain,
         })
     }
 
@@ -244,13 +251,14 @@ impl<'w> Out<'w> {
         self.text("$EndMeshFormat\n")
     }
 
-    /// `$PhysicalNames` (always ASCII): the groups, then the volume cells' [`DOMAIN`].
+    /// `$PhysicalNames` (always ASCII): the groups, then the volume cells'.
     pub fn names(&mut self, plan: &Plan) -> io::Result<()> {
         self.text(&format!("$PhysicalNames\n{}\n", plan.groups.len() + 1))?;
         for g in &plan.groups {
             self.text(&format!("{} {} \"{}\"\n", g.dim, g.physical, g.group.name))?;
         }
-        self.text(&format!("{} {} \"{DOMAIN}\"\n", plan.mesh.dim, plan.domain))?;
+        let (tag, name) = plan.domain;
+        self.text(&format!("{} {tag} \"{name}\"\n", plan.mesh.dim))?;
         self.text("$EndPhysicalNames\n")
     }
 

@@ -539,6 +539,7 @@ impl<'a> Parser<'a> {
                 })
                 .collect(),
             su2_skipped: self.skipped,
+            gmsh_source: None,
         };
         let line = nelem.map_or(last, |(_, line)| line);
         mesh.validate().map_err(|e| {

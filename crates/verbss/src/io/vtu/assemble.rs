@@ -176,6 +176,7 @@ pub(super) fn assemble(
         cell_tags,
         groups,
         su2_skipped: Vec::new(),
+        gmsh_source: None,
     };
     mesh.validate()
         .map_err(|e| crate::io::invalid_at(e, |m| ctx.at(piece.pos, m)))?;
