@@ -140,6 +140,8 @@ fn convert_keeps_the_input_encoding_unless_told() {
     let text = std::fs::read_to_string(&v41).unwrap();
     assert!(text.contains("2 2 \"fluid\"\n"), "{text}");
     assert!(!text.contains("domain"), "{text}");
+    // and their element tags: the facet 7 stays 7.
+    assert!(text.contains("\n7 4 1\n"), "{text}");
     let su2 = convert(&mesh, "square.su2", &[]);
     assert_eq!(format_line(&convert(&su2, "from_su2.msh", &[])), "4.1 0 8");
 }

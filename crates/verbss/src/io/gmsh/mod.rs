@@ -34,8 +34,10 @@
 //! `$PhysicalNames` (one per group), for 4.1 `$Entities` (one entity per group
 //! with the group's physical tag, one for the cells with none), `$Nodes` (one
 //! block, the mesh's node tags), `$Elements`: the cells with their
-//! `cell_tags`, then each group's facets numbered on from the largest cell
-//! tag. A group keeps its `tag` as physical tag unless it has none or it is
+//! `cell_tags`, then each group's facets: with the element tags of the file
+//! the mesh was read from, when it is unchanged and they are distinct, else
+//! numbered on from the largest cell tag. The cells' physical group keeps
+//! the file's tag and name when the file gave them one, else it is `domain`. A group keeps its `tag` as physical tag unless it has none or it is
 //! taken; then it gets a fresh one. In 2D, `z = 0` is written. ASCII floats use
 //! the shortest text that reads back to the same `f64`, so writing and reading
 //! back gives the same mesh, bit for bit, in all four encodings (empty groups
@@ -138,8 +140,9 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
         return Err(c.error_at(end, "unexpected end of file: no $Elements section"));
     };
     let spans = std::mem::take(&mut nodes.spans);
-    let (mut mesh, domain) = finish(&c, nodes, elements, &names, version == MshVersion::V22, end)?;
-    let source = Source::new(bytes, (version, c.binary()), spans, domain, &mesh);
+    let (mut mesh, structure) =
+        finish(&c, nodes, elements, &names, version == MshVersion::V22, end)?;
+    let source = Source::new(bytes, (version, c.binary()), spans, structure, &mesh);
     mesh.gmsh_source = Some(Arc::new(source));
     Ok(mesh)
 }

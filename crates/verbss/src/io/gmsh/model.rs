@@ -265,8 +265,14 @@ impl Elements {
     }
 }
 
-/// The physical group of a mesh's cells: its tag and name.
-pub(super) type Domain = Option<(i32, String)>;
+/// What a file says about its mesh beyond [`Mesh`], for writing it anew.
+#[derive(Default)]
+pub(super) struct Structure {
+    /// The physical group of the cells (tag and name), when they have exactly one.
+    pub domain: Option<(i32, String)>,
+    /// The element tag of each facet of each group.
+    pub facet_tags: Vec<Vec<u64>>,
+}
 
 /// Assembles the mesh: the elements of the highest dimension become the
 /// cells, lower ones with physical tags the groups; also returns the cells'
@@ -283,7 +289,7 @@ pub(super) fn finish(
     names: &Names,
     copies: bool,
     end: Mark,
-) -> Result<(Mesh, Domain)> {
+) -> Result<(Mesh, Structure)> {
     let Some(dim) = (0..4)
         .rev()
         .find(|&d| !elements.buckets[d].cells.is_empty())
@@ -334,6 +340,7 @@ pub(super) fn finish(
     }
     let mut index = HashMap::new();
     let mut groups: Vec<Group> = Vec::new();
+    let mut facet_tags: Vec<Vec<u64>> = Vec::new();
     for &(d, p) in elements.order.iter().filter(|(d, _)| *d < dim) {
         index.insert((d, p), groups.len());
         groups.push(Group {
@@ -341,14 +348,16 @@ pub(super) fn finish(
             tag: Some(p),
             facets: Cells::new(),
         });
+        facet_tags.push(Vec::new());
     }
     for (d, b) in elements.buckets[..dim].iter().enumerate() {
         for (r, (start, phys)) in b.runs.iter().enumerate() {
             let end = b.runs.get(r + 1).map_or(b.cells.len(), |(s, _)| *s);
             for p in &elements.physicals[phys.clone()] {
-                let g = &mut groups[index[&(d, *p)]];
+                let g = index[&(d, *p)];
                 for e in *start..end {
-                    g.facets.push(b.cells.kinds[e], b.cells.cell(e));
+                    groups[g].facets.push(b.cells.kinds[e], b.cells.cell(e));
+                    facet_tags[g].push(b.tags[e]);
                 }
             }
         }
@@ -377,7 +386,7 @@ pub(super) fn finish(
         )),
         _ => None,
     };
-    Ok((mesh, domain))
+    Ok((mesh, Structure { domain, facet_tags }))
 }
 
 /// Fails when the groups would hold more than 8 copies per element of a

@@ -14,7 +14,7 @@ use std::io::{self, Write};
 use std::ops::Range;
 use std::sync::Arc;
 
-use super::model::Domain;
+use super::model::Structure;
 use crate::io::MshVersion;
 use crate::mesh::{Cells, Mesh};
 
@@ -28,8 +28,8 @@ pub struct Source {
     coords: Vec<Range<usize>>,
     /// [`fingerprint`] of the mesh read from the file.
     fingerprint: u64,
-    /// The physical group of the cells, when they have exactly one.
-    domain: Domain,
+    /// The cells' physical group and the group facets' element tags.
+    structure: Structure,
 }
 
 impl fmt::Debug for Source {
@@ -44,13 +44,13 @@ impl fmt::Debug for Source {
 
 impl Source {
     /// The file `bytes` (MSH version, binary or not) that `mesh` was read
-    /// from, with the byte range of each node's coordinates and the cells'
-    /// physical group.
+    /// from, with the byte range of each node's coordinates and what else
+    /// the file says about the mesh.
     pub(super) fn new(
         bytes: &[u8],
         (version, binary): (MshVersion, bool),
         coords: Vec<Range<usize>>,
-        domain: Domain,
+        structure: Structure,
         mesh: &Mesh,
     ) -> Source {
         Source {
@@ -59,16 +59,21 @@ impl Source {
             bytes: bytes.into(),
             coords,
             fingerprint: fingerprint(mesh),
-            domain,
+            structure,
         }
     }
 
     /// The physical tag and name of the cells' group, when the file gave
     /// them exactly one.
     pub(super) fn domain(&self) -> Option<(i32, &str)> {
-        self.domain
-            .as_ref()
-            .map(|(tag, name)| (*tag, name.as_str()))
+        let (tag, name) = self.structure.domain.as_ref()?;
+        Some((*tag, name.as_str()))
+    }
+
+    /// The element tags of the group facets of `mesh`, as the file gave
+    /// them, when `mesh` is the mesh read from the file (coordinates aside).
+    pub(super) fn facet_tags(&self, mesh: &Mesh) -> Option<&[Vec<u64>]> {
+        (self.fingerprint == fingerprint(mesh)).then_some(&self.structure.facet_tags[..])
     }
 
     /// The file's MSH version.

@@ -183,9 +183,9 @@ pub(super) fn write(out: &mut Out, plan: &Plan) -> io::Result<()> {
     out.text(&format!("$Elements\n{total}\n"))?;
     let mut tags = mesh.cell_tags.iter().copied();
     write_cells(out, plan, &mesh.cells, &mut tags, plan.domain.0, 1)?;
-    let mut fresh = plan.first_facet_tag..;
-    for g in &plan.groups {
-        write_cells(out, plan, &g.group.facets, &mut fresh, g.physical, g.entity)?;
+    for (g, tags) in plan.groups.iter().zip(&plan.facet_tags) {
+        let mut tags = tags.iter().copied();
+        write_cells(out, plan, &g.group.facets, &mut tags, g.physical, g.entity)?;
     }
     out.close("$EndElements")
 }

@@ -325,16 +325,16 @@ pub(super) fn write(out: &mut Out, plan: &Plan) -> io::Result<()> {
     let cell_runs = runs(&mesh.cells);
     let group_runs: Vec<_> = plan.groups.iter().map(|g| runs(&g.group.facets)).collect();
     let blocks = cell_runs.len() + group_runs.iter().map(Vec::len).sum::<usize>();
-    let fresh = plan.first_facet_tag..plan.first_facet_tag + facets;
-    let (min, max) = min_max(mesh.cell_tags.iter().copied().chain(fresh.clone()));
+    let facet_tags = plan.facet_tags.iter().flatten().copied();
+    let (min, max) = min_max(mesh.cell_tags.iter().copied().chain(facet_tags));
     for v in [blocks as u64, mesh.cell_count() as u64 + facets, min, max] {
         out.size(v)?;
     }
     out.end_line()?;
     let mut tags = mesh.cell_tags.iter().copied();
     write_blocks(out, plan, &mesh.cells, &cell_runs, (dim, 1), &mut tags)?;
-    let mut tags = fresh;
-    for (g, r) in plan.groups.iter().zip(&group_runs) {
+    for ((g, r), tags) in plan.groups.iter().zip(&group_runs).zip(&plan.facet_tags) {
+        let mut tags = tags.iter().copied();
         write_blocks(out, plan, &g.group.facets, r, (g.dim, g.entity), &mut tags)?;
     }
     out.close("$EndElements")
