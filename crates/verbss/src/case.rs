@@ -477,6 +477,10 @@ fn vector(key: &str, x: &[f64], dim: usize) -> std::result::Result<[f64; 3], Str
     match x.len() {
         n if n == dim => Ok([x[0], x[1], if dim == 3 { x[2] } else { 0.0 }]),
         3 if dim == 2 && x[2] == 0.0 => Ok([x[0], x[1], 0.0]),
+        3 if dim == 2 => Err(format!(
+            "`{key}` has a non-zero z on a 2D mesh, which lies in the x–y plane \
+             (give 2 numbers, or 3 with z = 0)"
+        )),
         n => Err(format!(
             "`{key}` has {n} numbers (expected {dim} for a {dim}D mesh)"
         )),
