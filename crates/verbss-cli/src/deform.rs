@@ -17,6 +17,7 @@ use verbss::motion::{Attachment, Motion, PositionSource};
 use verbss::robust::Layer;
 use verbss::solve::{Accel, Solver};
 
+use crate::msh::MshArgs;
 use crate::overwrite::refuse_input_as_output;
 use crate::render::{PictureArgs, Recorder};
 use crate::run::{file_stem, run_here, Job, Prepared};
@@ -129,6 +130,8 @@ pub struct DeformArgs {
     /// Allow the output to be the input mesh.
     #[arg(long)]
     overwrite: bool,
+    #[command(flatten)]
+    msh: MshArgs,
     #[command(flatten)]
     pictures: PictureArgs,
 }
@@ -253,6 +256,7 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
     let job = Job {
         name: file_stem(&output),
         source: args.mesh.display().to_string(),
+        write_options: args.msh.options(&mesh),
         mesh,
         attachments: slides(&args.slide)
             .into_iter()

@@ -10,6 +10,7 @@ use std::process::ExitCode;
 use clap::Args;
 use verbss::deform::Settings;
 use verbss::generate::{naca0012, AirfoilGrid};
+use verbss::io::WriteOptions;
 use verbss::motion::{Attachment, Motion};
 
 use crate::render::{PictureArgs, Recorder};
@@ -52,6 +53,7 @@ pub fn job(out: PathBuf) -> anyhow::Result<Job> {
     Ok(Job {
         name: "naca0012".into(),
         source: "built-in NACA0012 O-grid".into(),
+        write_options: WriteOptions::default(),
         mesh,
         attachments: vec![Attachment {
             groups: vec!["airfoil".into()],

@@ -13,6 +13,7 @@ pub mod convert;
 pub mod deform;
 pub mod demo;
 pub mod input;
+pub mod msh;
 pub mod overwrite;
 pub mod progress;
 pub mod quality;

@@ -28,6 +28,7 @@ use verbss::report::Report;
 use verbss::solve::SpringSolver;
 use verbss::Error;
 
+use crate::msh::MshArgs;
 use crate::overwrite::{note_lost_su2_blocks, refuse_input_as_output};
 use crate::progress::Progress;
 use crate::render::{PictureArgs, Recorder};
@@ -46,6 +47,8 @@ pub struct RunArgs {
     /// Allow the final mesh to replace the input mesh.
     #[arg(long)]
     overwrite: bool,
+    #[command(flatten)]
+    msh: MshArgs,
     #[command(flatten)]
     pictures: PictureArgs,
 }
@@ -69,9 +72,11 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         let last = dir.join(format!("{name}.{extension}"));
         refuse_input_as_output(&case.mesh, &last, args.overwrite, false)?;
     }
+    let write_options = args.msh.apply(case.output.write_options(&mesh));
     let job = Job {
         name,
         source: case.mesh.display().to_string(),
+        write_options,
         mesh,
         attachments,
         settings: case.settings.clone(),
@@ -148,6 +153,8 @@ pub struct Job {
     pub report: Option<PathBuf>,
     /// Extension (format) of the final mesh.
     pub extension: String,
+    /// How the final mesh is written (MSH version and encoding).
+    pub write_options: WriteOptions,
     /// The output folder.
     pub dir: PathBuf,
 }
@@ -164,8 +171,8 @@ impl Job {
 
     /// How the final mesh is written after `steps` steps: an OpenFOAM case
     /// that is the input gets the points in time directory `steps`.
-    fn write_options(&self, steps: usize) -> WriteOptions {
-        let mut options = WriteOptions::default();
+    fn write_options_after(&self, steps: usize) -> WriteOptions {
+        let mut options = self.write_options.clone();
         options.foam_time = Some(steps.to_string());
         options
     }
@@ -319,7 +326,7 @@ pub fn execute<S: SpringSolver>(
                     let mut mesh = job.mesh.clone();
                     mesh.coords.clone_from(&failed.coords);
                     vtu::write(&failed_path, &mesh, &fields(&job.mesh, failed))?;
-                    io::write(&last, &deformer.mesh(), &job.write_options(n - 1))?;
+                    io::write(&last, &deformer.mesh(), &job.write_options_after(n - 1))?;
                     report.outcome = e.to_string();
                     if let Some(path) = &job.report {
                         report.write(path)?;
@@ -338,7 +345,7 @@ pub fn execute<S: SpringSolver>(
     if writer {
         if job.final_mesh {
             let path = job.final_path();
-            io::write(&path, &deformer.mesh(), &job.write_options(steps))?;
+            io::write(&path, &deformer.mesh(), &job.write_options_after(steps))?;
         }
         report.outcome = "completed".into();
         if let Some(path) = &job.report {

@@ -69,6 +69,7 @@ pub fn write_piece(
         su2_skipped: Vec::new(),
         cgns_source: None,
         foam: None,
+        gmsh_source: None,
     };
     let mut fields = vtu::Fields::default();
     fields.point.push(("displacement".into(), 3, displacement));

@@ -11,6 +11,7 @@ use serde::Deserialize;
 
 use crate::deform::{Preset, Reference, Settings};
 use crate::error::{Error, Result};
+use crate::io::{MshVersion, WriteOptions};
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Motion, PositionSource};
 
@@ -48,6 +49,10 @@ pub struct Output {
     pub final_mesh: bool,
     /// Write `report.json`.
     pub report: bool,
+    /// MSH version of a `.msh` final mesh (`None`: the input's).
+    pub msh_version: Option<MshVersion>,
+    /// Binary (`Some(true)`) or ASCII `.msh` final mesh (`None`: as the input).
+    pub msh_binary: Option<bool>,
 }
 
 impl Default for Output {
@@ -58,7 +63,21 @@ impl Default for Output {
             series: true,
             final_mesh: true,
             report: true,
+            msh_version: None,
+            msh_binary: None,
         }
+    }
+}
+
+impl Output {
+    /// The options the final mesh `mesh` is written with: the input's MSH
+    /// version and encoding ([`WriteOptions::for_mesh`]) unless this output
+    /// names others.
+    pub fn write_options(&self, mesh: &Mesh) -> WriteOptions {
+        let mut options = WriteOptions::for_mesh(mesh);
+        options.msh_version = self.msh_version.unwrap_or(options.msh_version);
+        options.binary = self.msh_binary.unwrap_or(options.binary);
+        options
     }
 }
 
@@ -91,6 +110,16 @@ struct OutputTable {
     final_mesh: bool,
     #[serde(default = "yes")]
     report: bool,
+    msh_version: Option<MshVersion>,
+    msh_encoding: Option<MshEncoding>,
+}
+
+/// `msh_encoding` of `[output]`.
+#[derive(Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum MshEncoding {
+    Ascii,
+    Binary,
 }
 
 impl Default for OutputTable {
@@ -101,6 +130,8 @@ impl Default for OutputTable {
             series: true,
             final_mesh: true,
             report: true,
+            msh_version: None,
+            msh_encoding: None,
         }
     }
 }
@@ -322,6 +353,11 @@ impl Case {
                 series: file.output.series,
                 final_mesh: file.output.final_mesh,
                 report: file.output.report,
+                msh_version: file.output.msh_version,
+                msh_binary: file
+                    .output
+                    .msh_encoding
+                    .map(|e| matches!(e, MshEncoding::Binary)),
             },
             motions,
         })
@@ -448,6 +484,10 @@ fn vector(key: &str, x: &[f64], dim: usize) -> std::result::Result<[f64; 3], Str
     match x.len() {
         n if n == dim => Ok([x[0], x[1], if dim == 3 { x[2] } else { 0.0 }]),
         3 if dim == 2 && x[2] == 0.0 => Ok([x[0], x[1], 0.0]),
+        3 if dim == 2 => Err(format!(
+            "`{key}` has a non-zero z on a 2D mesh, which lies in the x–y plane \
+             (give 2 numbers, or 3 with z = 0)"
+        )),
         n => Err(format!(
             "`{key}` has {n} numbers (expected {dim} for a {dim}D mesh)"
         )),

@@ -211,4 +211,12 @@ fn vectors_must_match_the_dimension() {
         vector("axis", &[1.0, 2.0], 3),
         Err("`axis` has 2 numbers (expected 3 for a 3D mesh)".to_string())
     );
+    assert_eq!(
+        vector("displacement", &[0.0, 1.0, 1.0], 2),
+        Err(
+            "`displacement` has a non-zero z on a 2D mesh, which lies in the x–y plane \
+             (give 2 numbers, or 3 with z = 0)"
+                .to_string()
+        )
+    );
 }

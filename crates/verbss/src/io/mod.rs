@@ -67,13 +67,15 @@ pub struct WriteOptions {
     pub foam_time: Option<String>,
 }
 
-/// Gmsh MSH file-format version.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// Gmsh MSH file-format version (`"2.2"` or `"4.1"` in a case file).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
 pub enum MshVersion {
     /// MSH 2.2.
+    #[serde(rename = "2.2")]
     V22,
     /// MSH 4.1.
     #[default]
+    #[serde(rename = "4.1")]
     V41,
 }
 
@@ -83,6 +85,23 @@ impl Default for WriteOptions {
             msh_version: MshVersion::V41,
             binary: false,
             foam_time: None,
+        }
+    }
+}
+
+impl WriteOptions {
+    /// The options that write `mesh` as it was read: a mesh from a Gmsh file
+    /// keeps that file's MSH version and encoding (and, unchanged but for its
+    /// coordinates, the whole file: see [`gmsh::write_to`]); any other mesh
+    /// gets the defaults (MSH 4.1, ASCII).
+    pub fn for_mesh(mesh: &Mesh) -> WriteOptions {
+        match &mesh.gmsh_source {
+            Some(source) => WriteOptions {
+                msh_version: source.version(),
+                binary: source.binary(),
+                foam_time: None,
+            },
+            None => WriteOptions::default(),
         }
     }
 }

@@ -10,6 +10,7 @@ pub use kind::{CellKind, KindTable};
 use std::collections::hash_map::{DefaultHasher, Entry};
 use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
+use std::sync::Arc;
 
 use crate::error::{Error, Result};
 
@@ -90,7 +91,7 @@ impl Group {
 /// Node `i` has coordinates `coords[D*i..D*i+D]`. Node and cell order are the
 /// file's order; `node_tags`/`cell_tags` keep the file's own numbers (Gmsh tags,
 /// SU2 indices + 1) so that a mesh is written back with the numbering it was read with.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub struct Mesh {
     /// Spatial dimension, 2 or 3.
     pub dim: usize,
@@ -115,6 +116,25 @@ pub struct Mesh {
     /// The OpenFOAM polyMesh the mesh was read from, which writing it as a
     /// case keeps (all but its points). `None` for a mesh from any other source.
     pub foam: Option<Box<crate::io::foam::Origin>>,
+    /// The Gmsh file the mesh was read from: writing the mesh back in the
+    /// same MSH version and encoding, with its nodes, cells, tags and groups
+    /// unchanged, changes only the coordinates in it. `None` for a mesh from
+    /// any other source.
+    pub gmsh_source: Option<Arc<crate::io::gmsh::Source>>,
+}
+
+/// Two meshes are equal when everything but the file they came from
+/// ([`Mesh::gmsh_source`], [`Mesh::cgns_source`], [`Mesh::foam`]) is.
+impl PartialEq for Mesh {
+    fn eq(&self, other: &Mesh) -> bool {
+        self.dim == other.dim
+            && self.coords == other.coords
+            && self.node_tags == other.node_tags
+            && self.cells == other.cells
+            && self.cell_tags == other.cell_tags
+            && self.groups == other.groups
+            && self.su2_skipped == other.su2_skipped
+    }
 }
 
 impl Mesh {
@@ -131,6 +151,7 @@ impl Mesh {
             su2_skipped: Vec::new(),
             cgns_source: None,
             foam: None,
+            gmsh_source: None,
         };
         mesh.validate()?;
         Ok(mesh)

@@ -129,6 +129,7 @@ pub fn read(path: &Path) -> Result<Mesh> {
         groups,
         su2_skipped: Vec::new(),
         foam: None,
+        gmsh_source: None,
         cgns_source: Some(Source {
             path: path.to_path_buf(),
             base,

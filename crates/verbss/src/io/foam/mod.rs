@@ -143,6 +143,7 @@ pub fn read(path: &Path) -> Result<Mesh> {
         groups,
         su2_skipped: Vec::new(),
         cgns_source: None,
+        gmsh_source: None,
         foam: Some(Box::new(Origin {
             dir: dir.clone(),
             n_points,

@@ -5,9 +5,10 @@
 //! A file is a list of sections `$Name … $EndName`. The reader takes
 //! `$MeshFormat` (version 2.2 or 4.1, file type 0 ASCII or 1 binary, data size
 //! 8; binary files hold the integer 1 after the format line to show their byte
-//! order, and must be little-endian), `$PhysicalNames`, `$Entities` (4.1: the
-//! physical tags of each geometric entity), `$Nodes` and `$Elements`, and skips
-//! every other section (`$Periodic`, `$NodeData`, …). Element types: 15 point,
+//! order, and must be little-endian), `$PhysicalNames`, `$Entities` and
+//! `$PartitionedEntities` (4.1: the physical tags of each geometric entity),
+//! `$Nodes` and `$Elements`, and skips every other section (`$Periodic`,
+//! `$NodeData`, …). Element types: 15 point,
 //! 1 line, 2 triangle, 3 quadrangle, 4 tetrahedron, 5 hexahedron, 6 prism,
 //! 7 pyramid; any other type (higher order, …) is an error.
 //!
@@ -25,11 +26,18 @@
 //!
 //! # What is written
 //!
+//! A mesh read from a file, written in that file's version and encoding with
+//! its nodes, cells, tags and groups unchanged, is that file with only the
+//! node coordinates replaced ([`Source`]): everything the reader skipped or
+//! did not model is kept byte for byte. Any other mesh is written anew:
+//!
 //! `$PhysicalNames` (one per group), for 4.1 `$Entities` (one entity per group
 //! with the group's physical tag, one for the cells with none), `$Nodes` (one
 //! block, the mesh's node tags), `$Elements`: the cells with their
-//! `cell_tags`, then each group's facets numbered on from the largest cell
-//! tag. A group keeps its `tag` as physical tag unless it has none or it is
+//! `cell_tags`, then each group's facets: with the element tags of the file
+//! the mesh was read from, when it is unchanged and they are distinct, else
+//! numbered on from the largest cell tag. The cells' physical group keeps
+//! the file's tag and name when the file gave them one, else it is `domain`. A group keeps its `tag` as physical tag unless it has none or it is
 //! taken; then it gets a fresh one. In 2D, `z = 0` is written. ASCII floats use
 //! the shortest text that reads back to the same `f64`, so writing and reading
 //! back gives the same mesh, bit for bit, in all four encodings (empty groups
@@ -45,7 +53,9 @@
 //! allocation per element.
 
 mod cursor;
+mod entities;
 mod model;
+mod source;
 mod v22;
 mod v41;
 mod write;
@@ -57,19 +67,21 @@ mod tests;
 
 use std::io::Write;
 use std::path::Path;
+use std::sync::Arc;
 
 use super::{MshVersion, MAX_GROUPS};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use cursor::{show, Cursor, Mark};
 use model::{finish, Elements, Names, NodeIndex, Nodes};
+pub use source::Source;
 
 /// Parses a Gmsh file's bytes; `path` is only used in error messages.
 pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
     let mut c = Cursor::new(bytes, path);
     let version = read_format(&mut c)?;
     let mut names = Names::new();
-    let mut entities = v41::Entities::default();
+    let mut entities = entities::Entities::default();
     let mut nodes: Option<(Nodes, NodeIndex)> = None;
     let mut elements: Option<(Elements, Mark)> = None;
     while let Some(tok) = c.next_token() {
@@ -77,7 +89,10 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
         match tok {
             b"$PhysicalNames" => read_names(&mut c, &mut names)?,
             b"$Entities" if version == MshVersion::V41 => {
-                entities = v41::read_entities(&mut c)?;
+                entities::read_entities(&mut c, &mut entities)?;
+            }
+            b"$PartitionedEntities" if version == MshVersion::V41 => {
+                entities::read_partitioned(&mut c, &mut entities)?;
             }
             b"$Nodes" => {
                 if nodes.is_some() {
@@ -118,16 +133,25 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
         }
     }
     let end = c.here();
-    let Some((nodes, _)) = nodes else {
+    let Some((mut nodes, _)) = nodes else {
         return Err(c.error_at(end, "unexpected end of file: no $Nodes section"));
     };
     let Some(elements) = elements else {
         return Err(c.error_at(end, "unexpected end of file: no $Elements section"));
     };
-    finish(&c, nodes, elements, &names, version == MshVersion::V22, end)
+    let spans = std::mem::take(&mut nodes.spans);
+    let (mut mesh, structure) =
+        finish(&c, nodes, elements, &names, version == MshVersion::V22, end)?;
+    let source = Source::new(bytes, (version, c.binary()), spans, structure, &mesh);
+    mesh.gmsh_source = Some(Arc::new(source));
+    Ok(mesh)
 }
 
 /// Writes `mesh` as MSH `version`, ASCII or binary.
+///
+/// A mesh read from a Gmsh file of that version and encoding, with its
+/// nodes, cells, tags and groups unchanged, is written as that file with
+/// only the node coordinates replaced ([`Source`]).
 ///
 /// Fails with `InvalidInput` when the mesh cannot be stored: it does not pass
 /// [`Mesh::validate`], a group mixes facet dimensions or has a quote or a line
@@ -138,6 +162,13 @@ pub fn write_to(
     version: MshVersion,
     binary: bool,
 ) -> std::io::Result<()> {
+    if let Some(source) = mesh
+        .gmsh_source
+        .as_ref()
+        .filter(|s| s.fits(mesh, version, binary))
+    {
+        return source.write(w, mesh);
+    }
     let plan = write::Plan::new(mesh)?;
     let mut out = write::Out::new(w, binary);
     match version {

@@ -63,6 +63,8 @@ pub(super) struct Nodes {
     pub tags: Vec<u64>,
     /// `x y z` of each node.
     pub xyz: Vec<f64>,
+    /// Byte range of each node's `x y z` in the file.
+    pub spans: Vec<Range<usize>>,
     /// The first node with `z ≠ 0`: its tag, its `z` and where it was read.
     off_plane: Option<(u64, f64, Mark)>,
 }
@@ -72,10 +74,19 @@ impl Nodes {
     pub fn reserve(&mut self, n: usize) {
         self.tags.reserve(n);
         self.xyz.reserve(3 * n);
+        self.spans.reserve(n);
     }
 
-    /// Adds node `tag` at `p`, read at `mark`; rejects non-finite coordinates.
-    pub fn push(&mut self, c: &Cursor, mark: Mark, tag: u64, p: [f64; 3]) -> Result<()> {
+    /// Adds node `tag` at `p`, read from `mark` (the start of `x`) to byte
+    /// `end` (the end of `z`); rejects non-finite coordinates.
+    pub fn push(
+        &mut self,
+        c: &Cursor,
+        mark: Mark,
+        end: usize,
+        tag: u64,
+        p: [f64; 3],
+    ) -> Result<()> {
         if let Some(v) = p.iter().find(|v| !v.is_finite()) {
             return Err(c.error_at(
                 mark,
@@ -87,6 +98,7 @@ impl Nodes {
         }
         self.tags.push(tag);
         self.xyz.extend_from_slice(&p);
+        self.spans.push(mark.offset..end);
         Ok(())
     }
 
@@ -253,8 +265,18 @@ impl Elements {
     }
 }
 
+/// What a file says about its mesh beyond [`Mesh`], for writing it anew.
+#[derive(Default)]
+pub(super) struct Structure {
+    /// The physical group of the cells (tag and name), when they have exactly one.
+    pub domain: Option<(i32, String)>,
+    /// The element tag of each facet of each group.
+    pub facet_tags: Vec<Vec<u64>>,
+}
+
 /// Assembles the mesh: the elements of the highest dimension become the
-/// cells, lower ones with physical tags the groups.
+/// cells, lower ones with physical tags the groups; also returns the cells'
+/// physical group when they have exactly one.
 ///
 /// `copies`: MSH 2 writes an element once per physical group it belongs to;
 /// consecutive identical cells are then one cell. `end` locates errors that
@@ -267,7 +289,7 @@ pub(super) fn finish(
     names: &Names,
     copies: bool,
     end: Mark,
-) -> Result<Mesh> {
+) -> Result<(Mesh, Structure)> {
     let Some(dim) = (0..4)
         .rev()
         .find(|&d| !elements.buckets[d].cells.is_empty())
@@ -318,6 +340,7 @@ pub(super) fn finish(
     }
     let mut index = HashMap::new();
     let mut groups: Vec<Group> = Vec::new();
+    let mut facet_tags: Vec<Vec<u64>> = Vec::new();
     for &(d, p) in elements.order.iter().filter(|(d, _)| *d < dim) {
         index.insert((d, p), groups.len());
         groups.push(Group {
@@ -325,14 +348,16 @@ pub(super) fn finish(
             tag: Some(p),
             facets: Cells::new(),
         });
+        facet_tags.push(Vec::new());
     }
     for (d, b) in elements.buckets[..dim].iter().enumerate() {
         for (r, (start, phys)) in b.runs.iter().enumerate() {
             let end = b.runs.get(r + 1).map_or(b.cells.len(), |(s, _)| *s);
             for p in &elements.physicals[phys.clone()] {
-                let g = &mut groups[index[&(d, *p)]];
+                let g = index[&(d, *p)];
                 for e in *start..end {
-                    g.facets.push(b.cells.kinds[e], b.cells.cell(e));
+                    groups[g].facets.push(b.cells.kinds[e], b.cells.cell(e));
+                    facet_tags[g].push(b.tags[e]);
                 }
             }
         }
@@ -347,10 +372,23 @@ pub(super) fn finish(
         su2_skipped: Vec::new(),
         cgns_source: None,
         foam: None,
+        gmsh_source: None,
     };
     mesh.validate()
         .map_err(|e| crate::io::invalid_at(e, |m| c.error_at(at, m)))?;
-    Ok(mesh)
+    let domain = match elements
+        .order
+        .iter()
+        .filter(|(d, _)| *d == dim)
+        .collect::<Vec<_>>()[..]
+    {
+        [&(d, p)] => Some((
+            p,
+            names.get(&(d, p)).cloned().unwrap_or_else(|| p.to_string()),
+        )),
+        _ => None,
+    };
+    Ok((mesh, Structure { domain, facet_tags }))
 }
 
 /// Fails when the groups would hold more than 8 copies per element of a

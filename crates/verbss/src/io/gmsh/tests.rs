@@ -4,6 +4,7 @@
 
 mod errors;
 mod hand_written;
+mod source;
 
 use std::path::Path;
 
@@ -97,6 +98,7 @@ fn hybrid_2d() -> Mesh {
         su2_skipped: Vec::new(),
         cgns_source: None,
         foam: None,
+        gmsh_source: None,
     }
 }
 
@@ -132,6 +134,7 @@ fn mixed_3d() -> Mesh {
         su2_skipped: Vec::new(),
         cgns_source: None,
         foam: None,
+        gmsh_source: None,
     }
 }
 

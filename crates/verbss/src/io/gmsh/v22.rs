@@ -35,10 +35,10 @@ pub(super) fn read_nodes(c: &mut Cursor) -> Result<Nodes> {
             }
             let p = [f64_at(rec, 4), f64_at(rec, 12), f64_at(rec, 20)];
             let mark = Mark {
-                offset: at,
+                offset: at + 4,
                 line: 0,
             };
-            nodes.push(c, mark, tag as u64, p)?;
+            nodes.push(c, mark, at + 4 + 24, tag as u64, p)?;
         }
     } else {
         nodes.reserve(n.min(c.remaining() / 8));
@@ -50,13 +50,10 @@ pub(super) fn read_nodes(c: &mut Cursor) -> Result<Nodes> {
             if tag == 0 {
                 return Err(c.error(zero_tag("node")));
             }
+            let x = c.float("a coordinate")?;
             let mark = c.mark();
-            let p = [
-                c.float("a coordinate")?,
-                c.float("a coordinate")?,
-                c.float("a coordinate")?,
-            ];
-            nodes.push(c, mark, tag, p)?;
+            let p = [x, c.float("a coordinate")?, c.float("a coordinate")?];
+            nodes.push(c, mark, c.here().offset, tag, p)?;
         }
     }
     close(c, "$EndNodes", n, "nodes")?;
@@ -185,10 +182,10 @@ pub(super) fn write(out: &mut Out, plan: &Plan) -> io::Result<()> {
     let total = mesh.cell_count() + plan.facet_count();
     out.text(&format!("$Elements\n{total}\n"))?;
     let mut tags = mesh.cell_tags.iter().copied();
-    write_cells(out, plan, &mesh.cells, &mut tags, plan.domain, 1)?;
-    let mut fresh = plan.first_facet_tag..;
-    for g in &plan.groups {
-        write_cells(out, plan, &g.group.facets, &mut fresh, g.physical, g.entity)?;
+    write_cells(out, plan, &mesh.cells, &mut tags, plan.domain.0, 1)?;
+    for (g, tags) in plan.groups.iter().zip(&plan.facet_tags) {
+        let mut tags = tags.iter().copied();
+        write_cells(out, plan, &g.group.facets, &mut tags, g.physical, g.entity)?;
     }
     out.close("$EndElements")
 }

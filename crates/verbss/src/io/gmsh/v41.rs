@@ -1,12 +1,11 @@
-//! MSH 4.1: `$Entities` carry the physical tags, `$Nodes` and `$Elements`
+//! MSH 4.1: `$Nodes` and `$Elements`
 //! come in blocks, one per (entity, element type); binary counts and tags are
 //! 64-bit (`size_t`), entity tags and types 32-bit.
 
-use std::collections::{HashMap, HashSet};
 use std::io;
-use std::ops::Range;
 
 use super::cursor::{f64_at, i32_at, u64_at, Cursor, Mark};
+use super::entities::Entities;
 use super::model::{
     kind_of_type, type_of_kind, unknown_node, zero_tag, Elements, NodeIndex, Nodes,
 };
@@ -14,99 +13,6 @@ use super::write::{runs, Out, Plan};
 use super::{close, early_end};
 use crate::error::Result;
 use crate::mesh::Cells;
-
-/// The physical tags of each geometric entity `(dimension, tag)`.
-#[derive(Default)]
-pub(super) struct Entities {
-    /// Whether the file had an `$Entities` section.
-    present: bool,
-    map: HashMap<(usize, i32), Range<usize>>,
-    physicals: Vec<i32>,
-}
-
-const ENTITY_KINDS: [&str; 4] = ["points", "curves", "surfaces", "volumes"];
-
-/// Reads the body of `$Entities` and its closing keyword.
-pub(super) fn read_entities(c: &mut Cursor) -> Result<Entities> {
-    let mut entities = Entities {
-        present: true,
-        ..Entities::default()
-    };
-    let mut counts = [0usize; 4];
-    if c.binary() {
-        c.newline()?;
-        for n in &mut counts {
-            *n = c.count_le("an entity count")?;
-        }
-    } else {
-        for n in &mut counts {
-            *n = c.count("an entity count")?;
-        }
-    }
-    for (dim, &n) in counts.iter().enumerate() {
-        // A point stores x y z, the others a bounding box.
-        let reals = if dim == 0 { 3 } else { 6 };
-        for i in 0..n {
-            let start = entities.physicals.len();
-            let tag = if c.binary() {
-                let tag = c.i32_le("an entity tag")?;
-                c.take(8 * reals, "an entity's coordinates")?;
-                let np = c.count_le("a number of physical tags")?;
-                let tags = c.take_n(np, 4, "physical tags")?;
-                entities
-                    .physicals
-                    .extend(tags.chunks_exact(4).map(|b| i32_at(b, 0)));
-                if dim > 0 {
-                    let nb = c.count_le("a number of bounding entities")?;
-                    c.take_n(nb, 4, "bounding entities")?;
-                }
-                tag
-            } else {
-                early_end(c, || {
-                    format!(
-                        "$Entities declares {n} {} but ends after {i}",
-                        ENTITY_KINDS[dim]
-                    )
-                })?;
-                let tag = c.int("an entity tag")?;
-                for _ in 0..reals {
-                    c.float("a coordinate")?;
-                }
-                let np = c.count("a number of physical tags")?;
-                for _ in 0..np {
-                    let p = c.int("a physical tag")?;
-                    entities.physicals.push(p);
-                }
-                if dim > 0 {
-                    let nb = c.count("a number of bounding entities")?;
-                    for _ in 0..nb {
-                        c.int("a bounding entity tag")?;
-                    }
-                }
-                tag
-            };
-            dedupe(&mut entities.physicals, start);
-            entities
-                .map
-                .insert((dim, tag), start..entities.physicals.len());
-        }
-    }
-    close(c, "$EndEntities", counts.iter().sum(), "entities")?;
-    Ok(entities)
-}
-
-/// Drops repeated tags from `tags[start..]`, keeping the first of each.
-fn dedupe(tags: &mut Vec<i32>, start: usize) {
-    let mut seen = HashSet::new();
-    let mut kept = start;
-    for i in start..tags.len() {
-        if seen.insert(tags[i]) {
-            tags[kept] = tags[i];
-            kept += 1;
-        }
-    }
-    tags.truncate(kept);
-}
 
 /// Bytes of a binary block header: three `int`s and a `size_t`.
 const BLOCK_HEADER: usize = 3 * 4 + 8;
@@ -195,7 +101,7 @@ pub(super) fn read_nodes(c: &mut Cursor) -> Result<Nodes> {
                     offset: xyz_at + reals * i,
                     line: 0,
                 };
-                nodes.push(c, at, tag, p)?;
+                nodes.push(c, at, at.offset + 24, tag, p)?;
             }
         } else {
             let mut tags = Vec::with_capacity(n.min(c.remaining() / 2));
@@ -213,6 +119,7 @@ pub(super) fn read_nodes(c: &mut Cursor) -> Result<Nodes> {
             for (i, &tag) in tags.iter().enumerate() {
                 let mut v = [0.0; 6];
                 let mut mark = c.here();
+                let mut end = 0;
                 for (k, slot) in v[..3 + params].iter_mut().enumerate() {
                     early_end(c, || {
                         format!(
@@ -224,8 +131,11 @@ pub(super) fn read_nodes(c: &mut Cursor) -> Result<Nodes> {
                     if k == 0 {
                         mark = c.mark();
                     }
+                    if k == 2 {
+                        end = c.here().offset;
+                    }
                 }
-                nodes.push(c, mark, tag, [v[0], v[1], v[2]])?;
+                nodes.push(c, mark, end, tag, [v[0], v[1], v[2]])?;
             }
         }
     }
@@ -277,7 +187,10 @@ pub(super) fn read_elements(
             None => {
                 return Err(c.error_at(
                     mark,
-                    format!("element block on entity {entity} of dimension {dim}, which $Entities does not list"),
+                    format!(
+                        "element block on entity {entity} of dimension {dim}, which neither \
+                         $Entities nor $PartitionedEntities lists"
+                    ),
                 ))
             }
         };
@@ -376,7 +289,7 @@ pub(super) fn write(out: &mut Out, plan: &Plan) -> io::Result<()> {
             out.int(1)?;
             bounding_box(out, plan, 0..mesh.node_count())?;
             out.size(1)?;
-            out.int(plan.domain)?;
+            out.int(plan.domain.0)?;
             out.size(0)?;
             out.end_line()?;
         }
@@ -412,16 +325,16 @@ pub(super) fn write(out: &mut Out, plan: &Plan) -> io::Result<()> {
     let cell_runs = runs(&mesh.cells);
     let group_runs: Vec<_> = plan.groups.iter().map(|g| runs(&g.group.facets)).collect();
     let blocks = cell_runs.len() + group_runs.iter().map(Vec::len).sum::<usize>();
-    let fresh = plan.first_facet_tag..plan.first_facet_tag + facets;
-    let (min, max) = min_max(mesh.cell_tags.iter().copied().chain(fresh.clone()));
+    let facet_tags = plan.facet_tags.iter().flatten().copied();
+    let (min, max) = min_max(mesh.cell_tags.iter().copied().chain(facet_tags));
     for v in [blocks as u64, mesh.cell_count() as u64 + facets, min, max] {
         out.size(v)?;
     }
     out.end_line()?;
     let mut tags = mesh.cell_tags.iter().copied();
     write_blocks(out, plan, &mesh.cells, &cell_runs, (dim, 1), &mut tags)?;
-    let mut tags = fresh;
-    for (g, r) in plan.groups.iter().zip(&group_runs) {
+    for ((g, r), tags) in plan.groups.iter().zip(&group_runs).zip(&plan.facet_tags) {
+        let mut tags = tags.iter().copied();
         write_blocks(out, plan, &g.group.facets, r, (g.dim, g.entity), &mut tags)?;
     }
     out.close("$EndElements")

@@ -25,17 +25,21 @@ pub(super) struct Plan<'a> {
     pub mesh: &'a Mesh,
     /// Its groups, in order.
     pub groups: Vec<PlannedGroup<'a>>,
-    /// Tag of the first group facet (facets are numbered on from here):
-    /// one more than the largest cell tag.
-    pub first_facet_tag: u64,
-    /// Physical tag of the volume cells, named [`DOMAIN`]: Gmsh saves only
-    /// elements of physical groups once there are any, and meshio expects
-    /// every element block to carry one.
-    pub domain: i32,
+    /// The element tag of each facet of each group: the file's, when the
+    /// mesh was read from one, is unchanged and they are all distinct from
+    /// each other and from the cell tags; else numbered on from the largest
+    /// cell tag.
+    pub facet_tags: Vec<Vec<u64>>,
+    /// Physical tag and name of the volume cells: Gmsh saves only elements
+    /// of physical groups once there are any, and meshio expects every
+    /// element block to carry one. Those of the file the mesh was read from
+    /// ([`super::Source::domain`]), else a fresh tag named [`DOMAIN`].
+    pub domain: (i32, &'a str),
 }
 
-/// Name of the physical group of the volume cells. The readers ignore
-/// physical groups of the mesh's own dimension, so it never becomes a group.
+/// Name of the physical group of the volume cells when the mesh's file gave
+/// none. The readers ignore physical groups of the mesh's own dimension, so
+/// it never becomes a group.
 pub(super) const DOMAIN: &str = "domain";
 
 /// An `InvalidInput` error.
@@ -94,26 +98,23 @@ impl<'a> Plan<'a> {
                 entity: entities[dim],
             });
         }
-        // Facets are numbered on from the largest cell tag, or from 1 when
-        // that would pass u64::MAX and the cell tags leave room below.
-        let facets: u64 = groups.iter().map(|g| g.group.facets.len() as u64).sum();
-        let max = mesh.cell_tags.iter().copied().max().unwrap_or(0);
-        let min = mesh.cell_tags.iter().copied().min().unwrap_or(0);
-        let first_facet_tag = match max.checked_add(facets) {
-            Some(_) => max + 1,
-            None if min > facets => 1,
-            None => {
-                return Err(invalid(format!(
-                    "element tags {min} to {max} leave no room for the tags of the {facets} \
-                     group facets"
-                )))
+        let facet_tags = match mesh.gmsh_source.as_ref().and_then(|s| s.facet_tags(mesh)) {
+            Some(tags) if distinct(mesh.cell_tags.iter().chain(tags.iter().flatten())) => {
+                tags.to_vec()
             }
+            _ => fresh_facet_tags(mesh)?,
+        };
+
+        // Groups have a lower dimension: the file's tag cannot clash.
+        let domain = match mesh.gmsh_source.as_ref().and_then(|s| s.domain()) {
+            Some((tag, name)) if tag > 0 && !name.contains(['"', '\n', '\r']) => (tag, name),
+            _ => (fresh()?, DOMAIN),
         };
         Ok(Plan {
             mesh,
             groups,
-            first_facet_tag,
-            domain: fresh()?,
+            facet_tags,
+            domain,
         })
     }
 
@@ -127,6 +128,37 @@ impl<'a> Plan<'a> {
         let p = self.mesh.point(i);
         [p[0], p[1], p.get(2).copied().unwrap_or(0.0)]
     }
+}
+
+/// Whether no two of `tags` are equal.
+fn distinct<'t>(tags: impl Iterator<Item = &'t u64>) -> bool {
+    let mut seen = HashSet::new();
+    tags.into_iter().all(|t| seen.insert(*t))
+}
+
+/// Element tags for the group facets of `mesh`, numbered on from the largest
+/// cell tag, or from 1 when that would pass `u64::MAX` and the cell tags
+/// leave room below.
+fn fresh_facet_tags(mesh: &Mesh) -> io::Result<Vec<Vec<u64>>> {
+    let facets: u64 = mesh.groups.iter().map(|g| g.facets.len() as u64).sum();
+    let max = mesh.cell_tags.iter().copied().max().unwrap_or(0);
+    let min = mesh.cell_tags.iter().copied().min().unwrap_or(0);
+    let first = match max.checked_add(facets) {
+        Some(_) => max + 1,
+        None if min > facets => 1,
+        None => {
+            return Err(invalid(format!(
+                "element tags {min} to {max} leave no room for the tags of the {facets} \
+                 group facets"
+            )))
+        }
+    };
+    let mut next = first..;
+    Ok(mesh
+        .groups
+        .iter()
+        .map(|g| next.by_ref().take(g.facets.len()).collect())
+        .collect())
 }
 
 /// Runs of consecutive cells of one kind: `(kind, first, end)`.
@@ -244,13 +276,14 @@ impl<'w> Out<'w> {
         self.text("$EndMeshFormat\n")
     }
 
-    /// `$PhysicalNames` (always ASCII): the groups, then the volume cells' [`DOMAIN`].
+    /// `$PhysicalNames` (always ASCII): the groups, then the volume cells'.
     pub fn names(&mut self, plan: &Plan) -> io::Result<()> {
         self.text(&format!("$PhysicalNames\n{}\n", plan.groups.len() + 1))?;
         for g in &plan.groups {
             self.text(&format!("{} {} \"{}\"\n", g.dim, g.physical, g.group.name))?;
         }
-        self.text(&format!("{} {} \"{DOMAIN}\"\n", plan.mesh.dim, plan.domain))?;
+        let (tag, name) = plan.domain;
+        self.text(&format!("{} {tag} \"{name}\"\n", plan.mesh.dim))?;
         self.text("$EndPhysicalNames\n")
     }
 

@@ -569,6 +569,7 @@ impl<'a> Parser<'a> {
             su2_skipped: self.skipped,
             cgns_source: None,
             foam: None,
+            gmsh_source: None,
         };
         let line = nelem.map_or(last, |(_, line)| line);
         mesh.validate().map_err(|e| {

@@ -178,6 +178,7 @@ pub(super) fn assemble(
         su2_skipped: Vec::new(),
         cgns_source: None,
         foam: None,
+        gmsh_source: None,
     };
     mesh.validate()
         .map_err(|e| crate::io::invalid_at(e, |m| ctx.at(piece.pos, m)))?;

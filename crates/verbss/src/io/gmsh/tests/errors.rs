@@ -270,7 +270,8 @@ fn error_structure() {
     );
     assert_eq!(
         error(&replaced(V41, "1 3 1 1\n", "1 4 1 1\n")),
-        "t.msh:29: element block on entity 4 of dimension 1, which $Entities does not list"
+        "t.msh:29: element block on entity 4 of dimension 1, which neither \
+         $Entities nor $PartitionedEntities lists"
     );
     assert_eq!(
         error(&replaced(V41, "1 3 1 1\n", "2 3 1 1\n")),

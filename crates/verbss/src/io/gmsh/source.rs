@@ -1,0 +1,161 @@
+//! The Gmsh file a mesh was read from, kept so that writing the mesh back
+//! in the same version and encoding changes only the node coordinates.
+//!
+//! Everything verbss does not model (`$Entities` with their bounding boxes,
+//! `$PartitionedEntities`, `$Periodic`, elements without a physical group,
+//! the physical group of the cells, the order and tags of every element) is
+//! then written as the file held it, byte for byte: only the `x y z` of each
+//! node in `$Nodes` are replaced.
+
+use std::collections::hash_map::DefaultHasher;
+use std::fmt;
+use std::hash::{Hash, Hasher};
+use std::io::{self, Write};
+use std::ops::Range;
+use std::sync::Arc;
+
+use super::model::Structure;
+use crate::io::MshVersion;
+use crate::mesh::{Cells, Mesh};
+
+/// A Gmsh file as read: its bytes, where each node's coordinates are in
+/// them, and a fingerprint of the mesh read from it.
+pub struct Source {
+    version: MshVersion,
+    binary: bool,
+    bytes: Arc<[u8]>,
+    /// Byte range of `x y z` of each node, in the mesh's node order.
+    coords: Vec<Range<usize>>,
+    /// [`fingerprint`] of the mesh read from the file.
+    fingerprint: u64,
+    /// The cells' physical group and the group facets' element tags.
+    structure: Structure,
+}
+
+impl fmt::Debug for Source {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Source")
+            .field("version", &self.version)
+            .field("binary", &self.binary)
+            .field("bytes", &self.bytes.len())
+            .finish()
+    }
+}
+
+impl Source {
+    /// The file `bytes` (MSH version, binary or not) that `mesh` was read
+    /// from, with the byte range of each node's coordinates and what else
+    /// the file says about the mesh.
+    pub(super) fn new(
+        bytes: &[u8],
+        (version, binary): (MshVersion, bool),
+        coords: Vec<Range<usize>>,
+        structure: Structure,
+        mesh: &Mesh,
+    ) -> Source {
+        Source {
+            version,
+            binary,
+            bytes: bytes.into(),
+            coords,
+            fingerprint: fingerprint(mesh),
+            structure,
+        }
+    }
+
+    /// The physical tag and name of the cells' group, when the file gave
+    /// them exactly one.
+    pub(super) fn domain(&self) -> Option<(i32, &str)> {
+        let (tag, name) = self.structure.domain.as_ref()?;
+        Some((*tag, name.as_str()))
+    }
+
+    /// The element tags of the group facets of `mesh`, as the file gave
+    /// them, when `mesh` is the mesh read from the file (coordinates aside).
+    pub(super) fn facet_tags(&self, mesh: &Mesh) -> Option<&[Vec<u64>]> {
+        (self.fingerprint == fingerprint(mesh)).then_some(&self.structure.facet_tags[..])
+    }
+
+    /// The file's MSH version.
+    pub fn version(&self) -> MshVersion {
+        self.version
+    }
+
+    /// Whether the file is binary.
+    pub fn binary(&self) -> bool {
+        self.binary
+    }
+
+    /// Whether `mesh` can be written as this file with its coordinates
+    /// replaced: same version and encoding asked for, and the same nodes,
+    /// cells, tags and groups as the mesh read from it.
+    pub(super) fn fits(&self, mesh: &Mesh, version: MshVersion, binary: bool) -> bool {
+        self.version == version
+            && self.binary == binary
+            && self.coords.len() == mesh.node_count()
+            && self.fingerprint == fingerprint(mesh)
+    }
+
+    /// Writes the file with the coordinates of `mesh` in place of its own
+    /// (`z = 0` in 2D): ASCII in shortest round-trip form (a node that did
+    /// not move keeps its text), binary as little-endian doubles.
+    pub(super) fn write(&self, w: &mut dyn Write, mesh: &Mesh) -> io::Result<()> {
+        const CHUNK: usize = 1 << 16;
+        let mut buf = Vec::with_capacity(CHUNK + 256);
+        let mut copied = 0;
+        for (i, span) in self.coords.iter().enumerate() {
+            buf.extend_from_slice(&self.bytes[copied..span.start]);
+            let p = mesh.point(i);
+            let xyz = [p[0], p[1], p.get(2).copied().unwrap_or(0.0)];
+            let text = &self.bytes[span.clone()];
+            if self.binary {
+                for v in xyz {
+                    buf.extend_from_slice(&v.to_le_bytes());
+                }
+            } else if parse_xyz(text) == Some(xyz) {
+                buf.extend_from_slice(text);
+            } else {
+                write!(buf, "{:?} {:?} {:?}", xyz[0], xyz[1], xyz[2])?;
+            }
+            copied = span.end;
+            if buf.len() >= CHUNK {
+                w.write_all(&buf)?;
+                buf.clear();
+            }
+        }
+        w.write_all(&buf)?;
+        w.write_all(&self.bytes[copied..])?;
+        w.flush()
+    }
+}
+
+/// The three numbers of an ASCII `x y z`.
+fn parse_xyz(text: &[u8]) -> Option<[f64; 3]> {
+    let mut numbers = std::str::from_utf8(text).ok()?.split_ascii_whitespace();
+    let mut xyz = [0.0; 3];
+    for v in &mut xyz {
+        *v = numbers.next()?.parse().ok()?;
+    }
+    Some(xyz)
+}
+
+/// A hash of everything of `mesh` but its coordinates: dimension, node and
+/// cell tags, cells, groups.
+fn fingerprint(mesh: &Mesh) -> u64 {
+    let mut h = DefaultHasher::new();
+    let hash_cells = |cells: &Cells, h: &mut DefaultHasher| {
+        cells.kinds.hash(h);
+        cells.offsets.hash(h);
+        cells.nodes.hash(h);
+    };
+    mesh.dim.hash(&mut h);
+    mesh.node_tags.hash(&mut h);
+    mesh.cell_tags.hash(&mut h);
+    hash_cells(&mesh.cells, &mut h);
+    for g in &mesh.groups {
+        g.name.hash(&mut h);
+        g.tag.hash(&mut h);
+        hash_cells(&g.facets, &mut h);
+    }
+    h.finish()
+}
