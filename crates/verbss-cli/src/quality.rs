@@ -9,7 +9,6 @@ use clap::Args;
 use serde_json::Value;
 use verbss::{io, quality};
 
-
 /// Arguments of `verbss quality`.
 #[derive(Args)]
 pub struct QualityArgs {
