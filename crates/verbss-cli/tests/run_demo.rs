@@ -243,8 +243,16 @@ fn demo_runs_160_valid_steps() {
     assert!(steps
         .iter()
         .all(|s| s["inverted"] == 0 && s["min_quality"].as_f64().unwrap() > 0.05));
+    // Every 10th step: 0, 10, …, 160.
     let pvd = std::fs::read_to_string(out_dir.join("naca0012.pvd")).unwrap();
-    assert_eq!(pvd.matches("<DataSet").count(), 161);
+    assert_eq!(pvd.matches("<DataSet").count(), 17);
+    let frame = std::fs::read_to_string(out_dir.join("naca0012_0040.vtu")).unwrap();
+    assert!(frame.contains(r#"compressor="vtkZLibDataCompressor""#));
+    let bytes: u64 = std::fs::read_dir(&out_dir)
+        .unwrap()
+        .map(|e| e.unwrap().metadata().unwrap().len())
+        .sum();
+    assert!(bytes <= 20_000_000, "the demo wrote {bytes} bytes");
     check_with_meshio(&[
         out_dir.join("naca0012_0040.vtu"),
         out_dir.join("naca0012.su2"),
