@@ -100,6 +100,25 @@ every = 3
             "report.json"
         ]
     );
+    // `--every` overrides the case's `output.every`.
+    let again = dir.path().join("again");
+    let out = verbss(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        again.to_str().unwrap(),
+        "--every",
+        "2",
+        "-q",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let pvd = std::fs::read_to_string(again.join("naca.pvd")).unwrap();
+    let frames: Vec<&str> = pvd
+        .split("file=\"")
+        .skip(1)
+        .map(|s| &s[..s.find('"').unwrap()])
+        .collect();
+    assert_eq!(frames, ["naca_0000.vtu", "naca_0002.vtu", "naca_0004.vtu"]);
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out_dir.join("report.json")).unwrap())
             .unwrap();

@@ -201,17 +201,15 @@ fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
         .find(|(_, n)| norm(&cross(n, &nrm)) > 1e-9 * norm(n));
     if let Some((f, n)) = bent {
         let angle = norm(&cross(n, &nrm)).atan2(dot(n, &nrm).abs());
-        let tags: Vec<String> = group
-            .facets
-            .cell(*f)
-            .iter()
-            .map(|&i| mesh.node_tags[i].to_string())
+        let corners = group.facets.cell(*f);
+        let centre: Vec<f64> = (0..dim)
+            .map(|d| corners.iter().map(|&i| mesh.point(i)[d]).sum::<f64>() / corners.len() as f64)
             .collect();
         return Err(Error::InvalidSetting(format!(
-            "group '{}' is not made of parallel planes (its facet of nodes {} is at {:.3}° \
+            "group '{}' is not made of parallel planes (its facet centred at {} is at {:.3}° \
              from the plane of normal {}): {advice}",
             group.name,
-            tags.join(" "),
+            crate::error::format_point(&centre),
             angle.to_degrees(),
             crate::error::format_point(&nrm[..dim])
         )));
@@ -238,10 +236,10 @@ fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
     });
     if let Some(&i) = off_plane {
         return Err(Error::InvalidSetting(format!(
-            "group '{}' is not made of parallel planes (node {} lies in none of the planes \
-             of its facets, of normal {}): {advice}",
+            "group '{}' is not made of parallel planes (its node at {} lies in none of the \
+             planes of its facets, of normal {}): {advice}",
             group.name,
-            mesh.node_tags[i],
+            crate::error::format_point(mesh.point(i)),
             crate::error::format_point(&nrm[..dim])
         )));
     }

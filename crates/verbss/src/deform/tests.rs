@@ -453,8 +453,8 @@ fn a_deforming_body_leaves_the_springs_its_deformation() {
     }
 }
 
-/// `square(n)` with its `bottom` and `top` walls (or `bottom` and `right`)
-/// in one group, `walls`, as a channel's two walls often come.
+/// `square(n)` with two of its sides (`bottom` and `top`, a channel's two
+/// walls, or `bottom` and `right`) made one group, `walls`.
 fn square_with_walls(n: usize, sides: [&str; 2]) -> Mesh {
     let mut mesh = square(n);
     let mut walls = mesh.group(sides[0]).unwrap().clone();
@@ -462,6 +462,7 @@ fn square_with_walls(n: usize, sides: [&str; 2]) -> Mesh {
         walls.facets.push(kind, nodes);
     }
     walls.name = "walls".into();
+    mesh.groups.retain(|g| !sides.contains(&g.name.as_str()));
     mesh.groups.push(walls);
     mesh
 }
@@ -516,8 +517,8 @@ fn a_group_that_is_not_planar_asks_for_a_normal_or_a_split() {
         .unwrap();
     assert_eq!(
         e.to_string(),
-        "invalid setting: group 'walls' is not made of parallel planes (its facet of nodes \
-         3 6 is at 45.000° from the plane of normal (0.7071067811865475, 0.7071067811865475)): \
+        "invalid setting: group 'walls' is not made of parallel planes (its facet centred at \
+         (0.250000, 0.000000) is at 45.000° from the plane of normal (-0.707107, 0.707107)): \
          give the slide motion a `normal` (`--slide GROUP:NX,NY[,NZ]`) or split the group \
          into its planes"
     );
