@@ -120,7 +120,7 @@ pub struct DeformArgs {
     threads: usize,
     /// Also write the .vtu series of every K-th step (step 0 and the last
     /// step always) beside OUT: OUT-STEM_NNNN.vtu and OUT-STEM.pvd.
-    #[arg(long, value_name = "K", value_parser = parse_every)]
+    #[arg(long, value_name = "K", value_parser = parse_every, allow_hyphen_values = true)]
     every: Option<usize>,
     /// Write the per-step report (JSON) here.
     #[arg(long)]

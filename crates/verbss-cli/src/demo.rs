@@ -25,13 +25,13 @@ pub struct DemoArgs {
     #[arg(long, short)]
     quiet: bool,
     /// Write every K-th step of the .vtu series (step 0 and the last step always).
-    #[arg(long, value_name = "K", value_parser = parse_every, default_value_t = DEMO_EVERY)]
+    #[arg(long, value_name = "K", value_parser = parse_every, allow_hyphen_values = true, default_value_t = DEMO_EVERY)]
     every: usize,
     #[command(flatten)]
     pictures: PictureArgs,
 }
 
-/// The demo's default `--every`: 17 frames of the 160 steps, about 4 MB.
+/// The demo's default `--every`: 17 frames of the 160 steps, about 7 MB in all.
 pub const DEMO_EVERY: usize = 10;
 
 /// The window of the demo's pictures: the airfoil and its sweep.

@@ -48,7 +48,7 @@ pub struct RunArgs {
     overwrite: bool,
     /// Write every K-th step of the .vtu series (step 0 and the last step
     /// always) [default: the case's `output.every`, else 1].
-    #[arg(long, value_name = "K", value_parser = parse_every)]
+    #[arg(long, value_name = "K", value_parser = parse_every, allow_hyphen_values = true)]
     every: Option<usize>,
     #[command(flatten)]
     pictures: PictureArgs,

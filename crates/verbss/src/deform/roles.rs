@@ -141,7 +141,7 @@ fn parallel(a: &[f64; 3], b: &[f64; 3]) -> bool {
 /// a channel's two walls in one group): the sum of its facets' normals, each
 /// turned to agree with the first (a line's normal in 2D, a triangle's cross
 /// product, a quad's diagonals' cross product). Each node then slides in the
-/// plane of that normal through it (docs/method.md, "Sliding nodes").
+/// plane of that normal through it (docs/method.md, "Unknowns").
 /// Errors, naming a facet that is not parallel to the others, when the
 /// group's facets are not all parallel.
 fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
