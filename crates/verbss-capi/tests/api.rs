@@ -577,8 +577,10 @@ fn bad_slide_planes_are_named() {
         (
             &[0, 1, 2, 7],
             &[],
-            "invalid setting: group 'slide plane 0' does not lie in one plane: give the slide \
-             motion a `normal`",
+            "invalid setting: group 'slide plane 0' is not made of parallel planes (its node \
+             at (0.500000, 0.250000) lies in none of the planes of its facets, of normal \
+             (0.000000, 1.000000)): give the slide motion a `normal` \
+             (`--slide GROUP:NX,NY[,NZ]`) or split the group into its planes",
         ),
     ];
     for (nodes, normal, message) in cases {

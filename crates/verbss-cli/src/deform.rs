@@ -4,7 +4,8 @@
 //! OUT is written in the format of its extension with the input's numbering;
 //! `--report FILE.json` writes the per-step report. An inverted element stops
 //! the run with exit code 3, the last valid mesh in OUT and the failed state
-//! beside it (`OUT-STEM.failed.vtu`).
+//! beside it (`OUT-STEM.failed.vtu`). `--every K` also writes the `.vtu`
+//! series of every K-th step beside OUT (`OUT-STEM_NNNN.vtu`, `OUT-STEM.pvd`).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -20,7 +21,7 @@ use verbss::solve::{Accel, Solver};
 use crate::msh::MshArgs;
 use crate::overwrite::refuse_input_as_output;
 use crate::render::{PictureArgs, Recorder};
-use crate::run::{file_stem, run_here, Job, Prepared};
+use crate::run::{file_stem, parse_every, run_here, Job, Prepared};
 use crate::zone::{self, ZoneArg};
 
 /// Arguments of `verbss deform`.
@@ -54,8 +55,10 @@ pub struct DeformArgs {
     /// New node positions (SU2 surface file `GlobalID x y [z]`, or CSV), reached at the last step.
     #[arg(long)]
     positions: Option<PathBuf>,
-    /// Groups whose nodes slide in their own plane (symmetry planes), comma separated.
-    #[arg(long, value_delimiter = ',')]
+    /// Groups whose nodes slide in their own plane (symmetry planes; a group
+    /// of parallel planes, each node in its own), comma separated; GROUP:NX,NY[,NZ]
+    /// gives the plane's normal instead. Repeatable.
+    #[arg(long, value_name = "GROUP[:NX,NY[,NZ]]", allow_hyphen_values = true)]
     slide: Vec<String>,
     /// Nodes this close to a moving wall move with it: off, auto (the boundary
     /// layer, at least 5% of the body's size) or a wall distance [default:
@@ -121,6 +124,10 @@ pub struct DeformArgs {
     /// Worker threads (results do not depend on it).
     #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     threads: usize,
+    /// Also write the .vtu series of every K-th step (step 0 and the last
+    /// step always) beside OUT: OUT-STEM_NNNN.vtu and OUT-STEM.pvd.
+    #[arg(long, value_name = "K", value_parser = parse_every, allow_hyphen_values = true)]
+    every: Option<usize>,
     /// Write the per-step report (JSON) here.
     #[arg(long)]
     report: Option<PathBuf>,
@@ -194,12 +201,17 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
     let format = Format::from_path(&args.output)?;
     refuse_input_as_output(&args.mesh, &args.output, args.overwrite, true)?;
     let mesh = zone::read(&args.mesh, args.zone.zone, "--zone K", args.quiet)?;
-    for g in args.moving.iter().chain(&args.slide) {
+    let dim = mesh.dim;
+    let slides = slides(&args.slide, dim)?;
+    for g in args
+        .moving
+        .iter()
+        .chain(slides.iter().flat_map(|a| &a.groups))
+    {
         if let Err(e) = mesh.group(g) {
             return Err(zone::missing_group(e, &args.mesh, g));
         }
     }
-    let dim = mesh.dim;
     let motion = if let Some(t) = &args.translate {
         Motion::Translation {
             displacement: point3("translate", t, dim)?,
@@ -258,7 +270,7 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
         source: args.mesh.display().to_string(),
         write_options: args.msh.options(&mesh),
         mesh,
-        attachments: slides(&args.slide)
+        attachments: slides
             .into_iter()
             .chain([Attachment {
                 groups: args.moving.clone(),
@@ -266,8 +278,8 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
             }])
             .collect(),
         settings,
-        every: 1,
-        series: false,
+        every: args.every.unwrap_or(1),
+        series: args.every.is_some(),
         final_mesh: true,
         report: args.report.clone(),
         // As given (`UP.SU2` stays `UP.SU2`).
@@ -285,13 +297,35 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
     })
 }
 
-/// The `--slide` groups, each sliding in its own plane.
-fn slides(groups: &[String]) -> Vec<Attachment> {
-    if groups.is_empty() {
-        return Vec::new();
+/// The `--slide` values as slide motions: `GROUP` slides in its own plane
+/// (or planes), `GROUP:NX,NY[,NZ]` in the plane of that normal. In a value
+/// `A,B:0,1,C` the numbers after `B:` (up to 3) are B's normal.
+fn slides(values: &[String], dim: usize) -> anyhow::Result<Vec<Attachment>> {
+    let mut specs: Vec<(&str, Option<Vec<f64>>)> = Vec::new();
+    for value in values {
+        for token in value.split(',') {
+            let number = token.trim().parse::<f64>();
+            match (token.split_once(':'), specs.last_mut(), number) {
+                (Some((group, first)), ..) => {
+                    let Ok(x) = first.trim().parse::<f64>() else {
+                        bail!(
+                            "--slide {value}: '{first}' is not a number (expected \
+                             GROUP[:NX,NY[,NZ]])"
+                        );
+                    };
+                    specs.push((group, Some(vec![x])));
+                }
+                (None, Some((_, Some(normal))), Ok(x)) if normal.len() < 3 => normal.push(x),
+                _ => specs.push((token, None)),
+            }
+        }
     }
-    vec![Attachment {
-        groups: groups.to_vec(),
-        motion: Motion::Slide { normal: None },
-    }]
+    let mut attachments = Vec::with_capacity(specs.len());
+    for (group, normal) in specs {
+        if group.is_empty() {
+            bail!("--slide has an empty group name (expected GROUP[:NX,NY[,NZ]])");
+        }
+        attachments.push(Attachment::slide(group, normal.as_deref(), dim)?);
+    }
+    Ok(attachments)
 }

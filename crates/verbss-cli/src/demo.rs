@@ -14,7 +14,7 @@ use verbss::io::WriteOptions;
 use verbss::motion::{Attachment, Motion};
 
 use crate::render::{PictureArgs, Recorder};
-use crate::run::{run_here, Job, Prepared};
+use crate::run::{parse_every, run_here, Job, Prepared};
 
 /// Arguments of `verbss demo`.
 #[derive(Args)]
@@ -25,15 +25,22 @@ pub struct DemoArgs {
     /// No progress output.
     #[arg(long, short)]
     quiet: bool,
+    /// Write every K-th step of the .vtu series (step 0 and the last step always).
+    #[arg(long, value_name = "K", value_parser = parse_every, allow_hyphen_values = true, default_value_t = DEMO_EVERY)]
+    every: usize,
     #[command(flatten)]
     pictures: PictureArgs,
 }
 
+/// The demo's default `--every`: 17 frames of the 160 steps, about 7 MB in all.
+pub const DEMO_EVERY: usize = 10;
+
 /// The window of the demo's pictures: the airfoil and its sweep.
 const AIRFOIL_VIEW: [f64; 4] = [-0.6, 1.6, -1.0, 1.0];
 
-/// The demo's job: mesh, motion and the paper's solver settings.
-pub fn job(out: PathBuf) -> anyhow::Result<Job> {
+/// The demo's job: mesh, motion and the paper's solver settings; every
+/// `every`-th step written to the series.
+pub fn job(out: PathBuf, every: usize) -> anyhow::Result<Job> {
     let mesh = naca0012(&AirfoilGrid::default())?;
     let motion = Motion::PitchPlunge {
         center: [0.25, 0.0, 0.0],
@@ -60,7 +67,7 @@ pub fn job(out: PathBuf) -> anyhow::Result<Job> {
             motion,
         }],
         settings,
-        every: 1,
+        every,
         series: true,
         final_mesh: true,
         report: Some(out.join("report.json")),
@@ -71,7 +78,7 @@ pub fn job(out: PathBuf) -> anyhow::Result<Job> {
 
 /// Runs `verbss demo`.
 pub fn run(args: DemoArgs) -> anyhow::Result<ExitCode> {
-    let job = job(args.out)?;
+    let job = job(args.out, args.every)?;
     println!(
         "NACA0012 pitching (40°) and plunging (0.2 chord) about the quarter chord, {} steps, {} nodes, {} triangles",
         job.settings.steps,

@@ -47,10 +47,22 @@ pub struct RunArgs {
     /// Allow the final mesh to replace the input mesh.
     #[arg(long)]
     overwrite: bool,
+    /// Write every K-th step of the .vtu series (step 0 and the last step
+    /// always) [default: the case's `output.every`, else 1].
+    #[arg(long, value_name = "K", value_parser = parse_every, allow_hyphen_values = true)]
+    every: Option<usize>,
     #[command(flatten)]
     msh: MshArgs,
     #[command(flatten)]
     pictures: PictureArgs,
+}
+
+/// A whole number of steps ≥ 1.
+pub fn parse_every(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(k) if k >= 1 => Ok(k),
+        _ => Err(format!("expected a whole number of steps ≥ 1, got '{s}'")),
+    }
 }
 
 /// Runs `verbss run`.
@@ -80,7 +92,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         mesh,
         attachments,
         settings: case.settings.clone(),
-        every: case.output.every,
+        every: args.every.unwrap_or(case.output.every),
         series: case.output.series,
         final_mesh: case.output.final_mesh,
         report: case.output.report.then(|| dir.join("report.json")),

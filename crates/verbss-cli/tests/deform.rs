@@ -312,6 +312,103 @@ fn slide_groups_keep_their_plane_and_let_nodes_move_in_it() {
     let (o, _) = run("x.su2", &["--slide", "wing"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("'wing'"), "{}", stderr(&o));
+    // Normals given on the command line: y = 0 for y_m, y = 1 for y_p.
+    let (o, out) = run("normal.su2", &["--slide", "y_m:0,1,0,y_p:0,-1,0"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let moved = verbss::io::read(&out).unwrap();
+    let on_y_p = input.group("y_p").unwrap().nodes();
+    for &i in plane.iter().chain(&on_y_p) {
+        assert_eq!(
+            moved.point(i)[1],
+            input.point(i)[1],
+            "node {i} left its plane"
+        );
+    }
+    for (value, message) in [
+        (
+            "y_m:0,1",
+            "error: invalid setting: the slide normal of group 'y_m' has 2 numbers, expected 3 \
+             (the mesh's dimension)\n",
+        ),
+        (
+            "y_m:up",
+            "error: --slide y_m:up: 'up' is not a number (expected GROUP[:NX,NY[,NZ]])\n",
+        ),
+        (
+            "y_m:0,0,0",
+            "error: invalid setting: the slide normal of group 'y_m' must be a finite non-zero \
+             vector (got [0.0, 0.0, 0.0])\n",
+        ),
+    ] {
+        let (o, out) = run("bad.su2", &["--slide", value]);
+        assert_eq!(o.status.code(), Some(2), "{value}");
+        assert_eq!(stderr(&o), message);
+        assert!(!out.exists());
+    }
+}
+
+#[test]
+fn every_writes_the_series_of_every_kth_step_beside_the_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("moved.su2");
+    let o = verbss(&[
+        "deform",
+        naca().to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "airfoil",
+        "--translate",
+        "0,0.05",
+        "--steps",
+        "5",
+        "--every",
+        "2",
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "moved.pvd",
+            "moved.su2",
+            "moved_0000.vtu",
+            "moved_0002.vtu",
+            "moved_0004.vtu",
+            "moved_0005.vtu"
+        ]
+    );
+    // The last frame is the output mesh.
+    let last = verbss::io::vtu::read(&dir.path().join("moved_0005.vtu")).unwrap();
+    let moved = verbss::io::read(&out).unwrap();
+    assert_eq!(last.mesh.coords, moved.coords);
+    for bad in ["0", "-1", "x"] {
+        let o = verbss(&[
+            "deform",
+            naca().to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--moving",
+            "airfoil",
+            "--translate",
+            "0,0.05",
+            "--every",
+            bad,
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{bad}");
+        assert!(
+            stderr(&o).contains(&format!(
+                "expected a whole number of steps ≥ 1, got '{bad}'"
+            )),
+            "{}",
+            stderr(&o)
+        );
+    }
 }
 
 #[test]

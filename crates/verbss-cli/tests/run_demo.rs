@@ -100,6 +100,25 @@ every = 3
             "report.json"
         ]
     );
+    // `--every` overrides the case's `output.every`.
+    let again = dir.path().join("again");
+    let out = verbss(&[
+        "run",
+        case.to_str().unwrap(),
+        "--out",
+        again.to_str().unwrap(),
+        "--every",
+        "2",
+        "-q",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let pvd = std::fs::read_to_string(again.join("naca.pvd")).unwrap();
+    let frames: Vec<&str> = pvd
+        .split("file=\"")
+        .skip(1)
+        .map(|s| &s[..s.find('"').unwrap()])
+        .collect();
+    assert_eq!(frames, ["naca_0000.vtu", "naca_0002.vtu", "naca_0004.vtu"]);
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out_dir.join("report.json")).unwrap())
             .unwrap();
@@ -243,8 +262,16 @@ fn demo_runs_160_valid_steps() {
     assert!(steps
         .iter()
         .all(|s| s["inverted"] == 0 && s["min_quality"].as_f64().unwrap() > 0.05));
+    // Every 10th step: 0, 10, …, 160.
     let pvd = std::fs::read_to_string(out_dir.join("naca0012.pvd")).unwrap();
-    assert_eq!(pvd.matches("<DataSet").count(), 161);
+    assert_eq!(pvd.matches("<DataSet").count(), 17);
+    let frame = std::fs::read_to_string(out_dir.join("naca0012_0040.vtu")).unwrap();
+    assert!(frame.contains(r#"compressor="vtkZLibDataCompressor""#));
+    let bytes: u64 = std::fs::read_dir(&out_dir)
+        .unwrap()
+        .map(|e| e.unwrap().metadata().unwrap().len())
+        .sum();
+    assert!(bytes <= 20_000_000, "the demo wrote {bytes} bytes");
     check_with_meshio(&[
         out_dir.join("naca0012_0040.vtu"),
         out_dir.join("naca0012.su2"),

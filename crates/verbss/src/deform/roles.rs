@@ -1,13 +1,13 @@
 //! Which node does what: a node of a moving group follows that group's
 //! motions, even where it also lies on a fixed or sliding group (on several
-//! moving groups: the first named); a node only on sliding groups of one
-//! plane slides in it; every other boundary node is fixed; all other nodes
+//! moving groups: the first named); a node only on sliding groups of
+//! parallel planes slides in its plane; every other boundary node is fixed; all other nodes
 //! are free.
 
 use std::collections::HashMap;
 
 use crate::error::{Error, Result};
-use crate::geometry::{cross, norm};
+use crate::geometry::{cross, dot, norm};
 use crate::mesh::{CellKind, Mesh};
 use crate::motion::{Attachment, Motion};
 use crate::solve::NodeRole;
@@ -137,10 +137,13 @@ fn parallel(a: &[f64; 3], b: &[f64; 3]) -> bool {
     norm(&cross(a, b)) < 1e-9
 }
 
-/// The unit normal of a planar group: the sum of its facets' normals, each
+/// The unit normal of a group of parallel planes (one plane, or several, as
+/// a channel's two walls in one group): the sum of its facets' normals, each
 /// turned to agree with the first (a line's normal in 2D, a triangle's cross
-/// product, a quad's diagonals' cross product). Errors when the group is not
-/// planar.
+/// product, a quad's diagonals' cross product). Each node then slides in the
+/// plane of that normal through it (docs/method.md, "Unknowns").
+/// Errors, naming a facet that is not parallel to the others, when the
+/// group's facets are not all parallel.
 fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
     let group = &mesh.groups[g];
     let dim = mesh.dim;
@@ -149,24 +152,32 @@ fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
         [x[0], x[1], if dim == 3 { x[2] } else { 0.0 }]
     };
     let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let facet_normals: Vec<(usize, [f64; 3])> = group
+        .facets
+        .iter()
+        .enumerate()
+        .filter_map(|(f, (kind, nodes))| {
+            let n = match (kind, dim) {
+                (CellKind::Line, 2) => {
+                    let d = sub(p(nodes[1]), p(nodes[0]));
+                    [-d[1], d[0], 0.0]
+                }
+                (CellKind::Triangle, 3) => cross(
+                    &sub(p(nodes[1]), p(nodes[0])),
+                    &sub(p(nodes[2]), p(nodes[0])),
+                ),
+                (CellKind::Quad, 3) => cross(
+                    &sub(p(nodes[2]), p(nodes[0])),
+                    &sub(p(nodes[3]), p(nodes[1])),
+                ),
+                _ => return None,
+            };
+            Some((f, n))
+        })
+        .collect();
     let mut sum = [0.0; 3];
-    for (kind, nodes) in group.facets.iter() {
-        let n = match (kind, dim) {
-            (CellKind::Line, 2) => {
-                let d = sub(p(nodes[1]), p(nodes[0]));
-                [-d[1], d[0], 0.0]
-            }
-            (CellKind::Triangle, 3) => cross(
-                &sub(p(nodes[1]), p(nodes[0])),
-                &sub(p(nodes[2]), p(nodes[0])),
-            ),
-            (CellKind::Quad, 3) => cross(
-                &sub(p(nodes[2]), p(nodes[0])),
-                &sub(p(nodes[3]), p(nodes[1])),
-            ),
-            _ => continue,
-        };
-        let sign = if sum.iter().zip(&n).map(|(a, b)| a * b).sum::<f64>() < 0.0 {
+    for (_, n) in &facet_normals {
+        let sign = if sum.iter().zip(n).map(|(a, b)| a * b).sum::<f64>() < 0.0 {
             -1.0
         } else {
             1.0
@@ -175,37 +186,62 @@ fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
             sum[d] += sign * n[d];
         }
     }
-    let not_planar = || {
-        Error::InvalidSetting(format!(
-            "group '{}' does not lie in one plane: give the slide motion a `normal`",
-            group.name
-        ))
-    };
+    let advice = "give the slide motion a `normal` (`--slide GROUP:NX,NY[,NZ]`) or \
+                  split the group into its planes";
     if norm(&sum) == 0.0 {
-        return Err(not_planar());
+        return Err(Error::InvalidSetting(format!(
+            "group '{}' has no facet with an area to take a plane from: {advice}",
+            group.name
+        )));
     }
     let nrm = unit3(&sum);
-    let nodes = group.nodes();
-    let x0 = p(nodes[0]);
-    let offsets: Vec<f64> = nodes
+    // |n_f × n| ≤ 1e-9 |n_f|: the facet lies in a plane parallel to the others.
+    let bent = facet_normals
         .iter()
-        .map(|&i| {
-            sub(p(i), x0)
-                .iter()
-                .zip(&nrm)
-                .map(|(a, b)| a * b)
-                .sum::<f64>()
-        })
+        .find(|(_, n)| norm(&cross(n, &nrm)) > 1e-9 * norm(n));
+    if let Some((f, n)) = bent {
+        let angle = norm(&cross(n, &nrm)).atan2(dot(n, &nrm).abs());
+        let corners = group.facets.cell(*f);
+        let centre: Vec<f64> = (0..dim)
+            .map(|d| corners.iter().map(|&i| mesh.point(i)[d]).sum::<f64>() / corners.len() as f64)
+            .collect();
+        return Err(Error::InvalidSetting(format!(
+            "group '{}' is not made of parallel planes (its facet centred at {} is at {:.3}° \
+             from the plane of normal {}): {advice}",
+            group.name,
+            crate::error::format_point(&centre),
+            angle.to_degrees(),
+            crate::error::format_point(&nrm[..dim])
+        )));
+    }
+    // A node of the group on none of its facets (a lone vertex) lies in one
+    // of the facets' planes: its offset `n·x` is one of theirs.
+    let offset = |i: usize| dot(&p(i), &nrm);
+    let mut planes: Vec<f64> = facet_normals
+        .iter()
+        .flat_map(|&(f, _)| group.facets.cell(f).iter().map(|&i| offset(i)))
         .collect();
+    planes.sort_by(f64::total_cmp);
+    let nodes = group.nodes();
     let extent = nodes
         .iter()
-        .map(|&i| norm(&sub(p(i), x0)))
+        .map(|&i| norm(&sub(p(i), p(nodes[0]))))
         .fold(0.0, f64::max);
-    if offsets
-        .iter()
-        .any(|o| o.abs() > 1e-9 * extent.max(f64::MIN_POSITIVE))
-    {
-        return Err(not_planar());
+    let tolerance = 1e-9 * extent.max(f64::MIN_POSITIVE);
+    let off_plane = nodes.iter().find(|&&i| {
+        let o = offset(i);
+        let k = planes.partition_point(|&q| q < o);
+        let near = |j: usize| planes.get(j).is_some_and(|q| (q - o).abs() <= tolerance);
+        !(near(k) || (k > 0 && near(k - 1)))
+    });
+    if let Some(&i) = off_plane {
+        return Err(Error::InvalidSetting(format!(
+            "group '{}' is not made of parallel planes (its node at {} lies in none of the \
+             planes of its facets, of normal {}): {advice}",
+            group.name,
+            crate::error::format_point(mesh.point(i)),
+            crate::error::format_point(&nrm[..dim])
+        )));
     }
     Ok(nrm)
 }

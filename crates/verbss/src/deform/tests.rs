@@ -452,3 +452,85 @@ fn a_deforming_body_leaves_the_springs_its_deformation() {
         }
     }
 }
+
+/// `square(n)` with two of its sides (`bottom` and `top`, a channel's two
+/// walls, or `bottom` and `right`) made one group, `walls`.
+fn square_with_walls(n: usize, sides: [&str; 2]) -> Mesh {
+    let mut mesh = square(n);
+    let mut walls = mesh.group(sides[0]).unwrap().clone();
+    for (kind, nodes) in mesh.group(sides[1]).unwrap().facets.iter() {
+        walls.facets.push(kind, nodes);
+    }
+    walls.name = "walls".into();
+    mesh.groups.retain(|g| !sides.contains(&g.name.as_str()));
+    mesh.groups.push(walls);
+    mesh
+}
+
+#[test]
+fn a_group_of_two_parallel_walls_slides() {
+    let mesh = square_with_walls(6, ["bottom", "top"]);
+    let attachments = [
+        attach(
+            &["right"],
+            Motion::Translation {
+                displacement: [0.2, 0.0, 0.0],
+            },
+        ),
+        attach(&["walls"], Motion::Slide { normal: None }),
+    ];
+    let mut settings = Settings::new(2);
+    settings.solve.tolerance = 1e-12;
+    let mut d = Deformer::new(&mesh, &attachments, settings).unwrap();
+    assert_eq!(d.normals(), [[0.0, 1.0, 0.0]]);
+    d.step(2).unwrap();
+    let x = &d.current().coords;
+    // Bottom nodes 1..6 and top nodes 43..48 stay on their wall and moved right.
+    for i in (1..6).chain(43..48) {
+        assert_eq!(d.roles()[i], NodeRole::Slide(0));
+        assert_eq!(
+            x[2 * i + 1],
+            mesh.coords[2 * i + 1],
+            "node {i} left its wall"
+        );
+        assert!(
+            x[2 * i] > mesh.coords[2 * i] + 1e-3,
+            "node {i} did not slide"
+        );
+    }
+}
+
+#[test]
+fn a_group_that_is_not_planar_asks_for_a_normal_or_a_split() {
+    let mesh = square_with_walls(2, ["bottom", "right"]);
+    let attachments = [
+        attach(
+            &["top"],
+            Motion::Translation {
+                displacement: [0.1, 0.0, 0.0],
+            },
+        ),
+        attach(&["walls"], Motion::Slide { normal: None }),
+    ];
+    let e = Deformer::new(&mesh, &attachments, Settings::new(1))
+        .err()
+        .unwrap();
+    assert_eq!(
+        e.to_string(),
+        "invalid setting: group 'walls' is not made of parallel planes (its facet centred at \
+         (0.250000, 0.000000) is at 45.000° from the plane of normal (-0.707107, 0.707107)): \
+         give the slide motion a `normal` (`--slide GROUP:NX,NY[,NZ]`) or split the group \
+         into its planes"
+    );
+    // With a normal the same group slides along it.
+    let attachments = [
+        attachments[0].clone(),
+        attach(
+            &["walls"],
+            Motion::Slide {
+                normal: Some([0.0, 1.0, 0.0]),
+            },
+        ),
+    ];
+    assert!(Deformer::new(&mesh, &attachments, Settings::new(1)).is_ok());
+}

@@ -3,9 +3,13 @@
 //! # What verbss writes
 //!
 //! One `<Piece>` of an `UnstructuredGrid`, `version="1.0"`, little endian,
-//! `header_type="UInt64"`, every array `format="binary"`: base64 of the 8-byte
-//! byte count, then base64 of the data (the two encoded one after the other,
-//! as VTK itself does), no compression. ParaView, VTK and meshio read this.
+//! `header_type="UInt64"`, `compressor="vtkZLibDataCompressor"`, every array
+//! `format="binary"` and zlib-compressed as VTK itself writes it: the values'
+//! bytes in blocks of 32 KiB, each deflated on its own; base64 of the 8-byte
+//! header words `[blocks, 32768, last block's size, compressed size of each
+//! block]`, then base64 of the compressed blocks (the two encoded one after
+//! the other). ParaView, VTK and meshio read this; a series frame takes
+//! about a third of the uncompressed size.
 //!
 //! - `Points`: `Float64`, always 3 components (a 2D mesh gets `z = 0`), so
 //!   coordinates survive a round trip bit for bit.

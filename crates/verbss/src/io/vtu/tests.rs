@@ -122,8 +122,16 @@ fn written_file_has_the_documented_layout() {
         r#"<DataArray type="Int32" Name="wall" NumberOfTuples="3" format="ascii">1 1 2</DataArray>"#
     ));
     assert!(text.contains(r#"<Piece NumberOfPoints="6" NumberOfCells="4">"#));
-    // types: 5 5 9 3 as UInt8 after an 8-byte count of 4.
-    let types = STANDARD.encode(4u64.to_le_bytes()) + &STANDARD.encode([5u8, 5, 9, 3]);
+    // types: 5 5 9 3 as UInt8, one zlib block: the header [1, 32768, 4,
+    // compressed size], then the block.
+    let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::default());
+    z.write_all(&[5u8, 5, 9, 3]).unwrap();
+    let block = z.finish().unwrap();
+    let header: Vec<u8> = [1, 32768, 4, block.len() as u64]
+        .iter()
+        .flat_map(|w| w.to_le_bytes())
+        .collect();
+    let types = STANDARD.encode(header) + &STANDARD.encode(block);
     assert!(text.contains(&format!(r#"Name="types" format="binary">{types}<"#)));
 }
 
@@ -553,5 +561,29 @@ fn huge_claims_do_not_allocate() {
             start + 12,
             file.len() - start - 12
         )
+    );
+}
+
+#[test]
+fn arrays_are_written_in_zlib_blocks_and_read_back_bit_for_bit() {
+    // 41 × 41 nodes: the 40,344-byte coordinate array spans two 32 KiB blocks.
+    let mesh = samples::square_of_triangles(40);
+    let mut bytes = Vec::new();
+    write_to(&mut bytes, &mesh, &Fields::default()).unwrap();
+    let text = String::from_utf8(bytes.clone()).unwrap();
+    assert!(text.contains(r#"compressor="vtkZLibDataCompressor""#));
+    let mut points = text.split(r#"Name="Points" NumberOfComponents="3" format="binary">"#);
+    let encoded = points.nth(1).unwrap();
+    // The header's first three words: 2 blocks of 32,768 bytes, the last of 7,576.
+    let header = STANDARD.decode(&encoded[..32]).unwrap();
+    let words: Vec<u64> = header
+        .chunks(8)
+        .map(|w| u64::from_le_bytes(w.try_into().unwrap()))
+        .collect();
+    assert_eq!(words[..3], [2, 32768, 41 * 41 * 24 - 32768]);
+    let back = parse(&bytes, Path::new("t.vtu")).unwrap();
+    assert_eq!(
+        (back.mesh.coords, back.mesh.cells),
+        (mesh.coords, mesh.cells)
     );
 }

@@ -4,6 +4,8 @@ use std::io::Write;
 
 use base64::engine::general_purpose::STANDARD;
 use base64::Engine;
+use flate2::write::ZlibEncoder;
+use flate2::Compression;
 
 use super::{Fields, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY};
 use crate::mesh::{CellKind, Mesh};
@@ -36,7 +38,7 @@ pub fn write_to(w: &mut dyn Write, mesh: &Mesh, fields: &Fields) -> std::io::Res
     writeln!(w, r#"<?xml version="1.0"?>"#)?;
     writeln!(
         w,
-        r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">"#
+        r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64" compressor="vtkZLibDataCompressor">"#
     )?;
     writeln!(w, "  <UnstructuredGrid>")?;
     write_group_names(w, mesh)?;
@@ -161,8 +163,6 @@ fn write_group_names(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
 trait Scalar: Copy {
     /// The VTK type name.
     const VTK: &'static str;
-    /// Size in bytes.
-    const SIZE: usize;
     /// Appends the little-endian bytes.
     fn put(self, out: &mut Vec<u8>);
 }
@@ -171,7 +171,6 @@ macro_rules! scalar {
     ($t:ty, $name:literal) => {
         impl Scalar for $t {
             const VTK: &'static str = $name;
-            const SIZE: usize = std::mem::size_of::<$t>();
             fn put(self, out: &mut Vec<u8>) {
                 out.extend_from_slice(&self.to_le_bytes());
             }
@@ -183,8 +182,14 @@ scalar!(i32, "Int32");
 scalar!(i64, "Int64");
 scalar!(f64, "Float64");
 
-/// Writes one binary `<DataArray>` of `count` values: base64 of the `UInt64`
-/// byte count, then base64 of the values, streamed.
+/// Bytes of values per zlib block (VTK's own block size).
+const BLOCK: usize = 1 << 15;
+
+/// Writes one binary `<DataArray>` of `count` values, zlib-compressed as VTK
+/// does: the values' bytes cut into blocks of [`BLOCK`] bytes, each
+/// deflated on its own; base64 of the `UInt64` header `[blocks, BLOCK,
+/// last block's size, compressed size of each block]`, then base64 of the
+/// compressed blocks.
 fn data_array<T: Scalar>(
     w: &mut dyn Write,
     name: &str,
@@ -192,7 +197,6 @@ fn data_array<T: Scalar>(
     count: usize,
     values: impl Iterator<Item = T>,
 ) -> std::io::Result<()> {
-    const CHUNK: usize = 1 << 16;
     let comps = if components == 1 {
         String::new()
     } else {
@@ -204,23 +208,44 @@ fn data_array<T: Scalar>(
         T::VTK,
         quick_xml::escape::escape(name)
     )?;
-    let bytes = (count * T::SIZE) as u64;
-    w.write_all(STANDARD.encode(bytes.to_le_bytes()).as_bytes())?;
+    let mut compressed: Vec<Vec<u8>> = Vec::new();
+    let mut last = 0;
     let mut written = 0;
-    {
-        let mut encoder = base64::write::EncoderWriter::new(&mut *w, &STANDARD);
-        let mut buf = Vec::with_capacity(CHUNK + 8);
-        for v in values {
-            v.put(&mut buf);
-            written += 1;
-            if buf.len() >= CHUNK {
-                encoder.write_all(&buf)?;
-                buf.clear();
-            }
+    let mut buf = Vec::with_capacity(BLOCK + 8);
+    let mut flush = |buf: &mut Vec<u8>, take: usize| -> std::io::Result<()> {
+        let mut z = ZlibEncoder::new(Vec::new(), Compression::default());
+        z.write_all(&buf[..take])?;
+        compressed.push(z.finish()?);
+        last = take;
+        buf.drain(..take);
+        Ok(())
+    };
+    for v in values {
+        v.put(&mut buf);
+        written += 1;
+        if buf.len() >= BLOCK {
+            flush(&mut buf, BLOCK)?;
         }
-        encoder.write_all(&buf)?;
-        encoder.finish()?;
+    }
+    if !buf.is_empty() {
+        let take = buf.len();
+        flush(&mut buf, take)?;
     }
     debug_assert_eq!(written, count, "DataArray '{name}'");
+    let mut header = Vec::with_capacity(8 * (3 + compressed.len()));
+    for word in [compressed.len(), BLOCK, last]
+        .into_iter()
+        .chain(compressed.iter().map(Vec::len))
+    {
+        header.extend_from_slice(&(word as u64).to_le_bytes());
+    }
+    w.write_all(STANDARD.encode(&header).as_bytes())?;
+    {
+        let mut encoder = base64::write::EncoderWriter::new(&mut *w, &STANDARD);
+        for block in &compressed {
+            encoder.write_all(block)?;
+        }
+        encoder.finish()?;
+    }
     writeln!(w, "</DataArray>")
 }
