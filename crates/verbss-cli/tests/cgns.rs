@@ -201,3 +201,97 @@ fn a_file_that_is_not_cgns_is_refused_with_exit_code_2() {
     };
     assert!(stderr(&o).starts_with(&expected), "{}", stderr(&o));
 }
+
+/// Writes, with Gmsh's own CGNS writer, a 2D channel around a square
+/// cylinder (triangles) and a 3D box around a cube (tetrahedra), each with
+/// physical groups `cylinder`, `inlet`, `outlet`, `walls` and `fluid`.
+const GMSH_CGNS: &str = r#"
+import sys, gmsh
+gmsh.initialize(); gmsh.option.setNumber("General.Terminal", 0)
+for dim in (2, 3):
+    gmsh.model.add(f"channel{dim}")
+    occ = gmsh.model.occ
+    if dim == 2:
+        outer, inner = occ.addRectangle(0, 0, 0, 4, 1), occ.addRectangle(1, 0.4, 0, 0.2, 0.2)
+    else:
+        outer, inner = occ.addBox(0, 0, 0, 4, 1, 1), occ.addBox(1, 0.4, 0.4, 0.2, 0.2, 0.2)
+    fluid, _ = occ.cut([(dim, outer)], [(dim, inner)])
+    occ.synchronize()
+    faces = {"cylinder": [], "inlet": [], "outlet": [], "walls": []}
+    for _, tag in gmsh.model.getBoundary(fluid, oriented=False):
+        x, y, z = occ.getCenterOfMass(dim - 1, tag)
+        name = ("inlet" if x < 1e-9 else "outlet" if x > 4 - 1e-9 else
+                "cylinder" if 0.9 < x < 1.3 and 0.3 < y < 0.7 and (dim == 2 or 0.3 < z < 0.7)
+                else "walls")
+        faces[name].append(tag)
+    for name, tags in faces.items():
+        gmsh.model.addPhysicalGroup(dim - 1, tags, name=name)
+    gmsh.model.addPhysicalGroup(dim, [t for _, t in fluid], name="fluid")
+    gmsh.option.setNumber("Mesh.MeshSizeMax", 0.25 if dim == 3 else 0.1)
+    gmsh.model.mesh.generate(dim)
+    gmsh.write(f"{sys.argv[1]}/channel{dim}.cgns")
+    gmsh.model.remove()
+gmsh.finalize()
+"#;
+
+/// Files written by another tool: Gmsh's CGNS writer names its boundary
+/// conditions per entity (`L_1`, …) at `CellCenter`, in families that
+/// belong to the physical group's family, and writes the region `fluid` as
+/// a condition over cells. verbss reads the physical groups as its groups,
+/// and a deformed file differs from Gmsh's only in the coordinate values.
+#[test]
+fn files_written_by_gmsh_read_with_their_physical_groups_and_deform_in_place() {
+    if !cgns()
+        || !needs(
+            "python3 with gmsh and h5py (pip install gmsh h5py)",
+            python(&["gmsh", "h5py", "numpy"]),
+        )
+    {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let o = Command::new("python3")
+        .args(["-c", GMSH_CGNS, s(dir.path())])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    for (dim, motion) in [(2, "0.03,0.05"), (3, "0.03,0.05,0.02")] {
+        let input = dir.path().join(format!("channel{dim}.cgns"));
+        let mesh = verbss::io::read(&input).unwrap();
+        assert_eq!(mesh.dim, dim);
+        let mut names: Vec<&str> = mesh.groups.iter().map(|g| g.name.as_str()).collect();
+        names.sort_unstable();
+        assert_eq!(names, ["cylinder", "inlet", "outlet", "walls"], "{dim}D");
+        let moved = dir.path().join(format!("moved{dim}.cgns"));
+        ok(&[
+            "deform",
+            s(&input),
+            "-o",
+            s(&moved),
+            "--moving",
+            "cylinder",
+            "--translate",
+            motion,
+            "--quiet",
+        ]);
+        let after = verbss::io::read(&moved).unwrap();
+        let cylinder = mesh.group("cylinder").unwrap().nodes();
+        for &i in &cylinder {
+            assert!((after.point(i)[1] - mesh.point(i)[1] - 0.05).abs() < 1e-12);
+        }
+        let o = Command::new("python3")
+            .args(["-c", DIFF, s(&input), s(&moved)])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        let changed = String::from_utf8_lossy(&o.stdout).into_owned();
+        let axes = if dim == 2 { "XY" } else { "XYZ" };
+        assert_eq!(changed.lines().count(), axes.len(), "{changed}");
+        for (line, axis) in changed.lines().zip(axes.chars()) {
+            assert!(
+                line.ends_with(&format!("/GridCoordinates/Coordinate{axis}/ data")),
+                "{changed}"
+            );
+        }
+    }
+}

@@ -11,10 +11,15 @@
 //!
 //! Groups: each boundary condition (`ZoneBC/BC_t`) becomes the group named by
 //! its `FamilyName`, else by its own name (conditions of one family make one
-//! group). A condition over element numbers (`ElementRange`/`ElementList`,
-//! or `PointRange`/`PointList` at `FaceCenter`/`EdgeCenter`) holds those
-//! facets; one over vertices (`Vertex`) holds single nodes. A section of
-//! facets that no condition is named after becomes a group of its own name.
+//! group); a family that belongs to another family (a `FamilyName_t` under
+//! its `Family_t`, as Gmsh writes one family per entity in the family of its
+//! physical group) gives the name of the family at the top. A condition over
+//! element numbers (`ElementRange`/`ElementList`, or `PointRange`/`PointList`
+//! at `FaceCenter`/`EdgeCenter`/`CellCenter`) holds those facets; one over
+//! vertices (`Vertex`) holds single nodes; one at `CellCenter` over cells of
+//! the zone's own dimension is a region, not a boundary, and no group. A
+//! section of facets that no condition holds or is named after becomes a
+//! group of its own name.
 //!
 //! Writing a mesh read from a CGNS file copies that file and replaces only
 //! the values of `GridCoordinates/CoordinateX, Y (, Z)`, in their own

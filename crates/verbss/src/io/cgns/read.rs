@@ -271,6 +271,19 @@ fn decode(
     Ok(cells)
 }
 
+/// The family at the top of `family`'s chain of parents (at most 20 up, the
+/// depth of a CGNS path; a cycle stops there).
+fn top_family(parents: &HashMap<String, String>, family: String) -> String {
+    let mut top = family;
+    for _ in 0..20 {
+        match parents.get(&top) {
+            Some(parent) if *parent != top => top = parent.clone(),
+            _ => break,
+        }
+    }
+    top
+}
+
 /// The boundary groups: one per family (or boundary condition without
 /// one), then one per section of facets that no condition is named after.
 fn groups(
@@ -287,15 +300,22 @@ fn groups(
             "{at} has {bocos} boundary conditions, more than {MAX_GROUPS} (the most verbss reads)"
         ));
     }
+    let parents: HashMap<String, String> = file.family_parents(1)?.into_iter().collect();
     let mut order: Vec<usize> = (0..sections.len()).collect();
     order.sort_by_key(|&s| sections[s].start);
-    let facet = |number: i64| -> Option<(CellKind, &[usize])> {
+    // Element `number`: its section, kind and nodes.
+    let element = |number: i64| -> Option<(usize, CellKind, &[usize])> {
         let i = order.partition_point(|&s| sections[s].start <= number);
-        let s = &sections[*order.get(i.checked_sub(1)?)?];
+        let k = *order.get(i.checked_sub(1)?)?;
+        let s = &sections[k];
         let e = usize::try_from(number - s.start).ok()?;
-        (e < s.cells.len() && s.cells.kinds[e].dim() + 1 == dim)
-            .then(|| (s.cells.kinds[e], s.cells.cell(e)))
+        (e < s.cells.len()).then(|| (k, s.cells.kinds[e], s.cells.cell(e)))
     };
+    let facet = |number: i64| element(number).filter(|(_, kind, _)| kind.dim() + 1 == dim);
+    let is_cell = |number: i64| element(number).is_some_and(|(_, kind, _)| kind.dim() == dim);
+    let elements: usize = sections.iter().map(|s| s.cells.len()).sum();
+    // Sections whose facets a condition holds: no group of their own.
+    let mut covered = vec![false; sections.len()];
     let mut groups: Vec<Group> = Vec::new();
     let mut index: HashMap<String, usize> = HashMap::new();
     let mut condition_names = HashSet::new();
@@ -313,15 +333,31 @@ fn groups(
         let of_elements = match (info.point_set, location) {
             (ffi::ELEMENT_RANGE | ffi::ELEMENT_LIST, _) => true,
             (_, ffi::VERTEX) => false,
-            (_, ffi::FACE_CENTER | ffi::EDGE_CENTER) => true,
+            (_, ffi::FACE_CENTER | ffi::EDGE_CENTER | ffi::CELL_CENTER) => true,
             (_, l) => {
                 return Err(format!(
-                "{place} is at grid location {l} (verbss reads Vertex, FaceCenter and EdgeCenter)"
+                "{place} is at grid location {l} (verbss reads Vertex, and FaceCenter, EdgeCenter or CellCenter naming boundary elements)"
             ))
             }
         };
-        let name = family.unwrap_or_else(|| info.name.clone());
-        condition_names.insert(info.name);
+        // A condition at `CellCenter` over cells of the zone's own dimension
+        // is a region, not a boundary (Gmsh writes its volume physical
+        // groups so): no group.
+        let region = location == ffi::CELL_CENTER
+            && match info.point_set {
+                ffi::POINT_RANGE | ffi::ELEMENT_RANGE => {
+                    let (first, last) = (i64::from(points[0]), i64::from(points[1]));
+                    first <= last && last - first < elements as i64 && (first..=last).all(is_cell)
+                }
+                _ => !points.is_empty() && points.iter().all(|&p| is_cell(p.into())),
+            };
+        condition_names.insert(info.name.clone());
+        if region {
+            continue;
+        }
+        let name = family
+            .map(|f| top_family(&parents, f))
+            .unwrap_or_else(|| info.name.clone());
         let g = *index.entry(name.clone()).or_insert_with(|| {
             groups.push(Group {
                 name,
@@ -333,10 +369,11 @@ fn groups(
         let facets = &mut groups[g].facets;
         for number in numbers {
             if of_elements {
-                let (kind, nodes) = facet(number).ok_or_else(|| {
+                let (section, kind, nodes) = facet(number).ok_or_else(|| {
                     format!("{place} names element {number}, which is not a boundary element of the zone ({} in {dim}D)", if dim == 2 { "BAR_2" } else { "TRI_3 or QUAD_4" })
                 })?;
                 facets.push(kind, nodes);
+                covered[section] = true;
             } else if (1..=n as i64).contains(&number) {
                 facets.push(CellKind::Vertex, &[number as usize - 1]);
             } else {
@@ -346,8 +383,8 @@ fn groups(
             }
         }
     }
-    for s in sections {
-        if condition_names.contains(&s.name) || index.contains_key(&s.name) {
+    for (s, covered) in sections.iter().zip(covered) {
+        if covered || condition_names.contains(&s.name) || index.contains_key(&s.name) {
             continue;
         }
         let mut facets = Cells::new();

@@ -53,6 +53,9 @@ pub const ELEMENT_RANGE: c_int = 6;
 pub const ELEMENT_LIST: c_int = 7;
 /// `GridLocation_t` `Vertex`.
 pub const VERTEX: c_int = 2;
+/// `GridLocation_t` `CellCenter` (Gmsh writes its boundary conditions
+/// there, naming the boundary elements).
+pub const CELL_CENTER: c_int = 3;
 /// `GridLocation_t` `FaceCenter`.
 pub const FACE_CENTER: c_int = 4;
 /// `GridLocation_t` `EdgeCenter`.
@@ -71,8 +74,11 @@ static LIBRARY: Mutex<()> = Mutex::new(());
 /// A CGNS name buffer: 32 characters and the terminating zero.
 type NameBuf = [c_char; 33];
 
+/// A buffer for a family name, which CGNS 4 may write as a path of names.
+type FamilyBuf = [c_char; 1024];
+
 /// The text of a name buffer the library filled.
-fn name_of(buf: &NameBuf) -> String {
+fn name_of<const N: usize>(buf: &[c_char; N]) -> String {
     // SAFETY: the library wrote a zero-terminated string into the buffer,
     // and the last byte is zero from its initialisation.
     unsafe { CStr::from_ptr(buf.as_ptr()) }
@@ -498,14 +504,50 @@ impl File {
         let node = c_name(&format!("/{}/{}/ZoneBC/{}", path.0, path.1, info.name))?;
         // SAFETY: a valid C string.
         check(unsafe { cg_gopath(self.id, node.as_ptr()) })?;
-        let mut family: NameBuf = [0; 33];
-        // SAFETY: a 33-byte name buffer.
+        let mut family: FamilyBuf = [0; 1024];
+        // SAFETY: a family name buffer longer than any name or path of them.
         let code = unsafe { cg_famname_read(family.as_mut_ptr()) };
         let family = match code {
             NODE_NOT_FOUND => None,
             code => check(code).map(|()| Some(name_of(&family)))?,
         };
         Ok((points, at, family))
+    }
+
+    /// The family each family of base `b` belongs to (its first
+    /// `FamilyName_t` child), by name: Gmsh writes one family per entity,
+    /// belonging to the family of its physical group.
+    pub fn family_parents(&self, b: c_int) -> Result<Vec<(String, String)>, String> {
+        let mut count = 0;
+        // SAFETY: an out-pointer.
+        check(unsafe { cg_nfamilies(self.id, b, &mut count) })?;
+        let mut parents = Vec::new();
+        for f in 1..=count {
+            let (mut name, mut bocos, mut geometries): (NameBuf, c_int, c_int) = ([0; 33], 0, 0);
+            // SAFETY: a 33-byte name buffer and out-pointers.
+            check(unsafe {
+                cg_family_read(
+                    self.id,
+                    b,
+                    f,
+                    name.as_mut_ptr(),
+                    &mut bocos,
+                    &mut geometries,
+                )
+            })?;
+            let mut names = 0;
+            // SAFETY: an out-pointer.
+            check(unsafe { cg_nfamily_names(self.id, b, f, &mut names) })?;
+            if names >= 1 {
+                let (mut node, mut parent): (FamilyBuf, FamilyBuf) = ([0; 1024], [0; 1024]);
+                // SAFETY: buffers longer than any name or family path.
+                check(unsafe {
+                    cg_family_name_read(self.id, b, f, 1, node.as_mut_ptr(), parent.as_mut_ptr())
+                })?;
+                parents.push((name_of(&name), name_of(&parent)));
+            }
+        }
+        Ok(parents)
     }
 
     /// Writes the family `name` under base `b`.

@@ -180,6 +180,24 @@ extern "C" {
     ) -> c_int;
     pub fn cg_boco_gridlocation_write(f: c_int, b: c_int, z: c_int, bc: c_int, at: c_int) -> c_int;
     pub fn cg_family_write(f: c_int, b: c_int, name: *const c_char, fam: *mut c_int) -> c_int;
+    pub fn cg_nfamilies(f: c_int, b: c_int, n: *mut c_int) -> c_int;
+    pub fn cg_family_read(
+        f: c_int,
+        b: c_int,
+        fam: c_int,
+        name: *mut c_char,
+        bocos: *mut c_int,
+        geometries: *mut c_int,
+    ) -> c_int;
+    pub fn cg_nfamily_names(f: c_int, b: c_int, fam: c_int, n: *mut c_int) -> c_int;
+    pub fn cg_family_name_read(
+        f: c_int,
+        b: c_int,
+        fam: c_int,
+        k: c_int,
+        name: *mut c_char,
+        family: *mut c_char,
+    ) -> c_int;
     pub fn cg_gopath(f: c_int, path: *const c_char) -> c_int;
     pub fn cg_famname_read(name: *mut c_char) -> c_int;
     pub fn cg_famname_write(name: *const c_char) -> c_int;
