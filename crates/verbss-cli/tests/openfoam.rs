@@ -51,8 +51,14 @@ fn foam(utility: &str, case: &Path, args: &[&str]) -> String {
     text
 }
 
-/// The `system` files `blockMesh` and `checkMesh` read.
+/// The `system` files `blockMesh` and `checkMesh` read (OpenFOAM writes
+/// ASCII files).
 fn write_system(case: &Path) {
+    write_system_as(case, "ascii");
+}
+
+/// The `system` files, with `writeFormat` `format`.
+fn write_system_as(case: &Path, format: &str) {
     let head = |object: &str| {
         format!("FoamFile {{ version 2.0; format ascii; class dictionary; object {object}; }}\n")
     };
@@ -62,7 +68,7 @@ fn write_system(case: &Path) {
         (
             "controlDict",
             "application none; startFrom latestTime; startTime 0; stopAt endTime; \
-             endTime 1; deltaT 1; writeControl timeStep; writeInterval 1;\n",
+             endTime 1; deltaT 1; writeControl timeStep; writeInterval 1; writeFormat FORMAT;\n",
         ),
         (
             "fvSchemes",
@@ -72,7 +78,8 @@ fn write_system(case: &Path) {
         ("fvSolution", ""),
     ];
     for (name, body) in files {
-        std::fs::write(system.join(name), head(name) + body).unwrap();
+        let body = body.replace("FORMAT", format);
+        std::fs::write(system.join(name), head(name) + &body).unwrap();
     }
 }
 
@@ -267,4 +274,45 @@ fn a_case_converts_and_is_not_overwritten_without_asking() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(case.join("1/polyMesh/points").is_file());
+}
+
+/// A case OpenFOAM itself wrote in binary (`foamFormatConvert` with
+/// `writeFormat binary`) reads as the same mesh as its ASCII original, and
+/// deforms into a time directory that `checkMesh` passes.
+#[test]
+fn a_binary_case_reads_as_its_ascii_original() {
+    if !have_openfoam() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("box");
+    block_case(&case, 3, 2);
+    let ascii = verbss::io::read(&case).unwrap();
+    write_system_as(&case, "binary");
+    foam("foamFormatConvert", &case, &["-constant"]);
+    let points = std::fs::read(case.join("constant/polyMesh/points")).unwrap();
+    assert!(
+        String::from_utf8_lossy(&points).contains("format      binary"),
+        "not converted"
+    );
+    let binary = verbss::io::read(&case).unwrap();
+    assert_eq!(binary, ascii);
+    let o = verbss(&[
+        "deform",
+        case.to_str().unwrap(),
+        "-o",
+        case.to_str().unwrap(),
+        "--moving",
+        "wing",
+        "--translate",
+        "0.1,0.05,0",
+        "--slide",
+        "front,back",
+        "--steps",
+        "2",
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(case.join("2/polyMesh/points").is_file());
+    assert_mesh_ok(&case);
 }

@@ -1,5 +1,6 @@
-//! The tokens of an OpenFOAM ASCII file: words, numbers and the punctuation
-//! `( ) { } ;`, with `//` and `/* */` comments skipped, each with its line.
+//! The tokens of an OpenFOAM file: words, numbers and the punctuation
+//! `( ) { } ;`, with `//` and `/* */` comments skipped, each with its line;
+//! and the raw bytes of a binary list.
 
 use std::path::Path;
 
@@ -133,6 +134,17 @@ impl<'a> Lexer<'a> {
             text,
             line: self.line,
         }))
+    }
+
+    /// The `n` bytes right after the last token read (binary list data),
+    /// or `None` when fewer are left. Call it with no token peeked.
+    pub(super) fn raw(&mut self, n: usize) -> Option<&'a [u8]> {
+        debug_assert!(self.peeked.is_none());
+        let end = self.pos.checked_add(n).filter(|&e| e <= self.bytes.len())?;
+        let data = &self.bytes[self.pos..end];
+        self.line += data.iter().filter(|&&b| b == b'\n').count();
+        self.pos = end;
+        Some(data)
     }
 
     /// The next token, failing at the end of the file with `expected`.

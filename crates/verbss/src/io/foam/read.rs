@@ -126,7 +126,13 @@ fn parse_err(path: &Path, line: usize, message: String) -> Error {
 fn points(dir: &Path) -> Result<(Vec<f64>, Vec<u32>)> {
     let (path, bytes) = bytes_of(dir, "points")?;
     let mut lx = Lexer::new(&bytes, &path);
-    header(&mut lx)?;
+    if let Some(arch) = header(&mut lx)?.binary {
+        let (data, line) = file::raw_list(&mut lx, "points", 3 * arch.scalar)?;
+        let xyz = file::raw_scalars(&lx, line, data, arch.scalar)?;
+        end(&mut lx)?;
+        let lines = vec![line as u32; xyz.len() / 3];
+        return Ok((xyz, lines));
+    }
     let (xyz, lines) = file::list(&mut lx, "points", 0, 7, |lx, t| {
         if t.text != "(" {
             return Err(lx.err(
@@ -147,17 +153,25 @@ fn points(dir: &Path) -> Result<(Vec<f64>, Vec<u32>)> {
 fn faces(dir: &Path, n_points: usize) -> Result<(Vec<usize>, Vec<usize>)> {
     let (path, bytes) = bytes_of(dir, "faces")?;
     let mut lx = Lexer::new(&bytes, &path);
-    let class = header(&mut lx)?;
+    let head = header(&mut lx)?;
     let mut nodes = Vec::new();
     let mut offsets = vec![0];
-    if class.as_deref() == Some("faceCompactList") {
+    if head.class.as_deref() == Some("faceCompactList") {
         let line = lx.next_line()?;
-        let (starts, _) = file::list(&mut lx, "face offsets", 0, 2, |lx, t| {
-            label_below(lx, t, "face offset", usize::MAX)
-        })?;
-        (nodes, _) = file::list(&mut lx, "face points", 0, 2, |lx, t| {
-            label_below(lx, t, "point label", n_points)
-        })?;
+        let starts;
+        if let Some(arch) = head.binary {
+            let (data, at) = file::raw_list(&mut lx, "face offsets", arch.label)?;
+            starts = file::raw_labels(&lx, at, data, arch.label, "face offset", usize::MAX)?;
+            let (data, at) = file::raw_list(&mut lx, "face points", arch.label)?;
+            nodes = file::raw_labels(&lx, at, data, arch.label, "point label", n_points)?;
+        } else {
+            (starts, _) = file::list(&mut lx, "face offsets", 0, 2, |lx, t| {
+                label_below(lx, t, "face offset", usize::MAX)
+            })?;
+            (nodes, _) = file::list(&mut lx, "face points", 0, 2, |lx, t| {
+                label_below(lx, t, "point label", n_points)
+            })?;
+        }
         let bad = starts.first() != Some(&0)
             || starts.last() != Some(&nodes.len())
             || starts.windows(2).any(|w| w[1] < w[0].saturating_add(3));
@@ -172,6 +186,13 @@ fn faces(dir: &Path, n_points: usize) -> Result<(Vec<usize>, Vec<usize>)> {
             ));
         }
         offsets = starts;
+    } else if head.binary.is_some() {
+        return Err(lx.err(
+            lx.line(),
+            "a binary faces file of class faceList (expected faceCompactList, as OpenFOAM \
+             writes binary faces)"
+                .into(),
+        ));
     } else {
         file::list(&mut lx, "faces", 0, 8, |lx, t| {
             let k = label_below(lx, t, "face size", usize::MAX)?;
@@ -203,10 +224,17 @@ fn labels(
 ) -> Result<(Vec<usize>, Vec<u32>)> {
     let (path, bytes) = bytes_of(dir, name)?;
     let mut lx = Lexer::new(&bytes, &path);
-    header(&mut lx)?;
-    let list = file::list(&mut lx, what, max_uniform, 2, |lx, t| {
-        label_below(lx, t, "cell label", bound)
-    })?;
+    let list = match header(&mut lx)?.binary {
+        Some(arch) => {
+            let (data, line) = file::raw_list(&mut lx, what, arch.label)?;
+            let labels = file::raw_labels(&lx, line, data, arch.label, "cell label", bound)?;
+            let lines = vec![line as u32; labels.len()];
+            (labels, lines)
+        }
+        None => file::list(&mut lx, what, max_uniform, 2, |lx, t| {
+            label_below(lx, t, "cell label", bound)
+        })?,
+    };
     end(&mut lx)?;
     Ok(list)
 }

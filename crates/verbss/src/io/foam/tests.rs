@@ -367,8 +367,18 @@ fn malformed_files_name_the_file_line_and_what_was_expected() {
     let cases: Vec<(&str, Edit, &str)> = vec![
         (
             "points",
+            Box::new(|t| {
+                t.replace(
+                    "format ascii",
+                    "format binary; arch \"MSB;label=32;scalar=64\"",
+                )
+            }),
+            "points:5: big-endian (MSB) binary files are not supported",
+        ),
+        (
+            "points",
             Box::new(|t| t.replace("format ascii", "format binary")),
-            "points:5: format binary is not supported",
+            "the file ends inside the binary list of 12 points",
         ),
         (
             "points",
