@@ -472,7 +472,14 @@ fn a_gif_is_only_ever_replaced_by_a_complete_one() {
     let valid = std::fs::read(&gif).unwrap();
     let demo = dir.path().join("demo");
     let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_verbss"))
-        .args(["demo", "--out", demo.to_str().unwrap(), "--quiet"])
+        .args([
+            "demo",
+            "--out",
+            demo.to_str().unwrap(),
+            "--quiet",
+            "--every",
+            "1",
+        ])
         .args(gif_arg)
         .stdout(std::process::Stdio::null())
         .stderr(std::process::Stdio::null())
