@@ -16,7 +16,7 @@ pub fn read_mesh(path: &Path) -> verbss::Result<Mesh> {
 
 /// For a CGNS file of several zones, notes that only the first was read.
 pub fn note_left_out(path: &Path, mesh: &Mesh) {
-    if let Some(source) = mesh.cgns_source.as_ref().filter(|s| s.zones > 1) {
+    if let Some(source) = mesh.origin.cgns.as_ref().filter(|s| s.zones > 1) {
         eprintln!(
             "note: {} has {} zones in base '{}'; verbss reads zone 1 ('{}') only",
             path.display(),

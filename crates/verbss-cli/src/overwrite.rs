@@ -45,10 +45,11 @@ pub fn refuse_input_as_output(
 /// that verbss does not use (FFD boxes, periodic data), naming their first
 /// three keywords.
 pub fn note_lost_su2_blocks(mesh: &Mesh, output: &Path) {
-    if mesh.su2_skipped.is_empty() || matches!(Format::from_path(output), Ok(Format::Su2)) {
+    if mesh.origin.su2_skipped.is_empty() || matches!(Format::from_path(output), Ok(Format::Su2)) {
         return;
     }
     let (zones, sections): (Vec<_>, Vec<_>) = mesh
+        .origin
         .su2_skipped
         .iter()
         .partition(|b| matches!(b.after, Anchor::ZonesBefore | Anchor::ZonesAfter));

@@ -33,7 +33,7 @@ fn s(p: &Path) -> &str {
 /// Zone `k` of `path` without the other zones' text.
 fn zone(path: &Path, k: usize) -> Mesh {
     let mut mesh = verbss::io::read_zone(path, k).unwrap().0;
-    mesh.su2_skipped.clear();
+    mesh.origin.su2_skipped.clear();
     mesh
 }
 

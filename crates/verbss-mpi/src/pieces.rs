@@ -8,6 +8,7 @@
 use std::path::Path;
 
 use verbss::io::{vtu, write_atomic};
+use verbss::mesh::FileOrigin;
 use verbss::{Cells, Mesh, Result};
 
 use crate::part::Part;
@@ -66,10 +67,7 @@ pub fn write_piece(
         cells: piece_cells,
         cell_tags: cells.iter().map(|&c| part.cell_tags[c]).collect(),
         groups: Vec::new(),
-        su2_skipped: Vec::new(),
-        cgns_source: None,
-        foam: None,
-        gmsh_source: None,
+        origin: FileOrigin::default(),
     };
     let mut fields = vtu::Fields::default();
     fields.point.push(("displacement".into(), 3, displacement));

@@ -95,7 +95,7 @@ impl WriteOptions {
     /// coordinates, the whole file: see [`gmsh::write_to`]); any other mesh
     /// gets the defaults (MSH 4.1, ASCII).
     pub fn for_mesh(mesh: &Mesh) -> WriteOptions {
-        match &mesh.gmsh_source {
+        match &mesh.origin.gmsh {
             Some(source) => WriteOptions {
                 msh_version: source.version(),
                 binary: source.binary(),

@@ -105,26 +105,32 @@ pub struct Mesh {
     pub cell_tags: Vec<u64>,
     /// Named boundary groups.
     pub groups: Vec<Group>,
-    /// The sections of the SU2 file the mesh was read from that verbss does
-    /// not use (FFD boxes, periodic data, …), verbatim: writing the mesh as
-    /// SU2 puts them back. Empty for a mesh from any other source.
-    pub su2_skipped: Vec<crate::io::su2::Skipped>,
-    /// The CGNS file the mesh was read from: writing the mesh as CGNS copies
-    /// that file and replaces only its coordinates. `None` for a mesh from
-    /// any other source.
-    pub cgns_source: Option<crate::io::cgns::Source>,
-    /// The OpenFOAM polyMesh the mesh was read from, which writing it as a
-    /// case keeps (all but its points). `None` for a mesh from any other source.
-    pub foam: Option<Box<crate::io::foam::Origin>>,
-    /// The Gmsh file the mesh was read from: writing the mesh back in the
-    /// same MSH version and encoding, with its nodes, cells, tags and groups
-    /// unchanged, changes only the coordinates in it. `None` for a mesh from
-    /// any other source.
-    pub gmsh_source: Option<Arc<crate::io::gmsh::Source>>,
+    /// What the writers keep of the file the mesh was read from (empty for
+    /// a mesh built in memory).
+    pub origin: FileOrigin,
 }
 
-/// Two meshes are equal when everything but the file they came from
-/// ([`Mesh::gmsh_source`], [`Mesh::cgns_source`], [`Mesh::foam`]) is.
+/// What the writers keep of the file a mesh was read from, by format; all
+/// empty for a mesh built in memory or read from a VTU file.
+#[derive(Debug, Clone, Default)]
+pub struct FileOrigin {
+    /// The sections of the SU2 file that verbss does not use (FFD boxes,
+    /// periodic data, …), verbatim: writing the mesh as SU2 puts them back.
+    pub su2_skipped: Vec<crate::io::su2::Skipped>,
+    /// The Gmsh file: writing the mesh back in the same MSH version and
+    /// encoding, with its nodes, cells, tags and groups unchanged, changes
+    /// only the coordinates in it.
+    pub gmsh: Option<Arc<crate::io::gmsh::Source>>,
+    /// The CGNS file: writing the mesh as CGNS copies that file and replaces
+    /// only its coordinates.
+    pub cgns: Option<crate::io::cgns::Source>,
+    /// The OpenFOAM polyMesh, which writing the mesh as a case keeps (all but
+    /// its points).
+    pub foam: Option<Box<crate::io::foam::Origin>>,
+}
+
+/// Two meshes are equal when everything but the file they came from is
+/// (the SU2 sections kept for writing included).
 impl PartialEq for Mesh {
     fn eq(&self, other: &Mesh) -> bool {
         self.dim == other.dim
@@ -133,7 +139,7 @@ impl PartialEq for Mesh {
             && self.cells == other.cells
             && self.cell_tags == other.cell_tags
             && self.groups == other.groups
-            && self.su2_skipped == other.su2_skipped
+            && self.origin.su2_skipped == other.origin.su2_skipped
     }
 }
 
@@ -148,10 +154,7 @@ impl Mesh {
             coords,
             cells,
             groups,
-            su2_skipped: Vec::new(),
-            cgns_source: None,
-            foam: None,
-            gmsh_source: None,
+            origin: FileOrigin::default(),
         };
         mesh.validate()?;
         Ok(mesh)

@@ -54,7 +54,7 @@ pub(super) fn step_fields(
 }
 
 /// The file of step `step` for a pattern with `{step}` or `{step:0W}`
-/// fields (checked by [`Motion::validate`]; a pattern with a bad field is
+/// fields (checked by [`Motion::validate`](crate::motion::Motion::validate); a pattern with a bad field is
 /// returned as it is).
 pub fn step_path(pattern: &std::path::Path, step: usize) -> PathBuf {
     let s = pattern.to_string_lossy();

@@ -23,7 +23,7 @@
 //!
 //! Writing a mesh read from a CGNS file copies that file and replaces only
 //! the values of `GridCoordinates/CoordinateX, Y (, Z)`, in their own
-//! precision; any other mesh is written as a fresh file (see [`write`]).
+//! precision; any other mesh is written as a fresh file (see [`write()`]).
 
 #[cfg(with_cgns)]
 mod ffi;
@@ -90,7 +90,7 @@ fn unavailable(path: &Path) -> Error {
 /// Writes `mesh` to the CGNS file `path`, atomically (a temporary file beside
 /// it is renamed over it once complete).
 ///
-/// A mesh read from a CGNS file ([`Mesh::cgns_source`]) is written as a copy
+/// A mesh read from a CGNS file ([`FileOrigin::cgns`](crate::mesh::FileOrigin::cgns)) is written as a copy
 /// of that file with only its coordinate values replaced. Any other mesh is
 /// written fresh: base `Base`, zone `Zone`, the cells in one section (MIXED
 /// when of several kinds), and each group as a section of its facets with a

@@ -8,7 +8,7 @@ use super::ffi::{self, CgSize, File, Mode, SectionInfo};
 use super::{error, Source};
 use crate::error::Result;
 use crate::io::MAX_GROUPS;
-use crate::mesh::{CellKind, Cells, Group, Mesh};
+use crate::mesh::{CellKind, Cells, FileOrigin, Group, Mesh};
 
 /// The names of CGNS's `ElementType_t` values 0 to 23, as used in messages.
 const TYPE_NAMES: [&str; 24] = [
@@ -127,15 +127,15 @@ pub fn read(path: &Path) -> Result<Mesh> {
         cells,
         cell_tags,
         groups,
-        su2_skipped: Vec::new(),
-        foam: None,
-        gmsh_source: None,
-        cgns_source: Some(Source {
-            path: path.to_path_buf(),
-            base,
-            zone,
-            zones: zones as usize,
-        }),
+        origin: FileOrigin {
+            cgns: Some(Source {
+                path: path.to_path_buf(),
+                base,
+                zone,
+                zones: zones as usize,
+            }),
+            ..FileOrigin::default()
+        },
     };
     mesh.validate()
         .map_err(|e| crate::io::invalid_at(e, |m| fail(format!("{at}: {m}"))))?;

@@ -11,7 +11,7 @@ const LIBRARY: &str = "the CGNS library (Debian: libcgns-dev)";
 
 /// `mesh` without what depends on its source: group tags and the CGNS file.
 fn plain(mut mesh: Mesh) -> Mesh {
-    mesh.cgns_source = None;
+    mesh.origin.cgns = None;
     for g in &mut mesh.groups {
         g.tag = None;
     }
@@ -33,7 +33,7 @@ fn a_hybrid_3d_mesh_round_trips_through_a_fresh_file() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = samples::hex_wedge_pyramid_tet();
     let back = write_read(dir.path(), "hybrid.cgns", &mesh);
-    let source = back.cgns_source.clone().unwrap();
+    let source = back.origin.cgns.clone().unwrap();
     assert_eq!(
         (source.base.as_str(), source.zone.as_str(), source.zones),
         ("Base", "Zone", 1)
@@ -95,7 +95,7 @@ fn writing_a_mesh_read_from_cgns_replaces_its_coordinates_only() {
     let moved = write_read(dir.path(), "out.cgns", &mesh);
     assert_eq!(moved.coords, mesh.coords);
     assert_eq!(
-        moved.cgns_source.as_ref().unwrap().path,
+        moved.origin.cgns.as_ref().unwrap().path,
         dir.path().join("out.cgns")
     );
     assert_eq!(plain(moved), plain(mesh));
@@ -306,6 +306,6 @@ mod hand_written {
         });
         let mesh = read(&two).unwrap();
         assert_eq!((mesh.node_count(), mesh.cell_count()), (4, 2));
-        assert_eq!(mesh.cgns_source.unwrap().zones, 2);
+        assert_eq!(mesh.origin.cgns.unwrap().zones, 2);
     }
 }

@@ -18,7 +18,7 @@ const AXES: [&str; 3] = ["CoordinateX", "CoordinateY", "CoordinateZ"];
 pub fn write(path: &Path, mesh: &Mesh) -> Result<()> {
     let target = crate::io::link_target(path);
     let tmp = crate::io::temp_path(&target);
-    let written = match &mesh.cgns_source {
+    let written = match &mesh.origin.cgns {
         Some(source) => copy_with_coordinates(source, &tmp, mesh),
         None => fresh(&tmp, mesh),
     }

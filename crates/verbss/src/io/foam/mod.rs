@@ -23,7 +23,7 @@
 //! type `empty` is a 2D case: it is read as the 2D mesh of its back plane
 //! (see [`Plane`]), and its `empty` patches are not groups.
 //!
-//! Writing ([`write`]) needs a mesh read from a case, whose faces, owners,
+//! Writing ([`write()`]) needs a mesh read from a case, whose faces, owners,
 //! neighbours and patches it keeps: only the points change. Into the case
 //! it was read from it writes `CASE/TIME/polyMesh/points` (the time
 //! directory an OpenFOAM solver reads a moved mesh from), leaving
@@ -42,7 +42,7 @@ pub use write::write;
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
-use crate::mesh::{CellKind, Cells, Group, Mesh};
+use crate::mesh::{CellKind, Cells, FileOrigin, Group, Mesh};
 
 /// Where a mesh read from an OpenFOAM case came from, for writing its
 /// points back.
@@ -141,14 +141,14 @@ pub fn read(path: &Path) -> Result<Mesh> {
         coords,
         cells,
         groups,
-        su2_skipped: Vec::new(),
-        cgns_source: None,
-        gmsh_source: None,
-        foam: Some(Box::new(Origin {
-            dir: dir.clone(),
-            n_points,
-            plane,
-        })),
+        origin: FileOrigin {
+            foam: Some(Box::new(Origin {
+                dir: dir.clone(),
+                n_points,
+                plane,
+            })),
+            ..FileOrigin::default()
+        },
     };
     mesh.validate().map_err(|e| {
         crate::io::invalid_at(e, |message| Error::Parse {

@@ -26,7 +26,7 @@ pub fn write(path: &Path, mesh: &Mesh, time: Option<&str>) -> Result<()> {
         path: path.to_path_buf(),
         source: std::io::Error::new(std::io::ErrorKind::InvalidInput, message),
     };
-    let Some(origin) = mesh.foam.as_deref() else {
+    let Some(origin) = mesh.origin.foam.as_deref() else {
         return Err(refuse(
             "an OpenFOAM case is written only from a mesh read from one (verbss writes its \
              moved points and keeps its faces; give a .msh, .su2 or .vtu output instead)"

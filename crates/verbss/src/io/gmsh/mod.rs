@@ -143,7 +143,7 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
     let (mut mesh, structure) =
         finish(&c, nodes, elements, &names, version == MshVersion::V22, end)?;
     let source = Source::new(bytes, (version, c.binary()), spans, structure, &mesh);
-    mesh.gmsh_source = Some(Arc::new(source));
+    mesh.origin.gmsh = Some(Arc::new(source));
     Ok(mesh)
 }
 
@@ -163,7 +163,8 @@ pub fn write_to(
     binary: bool,
 ) -> std::io::Result<()> {
     if let Some(source) = mesh
-        .gmsh_source
+        .origin
+        .gmsh
         .as_ref()
         .filter(|s| s.fits(mesh, version, binary))
     {

@@ -7,7 +7,7 @@ use std::ops::Range;
 use super::cursor::{Cursor, Mark};
 use crate::error::Result;
 use crate::io::MAX_GROUPS;
-use crate::mesh::{CellKind, Cells, Group, Mesh};
+use crate::mesh::{CellKind, Cells, FileOrigin, Group, Mesh};
 
 /// Element types verbss reads, as Gmsh numbers them: `(type, kind)`.
 const TYPES: [(i32, CellKind); 8] = [
@@ -369,10 +369,7 @@ pub(super) fn finish(
         cells,
         cell_tags,
         groups,
-        su2_skipped: Vec::new(),
-        cgns_source: None,
-        foam: None,
-        gmsh_source: None,
+        origin: FileOrigin::default(),
     };
     mesh.validate()
         .map_err(|e| crate::io::invalid_at(e, |m| c.error_at(at, m)))?;

@@ -11,7 +11,7 @@ use std::path::Path;
 use super::model::kind_of_type;
 use super::{parse, write_to};
 use crate::io::MshVersion;
-use crate::mesh::{CellKind, Cells, Group, Mesh};
+use crate::mesh::{CellKind, Cells, FileOrigin, Group, Mesh};
 
 const ENCODINGS: [(MshVersion, bool); 4] = [
     (MshVersion::V22, false),
@@ -95,10 +95,7 @@ fn hybrid_2d() -> Mesh {
             group("far field", 9, &[(Line, &[5, 4]), (Line, &[4, 3])]),
             group("corner", 1, &[(Vertex, &[2])]),
         ],
-        su2_skipped: Vec::new(),
-        cgns_source: None,
-        foam: None,
-        gmsh_source: None,
+        origin: FileOrigin::default(),
     }
 }
 
@@ -131,10 +128,7 @@ fn mixed_3d() -> Mesh {
             group("side", 5, &[(Quad, &[1, 8, 9, 2]), (Triangle, &[1, 8, 5])]),
             group("edge", 1, &[(Line, &[8, 9])]),
         ],
-        su2_skipped: Vec::new(),
-        cgns_source: None,
-        foam: None,
-        gmsh_source: None,
+        origin: FileOrigin::default(),
     }
 }
 

@@ -98,7 +98,7 @@ impl<'a> Plan<'a> {
                 entity: entities[dim],
             });
         }
-        let facet_tags = match mesh.gmsh_source.as_ref().and_then(|s| s.facet_tags(mesh)) {
+        let facet_tags = match mesh.origin.gmsh.as_ref().and_then(|s| s.facet_tags(mesh)) {
             Some(tags) if distinct(mesh.cell_tags.iter().chain(tags.iter().flatten())) => {
                 tags.to_vec()
             }
@@ -106,7 +106,7 @@ impl<'a> Plan<'a> {
         };
 
         // Groups have a lower dimension: the file's tag cannot clash.
-        let domain = match mesh.gmsh_source.as_ref().and_then(|s| s.domain()) {
+        let domain = match mesh.origin.gmsh.as_ref().and_then(|s| s.domain()) {
             Some((tag, name)) if tag > 0 && !name.contains(['"', '\n', '\r']) => (tag, name),
             _ => (fresh()?, DOMAIN),
         };

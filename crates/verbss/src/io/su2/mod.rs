@@ -48,7 +48,7 @@
 //! reads them all.
 //!
 //! Sections it does not use (`FFD_NBOX=`, `NPERIODIC=` and any other unknown
-//! keyword, with their data lines) are kept verbatim in [`Mesh::su2_skipped`],
+//! keyword, with their data lines) are kept verbatim in [`FileOrigin::su2_skipped`](crate::mesh::FileOrigin::su2_skipped),
 //! each with the section it followed, and [`write_to`] puts them back in the
 //! same place: reading a file and writing it back changes the layout of the
 //! elements, points and markers, never the text of those sections.
@@ -91,7 +91,7 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
 /// gives the file's number of zones (1 for a file without `NZONE=`).
 ///
 /// Every zone is checked as [`parse`] checks a file. The other zones are
-/// kept verbatim in [`Mesh::su2_skipped`] (anchored [`Anchor::ZonesBefore`]
+/// kept verbatim in [`FileOrigin::su2_skipped`](crate::mesh::FileOrigin::su2_skipped) (anchored [`Anchor::ZonesBefore`]
 /// and [`Anchor::ZonesAfter`]), so that writing the mesh as SU2 gives the
 /// whole file back with only this zone rewritten.
 pub fn parse_zone(bytes: &[u8], path: &Path, zone: usize) -> Result<(Mesh, usize)> {

@@ -12,7 +12,7 @@ use super::{Anchor, Skipped};
 use crate::error::{Error, Result};
 use crate::io::shown;
 use crate::io::MAX_GROUPS;
-use crate::mesh::{Cells, Group, Mesh};
+use crate::mesh::{Cells, FileOrigin, Group, Mesh};
 
 /// One non-blank line with its comment removed.
 enum Line<'a> {
@@ -566,10 +566,10 @@ impl<'a> Parser<'a> {
                     facets: m.facets,
                 })
                 .collect(),
-            su2_skipped: self.skipped,
-            cgns_source: None,
-            foam: None,
-            gmsh_source: None,
+            origin: FileOrigin {
+                su2_skipped: self.skipped,
+                ..FileOrigin::default()
+            },
         };
         let line = nelem.map_or(last, |(_, line)| line);
         mesh.validate().map_err(|e| {

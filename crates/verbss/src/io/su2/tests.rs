@@ -260,6 +260,7 @@ wall\t0\t1.0\t2.0\r
 ";
     let mut m = parse_str(text).unwrap();
     let skipped: Vec<(Anchor, &str)> = m
+        .origin
         .su2_skipped
         .iter()
         .map(|b| (b.after, b.text.as_str()))
@@ -274,7 +275,7 @@ wall\t0\t1.0\t2.0\r
             )
         ]
     );
-    m.su2_skipped.clear();
+    m.origin.su2_skipped.clear();
     assert_eq!(m, parse_str(SQUARE).unwrap());
 }
 
@@ -324,7 +325,7 @@ wall\t0\t0.25\t0.5\t0.5
 #[test]
 fn skipped_blocks_are_written_back_verbatim_where_they_were() {
     let m = parse_str(SKIPPED_EVERYWHERE).unwrap();
-    let anchors: Vec<Anchor> = m.su2_skipped.iter().map(|b| b.after).collect();
+    let anchors: Vec<Anchor> = m.origin.su2_skipped.iter().map(|b| b.after).collect();
     use Anchor::*;
     assert_eq!(
         anchors,
@@ -339,7 +340,7 @@ fn skipped_blocks_are_written_back_verbatim_where_they_were() {
         ]
     );
     assert_eq!(
-        m.su2_skipped[2].text,
+        m.origin.su2_skipped[2].text,
         "% a comment kept with its block\nEXTRA= a b c\n1 2 3\n\n"
     );
     let mut out = Vec::new();
@@ -374,7 +375,7 @@ fn skipped_blocks_of_groups_that_are_gone_follow_the_last_marker() {
 fn a_skipped_block_at_an_end_without_newline_gets_one() {
     let text = format!("{SQUARE}FFD_NBOX= 0");
     let m = parse_str(&text).unwrap();
-    assert_eq!(m.su2_skipped[0].text, "FFD_NBOX= 0");
+    assert_eq!(m.origin.su2_skipped[0].text, "FFD_NBOX= 0");
     let mut out = Vec::new();
     write_to(&mut out, &m).unwrap();
     assert!(String::from_utf8(out)

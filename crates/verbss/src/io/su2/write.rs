@@ -9,7 +9,7 @@ use crate::mesh::{CellKind, Mesh};
 /// Writes `mesh` in SU2 format: `NDIME=`, `NELEM=` (elements with their index),
 /// `NPOIN=` (coordinates in shortest round-trip form, so that reading the file
 /// back gives the same bits, with their index), `NMARK=` and one marker per
-/// group, with the mesh's [`Mesh::su2_skipped`] blocks put back verbatim after
+/// group, with the mesh's [`FileOrigin::su2_skipped`](crate::mesh::FileOrigin::su2_skipped) blocks put back verbatim after
 /// the section each followed (after the last marker when that marker is gone;
 /// the other zones of a multi-zone file before and after everything).
 ///
@@ -48,7 +48,7 @@ fn write_sections(w: &mut dyn Write, mesh: &Mesh, zones: bool) -> std::io::Resul
     }
     let markers = mesh.groups.len();
     let mut skipped: HashMap<Anchor, Vec<&str>> = HashMap::new();
-    for b in &mesh.su2_skipped {
+    for b in &mesh.origin.su2_skipped {
         if !zones && matches!(b.after, Anchor::ZonesBefore | Anchor::ZonesAfter) {
             continue;
         }

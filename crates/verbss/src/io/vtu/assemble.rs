@@ -7,7 +7,7 @@ use super::read::{Array, VtkFile};
 use super::xml::Element;
 use super::{Fields, VtuData, CELL_TAG_ARRAY, GROUP_ARRAY, NODE_TAG_ARRAY, UNNAMED_GROUP};
 use crate::error::Result;
-use crate::mesh::{Cells, Group, Mesh};
+use crate::mesh::{Cells, FileOrigin, Group, Mesh};
 
 /// Removes the array called `name` from `arrays`.
 fn take_array<'e>(arrays: &mut Vec<Array<'e>>, name: &str) -> Option<Array<'e>> {
@@ -175,10 +175,7 @@ pub(super) fn assemble(
         cells,
         cell_tags,
         groups,
-        su2_skipped: Vec::new(),
-        cgns_source: None,
-        foam: None,
-        gmsh_source: None,
+        origin: FileOrigin::default(),
     };
     mesh.validate()
         .map_err(|e| crate::io::invalid_at(e, |m| ctx.at(piece.pos, m)))?;

@@ -62,7 +62,7 @@ fn a_changed_mesh_or_another_encoding_is_written_anew() {
     for encoding in ENCODINGS {
         let (_, read) = file_and_mesh(&mixed_3d(), encoding);
         let mut fresh = read.clone();
-        fresh.gmsh_source = None;
+        fresh.origin.gmsh = None;
         for other in ENCODINGS.iter().filter(|&&e| e != encoding) {
             assert!(
                 written(&read, other.0, other.1) == written(&fresh, other.0, other.1),

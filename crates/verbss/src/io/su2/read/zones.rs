@@ -183,7 +183,7 @@ pub(in crate::io::su2) fn parse_zone(
     }
     let (mut mesh, end, start) = chosen.expect("zone is in range");
     let text = |range: std::ops::Range<usize>| String::from_utf8_lossy(&bytes[range]).into_owned();
-    mesh.su2_skipped.insert(
+    mesh.origin.su2_skipped.insert(
         0,
         Skipped {
             after: Anchor::ZonesBefore,
@@ -191,7 +191,7 @@ pub(in crate::io::su2) fn parse_zone(
         },
     );
     if end < bytes.len() {
-        mesh.su2_skipped.push(Skipped {
+        mesh.origin.su2_skipped.push(Skipped {
             after: Anchor::ZonesAfter,
             text: text(end..bytes.len()),
         });
