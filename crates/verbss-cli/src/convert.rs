@@ -29,8 +29,11 @@ pub struct ConvertArgs {
 /// Runs `verbss convert`.
 pub fn run(args: ConvertArgs) -> anyhow::Result<ExitCode> {
     refuse_input_as_output(&args.input, &args.output, args.overwrite, false)?;
-    let su2_out = matches!(io::Format::from_path(&args.output), Ok(io::Format::Su2));
-    let mesh = zone::read(&args.input, args.zone.zone, "--zone K", su2_out)?;
+    // SU2 to SU2 keeps every zone: no note that only one is used. Any other
+    // input keeps its notes (a CGNS file's zones among them).
+    let is_su2 = |p: &std::path::Path| matches!(io::Format::from_path(p), Ok(io::Format::Su2));
+    let every_zone_kept = is_su2(&args.input) && is_su2(&args.output);
+    let mesh = zone::read(&args.input, args.zone.zone, "--zone K", every_zone_kept)?;
     io::write(&args.output, &mesh, &args.msh.options(&mesh))?;
     note_lost_su2_blocks(&mesh, &args.output);
     println!(

@@ -178,14 +178,20 @@ with h5py.File(sys.argv[1], "r+") as f:
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
-    let note = ok(&["quality", s(&input)]);
-    assert!(
-        note.contains(&format!(
-            "note: {} has 2 zones in base 'Base'; verbss reads zone 1 ('Zone') only",
-            input.display()
-        )),
-        "{note}"
-    );
+    let su2 = dir.path().join("zone1.su2");
+    for args in [
+        vec!["quality", s(&input)],
+        vec!["convert", s(&input), s(&su2)],
+    ] {
+        let note = ok(&args);
+        assert!(
+            note.contains(&format!(
+                "note: {} has 2 zones in base 'Base'; verbss reads zone 1 ('Zone') only",
+                input.display()
+            )),
+            "{args:?}: {note}"
+        );
+    }
 }
 
 #[test]
