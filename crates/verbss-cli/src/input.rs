@@ -3,15 +3,13 @@
 
 use std::path::Path;
 
-use verbss::io;
 use verbss::mesh::Mesh;
 
-/// Reads the mesh at `path` (the format chosen by extension; of a file of
-/// several zones, zone 1), noting what of the file is left out.
-pub fn read_mesh(path: &Path) -> verbss::Result<Mesh> {
-    let mesh = io::read(path)?;
-    note_left_out(path, &mesh);
-    Ok(mesh)
+/// Reads the mesh at `path` for a command without `--zone` (the format
+/// chosen by extension; of a file of several zones, zone 1), noting what of
+/// the file is left out.
+pub fn read_mesh(path: &Path) -> anyhow::Result<Mesh> {
+    crate::zone::read(path, None, "`verbss convert FILE OUT.vtu --zone K`", false)
 }
 
 /// For a CGNS file of several zones, notes that only the first was read.
