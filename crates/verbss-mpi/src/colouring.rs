@@ -38,10 +38,7 @@ pub fn is_seed<const D: usize>(
     displacement: &[f64],
     i: usize,
 ) -> bool {
-    let u = point::<D>(displacement, i);
-    match role {
-        NodeRole::Free => false,
-        NodeRole::Fixed => u.iter().any(|&v| v != 0.0),
-        NodeRole::Slide(k) => (0..D).map(|c| normals[k][c] * u[c]).sum::<f64>() != 0.0,
-    }
+    role.prescribed::<D>(normals, &point::<D>(displacement, i))
+        .iter()
+        .any(|&v| v != 0.0)
 }

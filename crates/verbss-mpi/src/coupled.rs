@@ -143,7 +143,8 @@ impl<'c> LocalSolver<'c> {
             cells: part_cells,
             global: part_global,
         };
-        // Roles of the new nodes from their owners: Free −1, Fixed −2, Slide(k) k.
+        // Roles of the new nodes from their owners: Free −1, Fixed −2,
+        // Slide(k) k, Line(k) −3 − k.
         let halo = Halo::new(comm, &part.global, &part.owner);
         let mut codes = vec![0.0; m];
         for (i, r) in roles.iter().enumerate() {
@@ -151,6 +152,7 @@ impl<'c> LocalSolver<'c> {
                 NodeRole::Free => -1.0,
                 NodeRole::Fixed => -2.0,
                 NodeRole::Slide(k) => *k as f64,
+                NodeRole::Line(k) => -3.0 - *k as f64,
             };
         }
         halo.exchange(comm, &mut codes, 1);
@@ -159,6 +161,7 @@ impl<'c> LocalSolver<'c> {
             .map(|&c| match c {
                 -1.0 => NodeRole::Free,
                 -2.0 => NodeRole::Fixed,
+                k if k < 0.0 => NodeRole::Line((-3.0 - k) as usize),
                 k => NodeRole::Slide(k as usize),
             })
             .collect();

@@ -17,15 +17,15 @@
 //! a sweep, paper eq. 8) is a sum over ranks (an all-reduce), whose rounding
 //! can differ in the last bits from the single-process sum.
 //!
-//! Sliding nodes are solved in their tangent frame as in
-//! [`verbss::solve`]: `Tᵀ K_ii T a = Tᵀ (Σ_j B_ij u_j − d K_ii n)`.
+//! Sliding nodes are solved in their frame as in [`verbss::solve`]:
+//! `Tᵀ K_ii T a = Tᵀ (Σ_j B_ij u_j − K_ii f)`, `f` the given part.
 
 use std::time::Instant;
 
-use verbss::geometry::{
-    ldlt_factor, morton_keys, norm, normal_frame, packed_index, packed_len, packed_mul, point,
+use verbss::geometry::{ldlt_factor, morton_keys, packed_len, point};
+use verbss::solve::{
+    coupled, relax, unit_directions, Accel, Frames, Method, NodeRole, SolveInfo, SolveParams,
 };
-use verbss::solve::{coupled, relax, Accel, Method, NodeRole, SolveInfo, SolveParams};
 use verbss::springs::{self, Connectivity, NodeBlocks, Springs};
 use verbss::topology;
 use verbss::{Error, Result};
@@ -61,13 +61,11 @@ struct Built {
     colour_starts: Vec<usize>,
     /// Per colour and neighbour: positions sent and received after the colour.
     exchanges: Vec<(Lists, Lists)>,
-    /// Per owned position: index of its sliding frame, `u32::MAX` if free.
-    slide_of: Vec<u32>,
-    /// `D×D` per sliding node, rows `t₁ … t_{D−1}, n`.
-    frames: Vec<f64>,
+    /// The frames of the sliding owned positions.
+    frames: Frames,
     blocks: NodeBlocks,
-    /// `K_ii n` per sliding node.
-    kn: Vec<f64>,
+    /// The unprojected `K_ii` per sliding node ([`Frames::project_diagonal`]).
+    kept: Vec<f64>,
     /// Unknown components of all ranks.
     dofs: u64,
 }
@@ -91,29 +89,7 @@ impl<'c> Sweeper<'c> {
                 part.node_count()
             )));
         }
-        let mut unit = Vec::with_capacity(normals.len());
-        for (k, v) in normals.iter().enumerate() {
-            let len = norm(&[v[0], v[1], if dim == 3 { v[2] } else { 0.0 }]);
-            if !(len > 0.0 && len.is_finite()) {
-                return Err(Error::InvalidSetting(format!(
-                    "sliding normal {k} is zero or not finite"
-                )));
-            }
-            let mut u = [v[0] / len, v[1] / len, 0.0];
-            if dim == 3 {
-                u[2] = v[2] / len;
-            }
-            unit.push(u);
-        }
-        if let Some(k) = roles.iter().find_map(|r| match r {
-            NodeRole::Slide(k) if *k >= normals.len() => Some(*k),
-            _ => None,
-        }) {
-            return Err(Error::InvalidSetting(format!(
-                "a node slides on normal {k} but {} normals were given",
-                normals.len()
-            )));
-        }
+        let unit = unit_directions(dim, &roles, normals, |i| part.node_tags[i])?;
         let n = part.node_count();
         let edges = topology::edges(&part.cells);
         let conn = Connectivity {
@@ -309,18 +285,8 @@ impl<'c> Sweeper<'c> {
                 }
             }
         }
-        let mut slide_of = vec![u32::MAX; owned];
-        let mut frames = Vec::new();
-        let mut dofs = 0u64;
-        for (p, &i) in order[..owned].iter().enumerate() {
-            dofs += D as u64;
-            if let NodeRole::Slide(k) = self.roles[i] {
-                let nrm: [f64; D] = std::array::from_fn(|c| self.normals[k][c]);
-                slide_of[p] = (frames.len() / (D * D)) as u32;
-                frames.extend(normal_frame(&nrm).iter().flatten());
-                dofs -= 1;
-            }
-        }
+        let frames = Frames::new::<D>(order[..owned].iter().map(|&i| self.roles[i]), &self.normals);
+        let dofs = frames.unknowns::<D>() as u64;
         let total = self.comm.sum(dofs);
         let kind = if method == Method::Spring {
             Springs::Edge
@@ -328,7 +294,8 @@ impl<'c> Sweeper<'c> {
             Springs::BallVertex
         };
         let mut blocks = springs::assemble(&self.conn, coords, &order[..owned], &position, kind)?;
-        let kn = self.prepare_diag::<D>(&mut blocks, &order, &slide_of, &frames)?;
+        let kept = frames.project_diagonal::<D>(&mut blocks.diag);
+        self.factor_diag::<D>(&mut blocks, &order)?;
         Ok(Built {
             coords: coords.to_vec(),
             colours: colours.to_vec(),
@@ -336,44 +303,17 @@ impl<'c> Sweeper<'c> {
             order,
             colour_starts,
             exchanges,
-            slide_of,
             frames,
             blocks,
-            kn,
+            kept,
             dofs: total,
         })
     }
 
-    /// Projects the diagonal blocks of sliding nodes on their tangent frame
-    /// (padded `[[Tᵀ K T, 0], [0, 1]]`) and factors every diagonal block as
-    /// LDLᵀ. Returns `K_ii n` per sliding node.
-    fn prepare_diag<const D: usize>(
-        &self,
-        blocks: &mut NodeBlocks,
-        order: &[usize],
-        slide_of: &[u32],
-        frames: &[f64],
-    ) -> Result<Vec<f64>> {
+    /// Factors every (projected) diagonal block as LDLᵀ.
+    fn factor_diag<const D: usize>(&self, blocks: &mut NodeBlocks, order: &[usize]) -> Result<()> {
         let s = packed_len(D);
-        let mut kn = vec![0.0; frames.len() / D];
-        for (p, &slot) in slide_of.iter().enumerate() {
-            let diag = &mut blocks.diag[s * p..s * (p + 1)];
-            if let Some(r) = frame::<D>(slide_of, frames, p) {
-                let k = diag.to_vec();
-                let slot = slot as usize;
-                let n = r[D - 1];
-                kn[D * slot..D * (slot + 1)].copy_from_slice(&packed_mul::<D>(&k, &n));
-                for a in 0..D {
-                    for b in 0..=a {
-                        diag[packed_index(a, b)] = if a == D - 1 {
-                            f64::from(u8::from(b == D - 1))
-                        } else {
-                            let kb = packed_mul::<D>(&k, &r[b]);
-                            (0..D).map(|c| r[a][c] * kb[c]).sum()
-                        };
-                    }
-                }
-            }
+        for (p, diag) in blocks.diag.chunks_exact_mut(s).enumerate() {
             let a = diag.to_vec();
             if !ldlt_factor::<D>(&a, diag) {
                 return Err(Error::InvalidMesh(format!(
@@ -383,7 +323,7 @@ impl<'c> Sweeper<'c> {
                 )));
             }
         }
-        Ok(kn)
+        Ok(())
     }
 
     /// Right-hand side, sweeps until the eq.-8 test, solution back into
@@ -394,21 +334,11 @@ impl<'c> Sweeper<'c> {
         params: &SolveParams,
     ) -> Result<SolveInfo> {
         let b = self.built.as_ref().expect("built before the run");
-        let owned = b.slide_of.len();
+        let owned = b.frames.len();
         let mut scale = 0.0f64;
         for &i in b.order[..owned].iter().chain(self.fixed_owned().iter()) {
-            let ui = &displacement[D * i..D * (i + 1)];
-            let size = match self.roles[i] {
-                NodeRole::Free => continue,
-                NodeRole::Fixed => ui.iter().map(|v| v * v).sum::<f64>().sqrt(),
-                NodeRole::Slide(k) => ui
-                    .iter()
-                    .zip(&self.normals[k])
-                    .map(|(a, b)| a * b)
-                    .sum::<f64>()
-                    .abs(),
-            };
-            scale = scale.max(size);
+            let given = self.roles[i].prescribed::<D>(&self.normals, &point::<D>(displacement, i));
+            scale = scale.max(given.iter().map(|v| v * v).sum::<f64>().sqrt());
         }
         let global_scale = self.comm.max(scale);
         let threshold = if params.absolute_tolerance || global_scale == 0.0 {
@@ -471,18 +401,17 @@ impl<'c> Sweeper<'c> {
             .collect()
     }
 
-    /// `c_p = Σ_{j prescribed} B_pj u_j`, minus `d K_pp n` for a sliding node.
+    /// `c_p = Σ_{j prescribed} B_pj u_j`, minus `K_pp f` for a sliding node
+    /// with given part `f`.
     fn constants<const D: usize>(&self, b: &Built, displacement: &[f64]) -> Vec<f64> {
-        let owned = b.slide_of.len();
+        let owned = b.frames.len();
         let mut constant = vec![0.0; D * owned];
         for p in 0..owned {
             let mut c = b.blocks.prescribed_pull::<D>(p, displacement);
-            if let Some(r) = frame::<D>(&b.slide_of, &b.frames, p) {
-                let slot = b.slide_of[p] as usize;
-                let u = point::<D>(displacement, b.order[p]);
-                let d: f64 = (0..D).map(|k| r[D - 1][k] * u[k]).sum();
-                for (ck, kn) in c.iter_mut().zip(&b.kn[D * slot..D * (slot + 1)]) {
-                    *ck -= d * kn;
+            let u = point::<D>(displacement, b.order[p]);
+            if let Some(kf) = b.frames.given_pull::<D>(&b.kept, p, &u) {
+                for k in 0..D {
+                    c[k] -= kf[k];
                 }
             }
             constant[D * p..D * (p + 1)].copy_from_slice(&c);
@@ -505,18 +434,8 @@ impl<'c> Sweeper<'c> {
             &b.blocks.diag[packed_len(D) * p..],
             &coupled::<D>(&b.blocks, constant, p, work),
             &point::<D>(work, p),
-            frame::<D>(&b.slide_of, &b.frames, p),
+            b.frames.get::<D>(p),
             omega,
         )
     }
-}
-
-/// The frame of position `p`, if it slides.
-#[inline]
-fn frame<const D: usize>(slide_of: &[u32], frames: &[f64], p: usize) -> Option<[[f64; D]; D]> {
-    let s = slide_of[p];
-    (s != u32::MAX).then(|| {
-        let f = &frames[D * D * s as usize..D * D * (s as usize + 1)];
-        std::array::from_fn(|r| std::array::from_fn(|c| f[D * r + c]))
-    })
 }

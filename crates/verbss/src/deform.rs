@@ -32,7 +32,6 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::error::{format_point, Error, Result, Unconverged};
-use crate::geometry::keep_in_plane;
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Clock, Motion};
 use crate::quality::{self, Inversion, Summary};
@@ -146,9 +145,9 @@ pub struct Deformer<S = Engine> {
     /// Moving nodes and the motions (indices into `motions`) they follow, in order.
     moving: Vec<(usize, Vec<usize>)>,
     /// Rigid-layer nodes, the moving node (index into `moving`) each follows
-    /// (`None`: it stays, near a fixed wall), and the plane it slides in, if
-    /// it does.
-    layer: Vec<(usize, Option<usize>, Option<usize>)>,
+    /// (`None`: it stays, near a fixed wall), and its role before it was
+    /// prescribed (a sliding node keeps to its plane or line).
+    layer: Vec<(usize, Option<usize>, NodeRole)>,
     /// The rigid layer's thickness around each body.
     layer_thickness: Vec<f64>,
     /// The blended rigid motion, when [`crate::robust::Robust::blend`] is on.
@@ -209,12 +208,9 @@ impl<S: SpringSolver> Deformer<S> {
             .nodes
             .iter()
             .map(|&(i, k)| {
-                let plane = match plan.roles[i] {
-                    NodeRole::Slide(p) => Some(p),
-                    _ => None,
-                };
+                let role = plan.roles[i];
                 plan.roles[i] = NodeRole::Fixed;
-                (i, k, plane)
+                (i, k, role)
             })
             .collect();
         let blend = if settings.robust.blend && !plan.moving.is_empty() {
@@ -285,7 +281,9 @@ impl<S: SpringSolver> Deformer<S> {
         &self.roles
     }
 
-    /// The unit plane normals of the sliding nodes ([`NodeRole::Slide`]`(k)` is `normals()[k]`).
+    /// The unit directions of the sliding nodes: [`NodeRole::Slide`]`(k)`
+    /// slides in the plane of normal `normals()[k]`, [`NodeRole::Line`]`(k)`
+    /// along the line of direction `normals()[k]`.
     pub fn normals(&self) -> &[[f64; 3]] {
         &self.normals
     }
@@ -476,7 +474,7 @@ impl<S: SpringSolver> Deformer<S> {
             }
             targets.push((*node, p));
         }
-        for &(node, k, plane) in &self.layer {
+        for &(node, k, role) in &self.layer {
             let mut p = self.mesh.point(node).to_vec();
             if let Some(k) = k {
                 let (anchor, chain) = &self.moving[k];
@@ -491,10 +489,8 @@ impl<S: SpringSolver> Deformer<S> {
                     }
                 }
             }
-            if let Some(plane) = plane {
-                let x = &self.current.coords[dim * node..dim * (node + 1)];
-                keep_in_plane(&mut p, x, &self.normals[plane]);
-            }
+            let x = &self.current.coords[dim * node..dim * (node + 1)];
+            role.keep_on(&self.normals, &mut p, x);
             targets.push((node, p));
         }
         Ok(targets)

@@ -255,7 +255,10 @@ pub fn prepare(
         if robust.layer == Layer::Off {
             break;
         }
-        if !matches!(roles[i], NodeRole::Free | NodeRole::Slide(_)) {
+        if !matches!(
+            roles[i],
+            NodeRole::Free | NodeRole::Slide(_) | NodeRole::Line(_)
+        ) {
             continue;
         }
         let Some((b, (dist, seed))) = fields

@@ -32,10 +32,10 @@
 //! rigid body, its deformation otherwise.
 
 use super::harmonic::Laplace;
-use crate::geometry::{cross, dot, keep_in_plane, norm};
+use crate::geometry::{cross, dot, norm};
 use crate::mesh::Mesh;
 use crate::robust::{self, nearest_seed};
-use crate::solve::NodeRole;
+use crate::solve::{Frame, NodeRole};
 use crate::topology::Csr;
 
 /// Prescribed nodes this fraction of the mesh's size from their targets
@@ -75,10 +75,12 @@ pub(super) struct Blend {
     /// at 0, and with them free.
     unknown: Vec<bool>,
     unknown_slides: Vec<bool>,
-    /// The sliding planes' common normal: sliding nodes slide with the
-    /// translation's part along it (`None`: no sliding node, or planes that
-    /// are not parallel, whose nodes then stay).
-    slide_normal: Option<[f64; 3]>,
+    /// The projection on the directions every sliding node may move in
+    /// (the planes' tangents when they are parallel, their common line when
+    /// two meet, zero when no node slides or no direction is common):
+    /// sliding nodes move with the translation's part in it and stay for
+    /// the rest.
+    slide_along: [[f64; 3]; 3],
 }
 
 /// One body's fitted rigid motion: `x ↦ c + t + R(θ)(x − c)`.
@@ -100,21 +102,7 @@ impl Blend {
     ) -> Blend {
         let n = mesh.node_count();
         let laplace = Laplace::new(mesh);
-        let mut slide_normal = None;
-        let mut parallel = true;
-        for role in roles {
-            if let NodeRole::Slide(k) = *role {
-                let m = normals[k];
-                match slide_normal {
-                    None => slide_normal = Some(m),
-                    Some(first) => parallel &= norm(&cross(&first, &m)) <= 1e-9 * norm(&m),
-                }
-            }
-        }
-        let slide_normal = slide_normal.filter(|_| parallel).map(|m| {
-            let l = norm(&m);
-            [m[0] / l, m[1] / l, m[2] / l]
-        });
+        let slide_along = common_slide_directions(roles, normals);
         let extent = robust::size(mesh, &(0..n).collect::<Vec<_>>());
         let bodies = bodies
             .into_iter()
@@ -140,7 +128,7 @@ impl Blend {
         Blend {
             unknown: roles.iter().map(|r| *r == NodeRole::Free).collect(),
             unknown_slides: roles.iter().map(|r| *r != NodeRole::Fixed).collect(),
-            slide_normal,
+            slide_along,
             graph: laplace.graph(),
             laplace,
             dim: mesh.dim,
@@ -165,17 +153,8 @@ impl Blend {
             let rigid = fit(dim, coords, targets, &body.fitted).about_axis(body.radius);
             // The translation's part across the sliding planes and along them.
             let t = rigid.translation;
-            let (across, along) = match self.slide_normal {
-                Some(m) => {
-                    let tn = dot(&t, &m);
-                    let across = [tn * m[0], tn * m[1], tn * m[2]];
-                    (
-                        across,
-                        [t[0] - across[0], t[1] - across[1], t[2] - across[2]],
-                    )
-                }
-                None => (t, [0.0; 3]),
-            };
+            let along: [f64; 3] = std::array::from_fn(|r| dot(&self.slide_along[r], &t));
+            let across: [f64; 3] = std::array::from_fn(|r| t[r] - along[r]);
             let moves = |v: &[f64; 3]| norm(v) > ROUND_OFF * self.extent;
             for (w, unknown, part) in [
                 (&mut body.held_slides, &self.unknown, &across),
@@ -256,8 +235,45 @@ pub(super) fn bodies(
     bodies
 }
 
+/// `I − Σ_b b bᵀ` over an orthonormal basis `b` of the normals of every
+/// sliding node's plane or line (`directions`: [`NodeRole::Slide`] normals,
+/// [`NodeRole::Line`] directions); zero when no node slides.
+fn common_slide_directions(roles: &[NodeRole], directions: &[[f64; 3]]) -> [[f64; 3]; 3] {
+    let mut seen = std::collections::HashSet::new();
+    let mut basis: Vec<[f64; 3]> = Vec::new();
+    for &role in roles {
+        let Some(frame) = Frame::<3>::of_role(role, directions) else {
+            continue;
+        };
+        if !seen.insert(role) {
+            continue;
+        }
+        for g in &frame.rows()[frame.free()..] {
+            let mut v = *g;
+            for b in &basis {
+                let d = dot(b, g);
+                for c in 0..3 {
+                    v[c] -= d * b[c];
+                }
+            }
+            let l = norm(&v);
+            if l > 1e-9 {
+                basis.push([v[0] / l, v[1] / l, v[2] / l]);
+            }
+        }
+    }
+    if seen.is_empty() {
+        return [[0.0; 3]; 3];
+    }
+    std::array::from_fn(|r| {
+        std::array::from_fn(|c| {
+            f64::from(u8::from(r == c)) - basis.iter().map(|b| b[r] * b[c]).sum::<f64>()
+        })
+    })
+}
+
 /// Removes from the move `moved − reference` of every sliding node its
-/// component along its plane's normal.
+/// components along the normals of its plane or line.
 pub(super) fn keep_in_planes(
     dim: usize,
     roles: &[NodeRole],
@@ -266,10 +282,8 @@ pub(super) fn keep_in_planes(
     moved: &mut [f64],
 ) {
     for (i, role) in roles.iter().enumerate() {
-        if let NodeRole::Slide(k) = *role {
-            let span = dim * i..dim * (i + 1);
-            keep_in_plane(&mut moved[span.clone()], &reference[span], &normals[k]);
-        }
+        let span = dim * i..dim * (i + 1);
+        role.keep_on(normals, &mut moved[span.clone()], &reference[span]);
     }
 }
 

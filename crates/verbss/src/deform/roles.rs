@@ -1,8 +1,10 @@
 //! Which node does what: a node of a moving group follows that group's
 //! motions, even where it also lies on a fixed or sliding group (on several
 //! moving groups: the first named); a node only on sliding groups of
-//! parallel planes slides in its plane; every other boundary node is fixed; all other nodes
-//! are free.
+//! parallel planes slides in its plane; a node only on sliding groups whose
+//! planes meet in a line (in 3D: two planes, or more through one line)
+//! slides along that line; every other boundary node (on planes that meet
+//! in a point, or on a fixed group) is fixed; all other nodes are free.
 
 use std::collections::HashMap;
 
@@ -27,7 +29,8 @@ pub(super) fn duplicate_nodes(mesh: &Mesh) -> Option<(usize, usize)> {
     })
 }
 
-/// Node roles, slide normals and the motions of moving nodes.
+/// Node roles, slide directions (plane normals and line directions) and the
+/// motions of moving nodes.
 pub(super) struct Plan {
     pub(super) roles: Vec<NodeRole>,
     pub(super) normals: Vec<[f64; 3]>,
@@ -89,24 +92,50 @@ pub(super) fn plan_roles(mesh: &Mesh, attachments: &[Attachment]) -> Result<Plan
         .iter()
         .map(|&b| if b { NodeRole::Fixed } else { NodeRole::Free })
         .collect();
-    // Sliding: nodes whose every group slides in one plane.
-    let mut slide: Vec<Option<usize>> = vec![None; n];
+    // Sliding: nodes whose every group slides; the distinct planes' normals
+    // of each.
+    let mut slide: Vec<Vec<usize>> = vec![Vec::new(); n];
     let mut blocked = vec![false; n];
     for (g, group) in mesh.groups.iter().enumerate() {
         for i in group.nodes() {
             match roles.get(&g) {
-                Some(GroupRole::Slide(k)) => match slide[i] {
-                    Some(j) if !parallel(&normals[j], &normals[*k]) => blocked[i] = true,
-                    _ => slide[i] = Some(*k),
-                },
+                Some(GroupRole::Slide(k)) => {
+                    if !slide[i]
+                        .iter()
+                        .any(|&j| parallel(&normals[j], &normals[*k]))
+                    {
+                        slide[i].push(*k);
+                    }
+                }
                 _ => blocked[i] = true,
             }
         }
     }
+    let mut lines: HashMap<(usize, usize), usize> = HashMap::new();
     for i in 0..n {
-        if let (Some(k), false) = (slide[i], blocked[i]) {
-            node_role[i] = NodeRole::Slide(k);
+        if blocked[i] {
+            continue;
         }
+        node_role[i] = match slide[i][..] {
+            [] => continue,
+            [k] => NodeRole::Slide(k),
+            [a, b, ..] if mesh.dim == 3 => {
+                let line = unit3(&cross(&normals[a], &normals[b]));
+                // Every further plane must hold the line too.
+                if slide[i][2..]
+                    .iter()
+                    .any(|&c| dot(&normals[c], &line).abs() > 1e-9)
+                {
+                    continue;
+                }
+                let k = *lines.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                    normals.push(line);
+                    normals.len() - 1
+                });
+                NodeRole::Line(k)
+            }
+            _ => continue,
+        };
     }
     let mut moving = Vec::new();
     let mut taken = vec![false; n];

@@ -23,7 +23,7 @@ use rayon::prelude::*;
 use super::amg::Hierarchy;
 use super::gmres::{self, Workspace};
 use super::{
-    coupled, rotate, sweep, unrotate, verbss, Accel, Built, Layout, Method, SolveInfo, SolveParams,
+    coupled, sweep, verbss, Accel, Built, Layout, Method, SolveInfo, SolveParams,
     AUTO_AMG_NODES_2D, AUTO_AMG_NODES_3D, CHUNK,
 };
 use crate::error::Result;
@@ -253,13 +253,13 @@ fn residual<const D: usize>(
                         std::array::from_fn(|k| b[k] - kx[k])
                     }
                     Some(frame) => {
-                        let mut rb = rotate(&frame, &b);
-                        let ka = ldlt_mul::<D>(factor, &rotate(&frame, &xp));
-                        for k in 0..D - 1 {
+                        let mut rb = frame.rotate(&b);
+                        let ka = ldlt_mul::<D>(factor, &frame.rotate(&xp));
+                        for k in 0..frame.free() {
                             rb[k] -= ka[k];
                         }
-                        rb[D - 1] = 0.0;
-                        unrotate(&frame, &rb)
+                        frame.clear_given(&mut rb);
+                        frame.unrotate(&rb)
                     }
                 };
                 o.copy_from_slice(&value);

@@ -33,7 +33,7 @@
 use rayon::prelude::*;
 
 use super::bsr::{galerkin, invert, madd_kernel, mul_kernel, Bsr, DenseLu};
-use super::{chunked_sum, rotate, unrotate, Layout};
+use super::{chunked_sum, Layout};
 use crate::error::{Error, Result};
 use crate::geometry::{ldlt_mul, packed_len, packed_mul};
 use crate::springs::NodeBlocks;
@@ -368,12 +368,7 @@ fn fine_matrix<const D: usize>(blocks: &NodeBlocks, layout: &Layout) -> Bsr {
     let s = packed_len(D);
     let projector = |p: usize| -> [[f64; D]; D] {
         let id = std::array::from_fn(|r| std::array::from_fn(|c| f64::from(u8::from(r == c))));
-        match layout.frame::<D>(p) {
-            None => id,
-            Some(f) => std::array::from_fn(|r| {
-                std::array::from_fn(|c| id[r][c] - f[D - 1][r] * f[D - 1][c])
-            }),
-        }
+        layout.frame::<D>(p).map_or(id, |f| f.projector())
     };
     Bsr::from_rows(
         layout.order.len(),
@@ -388,7 +383,7 @@ fn fine_matrix<const D: usize>(blocks: &NodeBlocks, layout: &Layout) -> Bsr {
                 let unit: [f64; D] = std::array::from_fn(|k| f64::from(u8::from(k == c)));
                 match frame {
                     None => ldlt_mul::<D>(factor, &unit),
-                    Some(f) => unrotate(&f, &ldlt_mul::<D>(factor, &rotate(&f, &unit))),
+                    Some(f) => f.unrotate(&ldlt_mul::<D>(factor, &f.rotate(&unit))),
                 }
             });
             columns.push(p as u32);
@@ -461,11 +456,10 @@ fn rigid_modes<const D: usize>(layout: &Layout, coords: &[f64]) -> Vec<f64> {
             modes[5][1] = x[0];
         }
         if let Some(f) = layout.frame::<D>(p) {
-            let normal = f[D - 1];
             for mode in &mut modes {
-                let d: f64 = (0..D).map(|k| normal[k] * mode[k]).sum();
+                let given = f.given_part(mode);
                 for k in 0..D {
-                    mode[k] -= d * normal[k];
+                    mode[k] -= given[k];
                 }
             }
         }

@@ -21,7 +21,7 @@ use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers;
 use faer::sparse::{SparseColMat, Triplet};
 
-use super::{coupled, rotate, unrotate, Layout};
+use super::{coupled, Frame, Layout};
 use crate::error::{Error, Result};
 use crate::geometry::{ldlt_mul, packed_index, packed_len, packed_mul, point};
 use crate::springs::NodeBlocks;
@@ -37,10 +37,8 @@ pub(crate) struct Lu {
 }
 
 /// The frame of position `p`, the identity for a free node.
-fn frame<const D: usize>(layout: &Layout, p: usize) -> [[f64; D]; D] {
-    layout.frame::<D>(p).unwrap_or_else(|| {
-        std::array::from_fn(|r| std::array::from_fn(|c| f64::from(u8::from(r == c))))
-    })
+fn frame<const D: usize>(layout: &Layout, p: usize) -> Frame<D> {
+    layout.frame::<D>(p).unwrap_or_else(Frame::identity)
 }
 
 impl Lu {
@@ -62,12 +60,7 @@ impl Lu {
         let mut start = Vec::with_capacity(m + 1);
         start.push(0);
         for p in 0..m {
-            let rows = if layout.frame::<D>(p).is_some() {
-                D - 1
-            } else {
-                D
-            };
-            start.push(start[p] + rows);
+            start.push(start[p] + frame::<D>(layout, p).free());
         }
         let n = start[m];
         let mut entries = Vec::new();
@@ -90,9 +83,9 @@ impl Lu {
                 let b = &blocks.blocks[s * e..s * (e + 1)];
                 // (R_p B R_qᵀ)_ab = r_p,a · B r_q,b
                 let cols = start[q + 1] - start[q];
-                for (c, rqc) in rq.iter().enumerate().take(cols) {
+                for (c, rqc) in rq.rows().iter().enumerate().take(cols) {
                     let bc = packed_mul::<D>(b, rqc);
-                    for (a, rpa) in rp.iter().enumerate().take(rows) {
+                    for (a, rpa) in rp.rows().iter().enumerate().take(rows) {
                         let v: f64 = (0..D).map(|l| rpa[l] * bc[l]).sum();
                         entries.push(Triplet::new(start[p] + a, start[q] + c, -v));
                     }
@@ -140,8 +133,8 @@ impl Lu {
         let mut rhs = vec![0.0; self.start[m]];
         for p in 0..m {
             let r = frame::<D>(layout, p);
-            let b = rotate(&r, &coupled::<D>(blocks, constant, p, work));
-            let a0 = rotate(&r, &point::<D>(work, p));
+            let b = r.rotate(&coupled::<D>(blocks, constant, p, work));
+            let a0 = r.rotate(&point::<D>(work, p));
             let ka = packed_mul::<D>(&self.diag[s * p..], &a0);
             for k in 0..self.start[p + 1] - self.start[p] {
                 rhs[self.start[p] + k] = b[k] - ka[k];
@@ -165,7 +158,7 @@ impl Lu {
             let mut delta = [0.0; D];
             let rows = self.start[p + 1] - self.start[p];
             delta[..rows].copy_from_slice(&rhs[self.start[p]..self.start[p + 1]]);
-            let step = unrotate(&r, &delta);
+            let step = r.unrotate(&delta);
             for k in 0..D {
                 work[D * p + k] += step[k];
             }

@@ -386,9 +386,7 @@ fn check<const D: usize>(built: &mut super::Built, displacement: &[f64]) -> veri
                 let e: [f64; D] = std::array::from_fn(|k| new[k] - old[k]);
                 let r = match layout.frame::<D>(p) {
                     None => ldlt_mul::<D>(&factor, &e),
-                    Some(frame) => {
-                        super::unrotate(&frame, &ldlt_mul::<D>(&factor, &super::rotate(&frame, &e)))
-                    }
+                    Some(frame) => frame.unrotate(&ldlt_mul::<D>(&factor, &frame.rotate(&e))),
                 };
                 (e, r.iter().map(|v| v * v).sum())
             })

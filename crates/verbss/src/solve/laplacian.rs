@@ -7,7 +7,7 @@
 //!
 //! One scalar weight per coupling instead of a `D×D` block.
 
-use super::{rotate, unrotate, Layout};
+use super::Layout;
 use crate::error::{Error, Result};
 use crate::geometry::{norm, packed_index, packed_len, point, sub};
 use crate::springs::{Connectivity, NodeBlocks};
@@ -128,9 +128,9 @@ impl Weights {
         let (delta, step) = match layout.frame::<D>(p) {
             None => (delta, delta),
             Some(frame) => {
-                let mut a = rotate(&frame, &delta);
-                a[D - 1] = 0.0;
-                (a, unrotate(&frame, &a))
+                let mut a = frame.rotate(&delta);
+                frame.clear_given(&mut a);
+                (a, frame.unrotate(&a))
             }
         };
         (
@@ -155,8 +155,10 @@ impl Weights {
         let mut diag = Vec::with_capacity(s * self.sums.len());
         for (p, &sum) in self.sums.iter().enumerate() {
             let mut k = identity(sum);
-            if layout.frame::<D>(p).is_some() {
-                k[packed_index(D - 1, D - 1)] = 1.0;
+            if let Some(frame) = layout.frame::<D>(p) {
+                for d in frame.free()..D {
+                    k[packed_index(d, d)] = 1.0;
+                }
             }
             diag.extend(k);
         }

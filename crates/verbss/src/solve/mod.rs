@@ -32,11 +32,13 @@
 //! # Sliding nodes
 //!
 //! A node sliding in a plane of unit normal `n` keeps the normal component
-//! `d = n·u` it was given and has the tangential components as unknowns: with
-//! `T` the tangent basis (`D×(D−1)`, orthonormal, [`normal_frame`]) and
-//! `u = d n + T a`, its equation is the projected one,
-//! `Tᵀ K_ii T a = Tᵀ (Σ_j B_ij u_j − d K_ii n)`. The sweeps solve it per node,
-//! the global solvers use the same tangent unknowns `a`.
+//! `d = n·u` it was given and has the tangential components as unknowns; a
+//! node sliding along a line ([`NodeRole::Line`], where two slide planes
+//! meet) keeps both components across the line and has the one along it as
+//! its unknown. With `T` the basis of the directions it moves in (`D×(D−1)`
+//! or `D×1`, orthonormal, [`Frame`]), `f` the given part and `u = f + T a`,
+//! its equation is the projected one, `Tᵀ K_ii T a = Tᵀ (Σ_j B_ij u_j − K_ii f)`.
+//! The sweeps solve it per node, the global solvers use the same unknowns `a`.
 //!
 //! # Order and parallelism
 //!
@@ -59,7 +61,8 @@
 //! # Stopping (paper eq. 8)
 //!
 //! After each sweep, the eq.-8 value is the mean over all unknown components
-//! (`D` per free node, `D − 1` per sliding node, in the tangent basis) of the
+//! (`D` per free node, `D − 1` per node sliding in a plane and 1 per node
+//! sliding along a line, in its frame) of the
 //! absolute change made *by that sweep*. The sweeps stop when it falls below
 //! `tolerance × max |prescribed displacement|` (the largest prescribed
 //! displacement vector, or normal component, of the step; `tolerance` itself
@@ -73,6 +76,7 @@ mod amg;
 mod bsr;
 mod direct;
 mod escalate;
+mod frame;
 mod gmres;
 mod laplacian;
 mod params;
@@ -84,6 +88,7 @@ mod sweep;
 mod verbss;
 mod verify;
 pub use self::escalate::{DIRECT_NODES_2D, DIRECT_NODES_3D};
+pub use self::frame::{unit_directions, Frame, Frames};
 pub use self::params::{
     clear_prescribed, default_roles, Accel, Method, NodeRole, SolveInfo, SolveParams, Solver,
     Stage, AUTO_AMG_NODES_2D, AUTO_AMG_NODES_3D, ERROR_FRACTION,
@@ -94,9 +99,7 @@ pub use self::verbss::relax;
 pub(crate) use sweep::{chunked_dot, chunked_sum, sweep};
 
 use crate::error::{Error, Result};
-use crate::geometry::{
-    ldlt_factor, norm, normal_frame, packed_index, packed_len, packed_mul, point,
-};
+use crate::geometry::{ldlt_factor, packed_len, packed_mul, point};
 use crate::mesh::Mesh;
 use crate::springs::{self, Connectivity, NodeBlocks, Springs};
 use crate::topology;
@@ -145,11 +148,11 @@ struct Built {
 /// The system swept or factored.
 enum System {
     /// Spring blocks. `diag` holds per position the (projected, for sliding
-    /// nodes) `K_ii`, as its LDLᵀ factor when `factored`; `kn` holds `K_ii n`
-    /// per sliding node.
+    /// nodes) `K_ii`, as its LDLᵀ factor when `factored`; `kept` holds the
+    /// unprojected `K_ii` per sliding node ([`Frames::project_diagonal`]).
     Blocks {
         blocks: NodeBlocks,
-        kn: Vec<f64>,
+        kept: Vec<f64>,
         factored: bool,
     },
     /// Scalar Laplacian weights.
@@ -179,41 +182,23 @@ pub(crate) struct Layout {
     colour_starts: Vec<usize>,
     /// Colour `c`'s chunk sums are `partials[chunk_starts[c]..chunk_starts[c + 1]]`.
     chunk_starts: Vec<usize>,
-    /// Per position: index of the sliding frame, `u32::MAX` for a free node.
-    slide_of: Vec<u32>,
-    /// `D×D` per sliding node: rows `t₁ … t_{D−1}, n` ([`normal_frame`]).
-    frames: Vec<f64>,
-    /// Unknown components: `D` per free node, `D − 1` per sliding node.
+    /// The frames of the sliding positions.
+    pub(crate) frames: Frames,
+    /// Unknown components ([`Frames::unknowns`]).
     pub(crate) dofs: usize,
 }
 
 impl Layout {
     /// The frame of position `p`, if it slides.
     #[inline(always)]
-    pub(crate) fn frame<const D: usize>(&self, p: usize) -> Option<[[f64; D]; D]> {
-        let s = self.slide_of[p];
-        (s != u32::MAX).then(|| {
-            let f = &self.frames[D * D * s as usize..D * D * (s as usize + 1)];
-            std::array::from_fn(|r| std::array::from_fn(|c| f[D * r + c]))
-        })
+    pub(crate) fn frame<const D: usize>(&self, p: usize) -> Option<Frame<D>> {
+        self.frames.get::<D>(p)
     }
 
     /// Number of unknown nodes.
     fn len(&self) -> usize {
         self.order.len()
     }
-}
-
-/// `R v` for a frame with rows `R`.
-#[inline(always)]
-pub(crate) fn rotate<const D: usize>(r: &[[f64; D]; D], v: &[f64; D]) -> [f64; D] {
-    std::array::from_fn(|k| (0..D).map(|l| r[k][l] * v[l]).sum())
-}
-
-/// `Rᵀ a` for a frame with rows `R`.
-#[inline(always)]
-pub(crate) fn unrotate<const D: usize>(r: &[[f64; D]; D], a: &[f64; D]) -> [f64; D] {
-    std::array::from_fn(|l| (0..D).map(|k| r[k][l] * a[k]).sum())
 }
 
 /// `c_p + Σ_j B_pj u_j` over the unknown neighbours of position `p`
@@ -265,31 +250,7 @@ impl Engine {
                 roles.len()
             )));
         }
-        let mut unit = Vec::with_capacity(normals.len());
-        for (k, v) in normals.iter().enumerate() {
-            let len = norm(&[v[0], v[1], if dim == 3 { v[2] } else { 0.0 }]);
-            if !(len > 0.0 && len.is_finite()) {
-                return Err(Error::InvalidSetting(format!(
-                    "sliding normal {k} is zero or not finite"
-                )));
-            }
-            let mut u = [v[0] / len, v[1] / len, 0.0];
-            if dim == 3 {
-                u[2] = v[2] / len;
-            }
-            unit.push(u);
-        }
-        for (i, role) in roles.iter().enumerate() {
-            if let NodeRole::Slide(k) = role {
-                if *k >= normals.len() {
-                    return Err(Error::InvalidSetting(format!(
-                        "node {} slides on normal {k} but {} normals were given",
-                        mesh.node_tags[i],
-                        normals.len()
-                    )));
-                }
-            }
-        }
+        let unit = unit_directions(dim, roles, normals, |i| mesh.node_tags[i])?;
         let conn = Connectivity::new(mesh);
         let accel = accel::AccelState::new(&conn.cells);
         let fixed: Vec<usize> = (0..n).filter(|&i| roles[i] == NodeRole::Fixed).collect();
@@ -336,11 +297,10 @@ impl Engine {
         let z = std::mem::size_of::<usize>();
         let l = &b.layout;
         let common = (b.scratch.constant.len() + b.scratch.work.len() + b.scratch.next.len()) * f
-            + l.slide_of.len() * u
-            + l.frames.len() * f;
+            + l.frames.bytes();
         let system = match &b.system {
-            System::Blocks { blocks, kn, .. } => {
-                (blocks.diag.len() + blocks.blocks.len() + kn.len()) * f
+            System::Blocks { blocks, kept, .. } => {
+                (blocks.diag.len() + blocks.blocks.len() + kept.len()) * f
                     + blocks.neighbours.len() * u
                     + blocks.offsets.len() * z
             }
@@ -438,10 +398,10 @@ impl Engine {
                 let mut blocks =
                     springs::assemble(&self.conn, coords, &layout.order, &layout.position, kind)?;
                 let factored = method != Method::BallVertex;
-                let kn = self.prepare_diag::<D>(&mut blocks, &layout, factored)?;
+                let kept = self.prepare_diag::<D>(&mut blocks, &layout, factored)?;
                 System::Blocks {
                     blocks,
-                    kn,
+                    kept,
                     factored,
                 }
             }
@@ -465,9 +425,10 @@ impl Engine {
         })
     }
 
-    /// Projects the diagonal blocks of sliding nodes onto their tangent frame
-    /// (padded: `[[Tᵀ K T, 0], [0, 1]]`) and, when `factored`, replaces every
-    /// diagonal block by its LDLᵀ factor. Returns `K_ii n` per sliding node.
+    /// Projects the diagonal blocks of sliding nodes on their frame
+    /// ([`Frames::project_diagonal`]) and, when `factored`, replaces every
+    /// diagonal block by its LDLᵀ factor. Returns the unprojected blocks of
+    /// the sliding nodes.
     fn prepare_diag<const D: usize>(
         &self,
         blocks: &mut NodeBlocks,
@@ -475,26 +436,10 @@ impl Engine {
         factored: bool,
     ) -> Result<Vec<f64>> {
         let s = packed_len(D);
-        let mut kn = vec![0.0; layout.frames.len() / D];
-        for p in 0..layout.len() {
-            let diag = &mut blocks.diag[s * p..s * (p + 1)];
-            if let Some(r) = layout.frame::<D>(p) {
-                let k = diag.to_vec();
-                let slot = layout.slide_of[p] as usize;
-                let n = r[D - 1];
-                kn[D * slot..D * (slot + 1)].copy_from_slice(&packed_mul::<D>(&k, &n));
-                for a in 0..D {
-                    for b in 0..=a {
-                        diag[packed_index(a, b)] = if a == D - 1 {
-                            f64::from(u8::from(b == D - 1))
-                        } else {
-                            let kb = packed_mul::<D>(&k, &r[b]);
-                            (0..D).map(|c| r[a][c] * kb[c]).sum()
-                        };
-                    }
-                }
-            }
-            if factored {
+        let kept = layout.frames.project_diagonal::<D>(&mut blocks.diag);
+        if factored {
+            for p in 0..layout.len() {
+                let diag = &mut blocks.diag[s * p..s * (p + 1)];
                 let a = diag.to_vec();
                 if !ldlt_factor::<D>(&a, diag) {
                     return Err(Error::InvalidMesh(format!(
@@ -505,17 +450,18 @@ impl Engine {
                 }
             }
         }
-        Ok(kn)
+        Ok(kept)
     }
 
     /// The seeds of the breadth-first order: the prescribed nodes with a
     /// nonzero prescribed displacement (all prescribed nodes when none moves).
     fn moving<const D: usize>(&self, displacement: &[f64]) -> Vec<usize> {
         let n = self.roles.len();
-        let moving = |i: usize| match self.roles[i] {
-            NodeRole::Free => false,
-            NodeRole::Fixed => point::<D>(displacement, i).iter().any(|&v| v != 0.0),
-            NodeRole::Slide(k) => self.normal_component::<D>(displacement, i, k) != 0.0,
+        let moving = |i: usize| {
+            self.roles[i]
+                .prescribed::<D>(&self.normals, &point::<D>(displacement, i))
+                .iter()
+                .any(|&v| v != 0.0)
         };
         let seeds: Vec<usize> = (0..n).filter(|&i| moving(i)).collect();
         if seeds.is_empty() {
@@ -552,33 +498,18 @@ impl Engine {
             chunk_starts[c + 1] = chunk_starts[c] + len.div_ceil(CHUNK);
         }
         let mut position = vec![u32::MAX; n];
-        let mut slide_of = vec![u32::MAX; order.len()];
-        let mut frames = Vec::new();
-        let mut dofs = 0;
         for (p, &i) in order.iter().enumerate() {
             position[i] = p as u32;
-            dofs += D;
-            if let NodeRole::Slide(k) = self.roles[i] {
-                let nrm: [f64; D] = std::array::from_fn(|c| self.normals[k][c]);
-                slide_of[p] = (frames.len() / (D * D)) as u32;
-                frames.extend(normal_frame(&nrm).iter().flatten());
-                dofs -= 1;
-            }
         }
+        let frames = Frames::new::<D>(order.iter().map(|&i| self.roles[i]), &self.normals);
+        let dofs = frames.unknowns::<D>();
         Layout {
             order,
             position,
             colour_starts,
             chunk_starts,
-            slide_of,
             frames,
             dofs,
         }
-    }
-
-    /// `n_k · u_i`.
-    fn normal_component<const D: usize>(&self, displacement: &[f64], i: usize, k: usize) -> f64 {
-        let u = point::<D>(displacement, i);
-        (0..D).map(|c| self.normals[k][c] * u[c]).sum()
     }
 }

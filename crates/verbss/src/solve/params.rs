@@ -1,13 +1,13 @@
 //! The settings of one solve and what it reports: node roles, methods,
 //! solvers, the multigrid choice, [`SolveParams`] and [`SolveInfo`].
 
+use super::frame::Frame;
 use crate::error::{Error, Result};
-use crate::geometry::keep_in_plane;
 use crate::mesh::Mesh;
 use crate::topology;
 
 /// What a node's displacement is.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum NodeRole {
     /// An unknown: moved by the springs.
     Free,
@@ -16,6 +16,48 @@ pub enum NodeRole {
     /// Slides within a plane with this unit normal (index into [`crate::solve::Engine::new`]'s `normals`):
     /// the normal component of the displacement is prescribed, the tangential ones are unknowns.
     Slide(usize),
+    /// Slides along a line with this unit direction (index into the same
+    /// `normals`), as where two slide planes meet: the component along the
+    /// line is the unknown, the two across it are prescribed.
+    Line(usize),
+}
+
+impl NodeRole {
+    /// The prescribed part of the displacement `u` of a node of this role:
+    /// none of it for a free node, all of it for a fixed one, and for a
+    /// sliding one its components along the normals of its plane or line
+    /// (`directions`, unit: [`Frame::given_part`]).
+    pub fn prescribed<const D: usize>(self, directions: &[[f64; 3]], u: &[f64; D]) -> [f64; D] {
+        match self {
+            NodeRole::Free => [0.0; D],
+            NodeRole::Fixed => *u,
+            NodeRole::Slide(_) | NodeRole::Line(_) => {
+                Frame::<D>::of_role(self, directions).map_or(*u, |f| f.given_part(u))
+            }
+        }
+    }
+
+    /// [`NodeRole::prescribed`] for `u` of `u.len()` (2 or 3) components.
+    pub fn prescribed_dyn(self, directions: &[[f64; 3]], u: &[f64]) -> Vec<f64> {
+        if u.len() == 2 {
+            self.prescribed::<2>(directions, &[u[0], u[1]]).to_vec()
+        } else {
+            self.prescribed::<3>(directions, &[u[0], u[1], u[2]])
+                .to_vec()
+        }
+    }
+
+    /// Moves `x` back onto the plane or line through `base` that a sliding
+    /// node keeps to (`x ← x − given part of (x − base)`); other roles leave
+    /// `x` alone.
+    pub fn keep_on(self, directions: &[[f64; 3]], x: &mut [f64], base: &[f64]) {
+        if let NodeRole::Slide(_) | NodeRole::Line(_) = self {
+            let off: Vec<f64> = x.iter().zip(base).map(|(a, b)| a - b).collect();
+            for (xd, g) in x.iter_mut().zip(self.prescribed_dyn(directions, &off)) {
+                *xd -= g;
+            }
+        }
+    }
 }
 
 /// Which system to build.
@@ -252,16 +294,15 @@ pub fn default_roles(mesh: &Mesh) -> Vec<NodeRole> {
         .collect()
 }
 
-/// Clears the prescribed parts of the displacement `u` (`dim` per node):
-/// fixed nodes whole, sliding nodes their component along their plane's
-/// normal (`normals`, unit) — what is left of a guess for the unknowns.
+/// Clears the prescribed parts ([`NodeRole::prescribed`]) of the
+/// displacement `u` (`dim` per node; `normals` unit) — what is left of a
+/// guess for the unknowns.
 pub fn clear_prescribed(dim: usize, roles: &[NodeRole], normals: &[[f64; 3]], u: &mut [f64]) {
     for (i, role) in roles.iter().enumerate() {
         let ui = &mut u[dim * i..dim * (i + 1)];
-        match *role {
-            NodeRole::Free => {}
-            NodeRole::Fixed => ui.fill(0.0),
-            NodeRole::Slide(k) => keep_in_plane(ui, &[0.0; 3], &normals[k]),
+        let given = role.prescribed_dyn(normals, ui);
+        for (v, g) in ui.iter_mut().zip(given) {
+            *v -= g;
         }
     }
 }

@@ -20,18 +20,8 @@ pub(super) fn prescribed_scale(
 ) -> f64 {
     let mut scale: f64 = 0.0;
     for (i, role) in roles.iter().enumerate() {
-        let ui = &u[dim * i..dim * (i + 1)];
-        let size = match role {
-            NodeRole::Free => continue,
-            NodeRole::Fixed => ui.iter().map(|v| v * v).sum::<f64>().sqrt(),
-            NodeRole::Slide(k) => ui
-                .iter()
-                .zip(&normals[*k])
-                .map(|(a, b)| a * b)
-                .sum::<f64>()
-                .abs(),
-        };
-        scale = scale.max(size);
+        let given = role.prescribed_dyn(normals, &u[dim * i..dim * (i + 1)]);
+        scale = scale.max(given.iter().map(|v| v * v).sum::<f64>().sqrt());
     }
     scale
 }
@@ -63,8 +53,8 @@ pub(super) fn run<const D: usize>(
     } = scratch;
     gather::<D>(layout, displacement, work);
     match system {
-        System::Blocks { blocks, kn, .. } => {
-            block_constants::<D>(blocks, kn, layout, displacement, constant)
+        System::Blocks { blocks, kept, .. } => {
+            block_constants::<D>(blocks, kept, layout, displacement, constant)
         }
         System::Laplacian(w) => w.constants::<D>(layout, displacement, constant),
     }
@@ -180,22 +170,21 @@ pub(super) fn gather<const D: usize>(layout: &Layout, displacement: &[f64], work
     }
 }
 
-/// `c_p = Σ_{j prescribed} B_pj u_j`, minus `d K_pp n` for a sliding node.
+/// `c_p = Σ_{j prescribed} B_pj u_j`, minus `K_pp f` for a sliding node
+/// with given part `f` (`kept`: [`super::Frames::project_diagonal`]).
 pub(super) fn block_constants<const D: usize>(
     blocks: &NodeBlocks,
-    kn: &[f64],
+    kept: &[f64],
     layout: &Layout,
     displacement: &[f64],
     constant: &mut [f64],
 ) {
     for p in 0..layout.len() {
         let mut c = blocks.prescribed_pull::<D>(p, displacement);
-        if let Some(r) = layout.frame::<D>(p) {
-            let slot = layout.slide_of[p] as usize;
-            let u = point::<D>(displacement, layout.order[p]);
-            let d: f64 = (0..D).map(|k| r[D - 1][k] * u[k]).sum();
+        let u = point::<D>(displacement, layout.order[p]);
+        if let Some(kf) = layout.frames.given_pull::<D>(kept, p, &u) {
             for k in 0..D {
-                c[k] -= d * kn[D * slot + k];
+                c[k] -= kf[k];
             }
         }
         constant[D * p..D * (p + 1)].copy_from_slice(&c);

@@ -9,9 +9,9 @@
 //! per node and the node's `D` rows are then relaxed in turn, each with the
 //! values just updated. This is exactly scalar SOR on the assembled global
 //! matrix in that order, without assembling it. Sliding nodes relax their
-//! `D − 1` tangent components of the projected block.
+//! free components (in their frame) of the projected block.
 
-use super::{coupled, rotate, unrotate, Layout};
+use super::{coupled, Layout};
 use crate::geometry::{packed_index, packed_len, point};
 use crate::springs::NodeBlocks;
 
@@ -46,8 +46,8 @@ pub(crate) fn update<const D: usize>(
             (delta, delta)
         }
         Some(frame) => {
-            let delta = relax(&rotate(&frame, &r), &rotate(&frame, &old), D - 1);
-            (delta, unrotate(&frame, &delta))
+            let delta = relax(&frame.rotate(&r), &frame.rotate(&old), frame.free());
+            (delta, frame.unrotate(&delta))
         }
     };
     (

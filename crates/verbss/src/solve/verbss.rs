@@ -5,7 +5,7 @@
 //! by node, `u_i ← ω K_ii⁻¹ (Σ_j B_ij u_j) + (1 − ω) u_i` with two
 //! triangular solves and a diagonal scaling per node (paper eq. 13).
 
-use super::{coupled, rotate, unrotate, Layout};
+use super::{coupled, Frame, Layout};
 use crate::geometry::{ldlt_solve, packed_len, point};
 use crate::springs::NodeBlocks;
 
@@ -31,15 +31,15 @@ pub(crate) fn update<const D: usize>(
 
 /// One node's update (paper eq. 13) from its LDLᵀ factor `factor`, its
 /// right-hand side `r = c_i + Σ_j B_ij u_j` ([`coupled`]) and its old value:
-/// `u_i ← old + ω (K_ii⁻¹ r − old)`, in the tangent frame `frame` (rows
-/// `t₁ … t_{D−1}, n`) for a sliding node, whose normal component stays.
+/// `u_i ← old + ω (K_ii⁻¹ r − old)`, in the frame `frame` of a sliding
+/// node, whose given components stay.
 /// Returns the new value and the sum of the absolute changes.
 #[inline(always)]
 pub fn relax<const D: usize>(
     factor: &[f64],
     r: &[f64; D],
     old: &[f64; D],
-    frame: Option<[[f64; D]; D]>,
+    frame: Option<Frame<D>>,
     omega: f64,
 ) -> ([f64; D], f64) {
     match frame {
@@ -52,18 +52,13 @@ pub fn relax<const D: usize>(
             )
         }
         Some(frame) => {
-            let mut b = rotate(&frame, r);
-            b[D - 1] = 0.0;
+            let mut b = frame.rotate(r);
+            frame.clear_given(&mut b);
             let x = ldlt_solve::<D>(factor, &b);
-            let a = rotate(&frame, old);
-            let delta: [f64; D] = std::array::from_fn(|k| {
-                if k < D - 1 {
-                    omega * (x[k] - a[k])
-                } else {
-                    0.0
-                }
-            });
-            let step = unrotate(&frame, &delta);
+            let a = frame.rotate(old);
+            let mut delta: [f64; D] = std::array::from_fn(|k| omega * (x[k] - a[k]));
+            frame.clear_given(&mut delta);
+            let step = frame.unrotate(&delta);
             (
                 std::array::from_fn(|k| old[k] + step[k]),
                 delta.iter().map(|v| v.abs()).sum(),
