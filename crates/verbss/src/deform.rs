@@ -36,10 +36,9 @@ use crate::mesh::Mesh;
 use crate::motion::{Attachment, Clock, Motion};
 use crate::quality::{self, Inversion, Summary};
 use crate::robust;
-use crate::solve::{
-    clear_prescribed, Engine, NodeRole, SolveInfo, SolverSetup, SpringSolver, Stage,
-};
+use crate::solve::{Engine, NodeRole, SolveInfo, SolverSetup, SpringSolver, Stage};
 
+mod attempt;
 mod blend;
 mod harmonic;
 mod roles;
@@ -47,6 +46,7 @@ mod settings;
 #[cfg(test)]
 mod tests;
 
+use self::attempt::Attempt;
 use self::blend::Blend;
 use self::roles::{duplicate_nodes, plan_roles};
 pub use self::settings::{Predictor, Preset, Reference, Settings};
@@ -152,6 +152,8 @@ pub struct Deformer<S = Engine> {
     layer_thickness: Vec<f64>,
     /// The blended rigid motion, when [`crate::robust::Robust::blend`] is on.
     blend: Option<Blend>,
+    /// The input mesh's minimum quality.
+    input_quality: f64,
     orientation: Vec<i8>,
     /// The last solution per unit step fraction (increment, or the total
     /// displacement from the start with the fixed and anchored references):
@@ -243,6 +245,7 @@ impl<S: SpringSolver> Deformer<S> {
         report.converged = true;
         report.seconds = start.elapsed().as_secs_f64();
         Ok(Deformer {
+            input_quality: report.min_quality,
             guess: vec![0.0; mesh.coords.len()],
             earlier: None,
             guess_is_solution: settings.reference != Reference::Updated,
@@ -353,6 +356,10 @@ impl<S: SpringSolver> Deformer<S> {
             Reference::Fixed | Reference::Anchored => 0,
         };
         let floor = 0.5f64.powi(substeps as i32);
+        let mut reference_quality = match self.settings.reference {
+            Reference::Updated => self.current.report.min_quality,
+            Reference::Fixed | Reference::Anchored => self.input_quality,
+        };
         let from = self.current.coords.clone();
         let mut coords = from.clone();
         let (mut done, mut h) = (0.0, 1.0);
@@ -375,26 +382,7 @@ impl<S: SpringSolver> Deformer<S> {
                     (*i, q)
                 })
                 .collect();
-            let start_at = self.blended(&coords, &at);
-            let mut attempt = self.attempt(&start_at, &at, end - done, false)?;
-            let escalate = self.settings.solve.escalate;
-            if escalate
-                && attempt.info.converged
-                && !attempt.inversions.is_empty()
-                && !attempt.info.stages.contains(&Stage::Direct)
-            {
-                // An inversion is never the solver's fault: the step solved
-                // exactly is what the guard judges. Where no round-off solve
-                // converges, the accepted solve (error below the bound)
-                // stays the one judged.
-                let exact = self.attempt(&start_at, &at, end - done, true)?;
-                if exact.info.converged {
-                    report.add(&attempt.info);
-                    attempt = exact;
-                } else {
-                    report.add(&exact.info);
-                }
-            }
+            let attempt = self.chosen(&coords, &at, end - done, reference_quality, &mut report)?;
             let Attempt {
                 coords: trial,
                 u,
@@ -443,6 +431,9 @@ impl<S: SpringSolver> Deformer<S> {
                 self.earlier = Some(kept);
             }
             self.guess_is_solution = true;
+            if self.settings.reference == Reference::Updated {
+                reference_quality = quality.iter().copied().fold(f64::INFINITY, f64::min);
+            }
             coords = trial;
             done = end;
             if done >= 1.0 {
@@ -494,105 +485,6 @@ impl<S: SpringSolver> Deformer<S> {
             targets.push((node, p));
         }
         Ok(targets)
-    }
-
-    /// Where a (sub-)step from `coords` towards `targets` starts: the
-    /// reference configuration (`coords`, or the input mesh with the fixed
-    /// and anchored references) moved by the blended rigid motion when it is on
-    /// (docs/method.md, "Blended rigid motion").
-    fn blended(&mut self, coords: &[f64], targets: &[(usize, Vec<f64>)]) -> Vec<f64> {
-        let reference = match self.settings.reference {
-            Reference::Updated => coords,
-            Reference::Fixed | Reference::Anchored => &self.mesh.coords,
-        };
-        let Some(blend) = &mut self.blend else {
-            return reference.to_vec();
-        };
-        let mut moved = blend.apply(reference, targets);
-        blend::keep_in_planes(
-            self.mesh.dim,
-            &self.roles,
-            &self.normals,
-            reference,
-            &mut moved,
-        );
-        moved
-    }
-
-    /// Whether `start` ([`Deformer::blended`]) already puts every
-    /// prescribed node at its target, to round-off (10⁻¹² of the mesh's
-    /// size): the springs have nothing to solve (a rigid body under the
-    /// blend, or a boundary back at the input mesh with a total unknown,
-    /// whose solution is then exactly `u = 0`).
-    fn nothing_left(&self, start: &[f64], targets: &[(usize, Vec<f64>)]) -> bool {
-        let dim = self.mesh.dim;
-        let left = targets
-            .iter()
-            .flat_map(|(node, p)| (0..dim).map(move |d| (p[d] - start[dim * node + d]).abs()))
-            .fold(0.0, f64::max);
-        (self.blend.is_some() || self.settings.reference != Reference::Updated)
-            && left <= self.round_off
-    }
-
-    /// One solve from `start` ([`Deformer::blended`]) with the prescribed
-    /// nodes at `targets`, an increment of `fraction` of a step; to
-    /// round-off when `exact` ([`SpringSolver::solve_exact`]). The springs are
-    /// built on `start` (on the input mesh with the fixed reference) and
-    /// solve for the move from `start`; where `start` already puts every
-    /// prescribed node at its target (a rigid body under the blend) that
-    /// move is zero and nothing is solved.
-    fn attempt(
-        &mut self,
-        start: &[f64],
-        targets: &[(usize, Vec<f64>)],
-        fraction: f64,
-        exact: bool,
-    ) -> Result<Attempt> {
-        let dim = self.mesh.dim;
-        let springs_at = match self.settings.reference {
-            Reference::Updated | Reference::Anchored => start,
-            Reference::Fixed => &self.mesh.coords,
-        };
-        let mut u: Vec<f64> = match &self.earlier {
-            Some(earlier) => self
-                .guess
-                .iter()
-                .zip(earlier)
-                .map(|(a, b)| (2.0 * a - b) * fraction)
-                .collect(),
-            None => self.guess.iter().map(|v| v * fraction).collect(),
-        };
-        clear_prescribed(dim, &self.roles, &self.normals, &mut u);
-        for (node, p) in targets {
-            for d in 0..dim {
-                u[dim * node + d] = p[d] - start[dim * node + d];
-            }
-        }
-        let info = if self.nothing_left(start, targets) {
-            u.fill(0.0);
-            SolveInfo {
-                converged: true,
-                ..SolveInfo::default()
-            }
-        } else if exact {
-            self.solver
-                .solve_exact(springs_at, &mut u, &self.settings.solve)?
-        } else {
-            self.solver
-                .solve(springs_at, &mut u, &self.settings.solve)?
-        };
-        let mut next: Vec<f64> = start.iter().zip(&u).map(|(x, d)| x + d).collect();
-        for (node, p) in targets {
-            next[dim * node..dim * (node + 1)].copy_from_slice(p);
-        }
-        let (quality, inversions) = check(&self.mesh, &next, &self.orientation);
-        Ok(Attempt {
-            coords: next,
-            u,
-            info,
-            quality,
-            inversions,
-        })
     }
 
     /// The configuration `coords` with its cells' `quality`, for the step of
@@ -650,20 +542,6 @@ impl<S: SpringSolver> Deformer<S> {
     pub fn advance(&mut self) -> Result<StepReport> {
         self.step(self.current_step() + 1)
     }
-}
-
-/// What one solve of a (sub-)step gave.
-struct Attempt {
-    /// The new coordinates.
-    coords: Vec<f64>,
-    /// The solved displacement (increment, or total for the fixed reference).
-    u: Vec<f64>,
-    /// The solver's account.
-    info: SolveInfo,
-    /// The quality of each cell.
-    quality: Vec<f64>,
-    /// The inverted cells.
-    inversions: Vec<Inversion>,
 }
 
 /// `x − X`.

@@ -534,3 +534,55 @@ fn a_group_that_is_not_planar_asks_for_a_normal_or_a_split() {
     ];
     assert!(Deformer::new(&mesh, &attachments, Settings::new(1)).is_ok());
 }
+
+#[test]
+fn nodes_where_two_slide_planes_meet_slide_along_the_line_and_where_three_meet_stay() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/meshes/symmetry-slice.msh");
+    let mesh = crate::io::read(&path).unwrap();
+    let slide = |groups: &[&str]| {
+        let attachments = [
+            attach(
+                &["body"],
+                Motion::Translation {
+                    displacement: [1.0, 0.0, 0.0],
+                },
+            ),
+            attach(groups, Motion::Slide { normal: None }),
+        ];
+        Deformer::new(&mesh, &attachments, Settings::new(1)).unwrap()
+    };
+    let on = |name: &str, i: usize| mesh.group(name).unwrap().nodes().contains(&i);
+    let at = |x: f64, y: f64, z: f64| {
+        (0..mesh.node_count())
+            .find(|&i| mesh.point(i) == [x, y, z])
+            .unwrap()
+    };
+    // Two planes: the x axis between the inlet and the body is a line.
+    let d = slide(&["symmetry_y", "symmetry_z"]);
+    let line: Vec<usize> = (0..mesh.node_count())
+        .filter(|&i| on("symmetry_y", i) && on("symmetry_z", i))
+        .filter(|&i| !on("inlet", i) && !on("outlet", i) && !on("body", i))
+        .collect();
+    assert!(!line.is_empty());
+    for &i in &line {
+        let NodeRole::Line(k) = d.roles()[i] else {
+            panic!("node {i} is {:?}", d.roles()[i]);
+        };
+        let t = d.normals()[k];
+        assert!((t[0].abs() - 1.0).abs() < 1e-12 && t[1] == 0.0 && t[2] == 0.0);
+    }
+    assert_eq!(d.roles()[at(0.0, 0.0, 0.0)], NodeRole::Fixed);
+    // A plane that meets a fixed group: fixed there.
+    assert_eq!(d.roles()[at(0.0, 6.0, 0.0)], NodeRole::Fixed);
+    // A third plane, the inlet: its corner with both is fixed, its edge
+    // with one of them is a line along the other's in-plane axis.
+    let d = slide(&["symmetry_y", "symmetry_z", "inlet"]);
+    assert_eq!(d.roles()[at(0.0, 0.0, 0.0)], NodeRole::Fixed);
+    let edge = (0..mesh.node_count())
+        .find(|&i| on("inlet", i) && on("symmetry_y", i) && !on("symmetry_z", i) && !on("top", i))
+        .unwrap();
+    let NodeRole::Line(k) = d.roles()[edge] else {
+        panic!("node {edge} is {:?}", d.roles()[edge]);
+    };
+    assert!((d.normals()[k][2].abs() - 1.0).abs() < 1e-12);
+}

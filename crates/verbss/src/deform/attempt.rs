@@ -1,0 +1,211 @@
+//! One solve of a (sub-)step and the choice of where it starts.
+//!
+//! A (sub-)step starts from the reference configuration moved by the
+//! blended rigid motion when the blend is on (docs/method.md, "Blended rigid
+//! motion"), and the springs solve what is left. The blend's weights are
+//! harmonic: next to a sharp convex corner of a body their gradient is
+//! singular, and on a mesh that is coarse there the blended start can crush
+//! the cells ahead of the corner that the springs alone keep valid. The
+//! near-wall treatment must never lose to the springs alone, so where the
+//! blended solve inverts a cell or leaves a minimum quality below
+//! [`QUALITY_DROP`] of the reference configuration's, the step is solved
+//! again from the reference itself and the better of the two is kept (no
+//! inversion first, then the higher minimum quality).
+
+use super::{blend, check, Deformer, Reference};
+use crate::error::Result;
+use crate::quality::Inversion;
+use crate::solve::{clear_prescribed, SolveInfo, SpringSolver, Stage};
+
+/// A blended solve whose minimum quality falls below this fraction of the
+/// reference configuration's is compared with the solve without the blend.
+pub(super) const QUALITY_DROP: f64 = 0.5;
+
+impl<S: SpringSolver> Deformer<S> {
+    /// The solve of the (sub-)step from `coords` to `targets`, `fraction` of
+    /// a step, that the guard judges (see the module documentation);
+    /// `reference_quality` is the minimum quality of the reference
+    /// configuration. Every solve made is added to `report`'s account but
+    /// the one returned, which the caller adds.
+    pub(super) fn chosen(
+        &mut self,
+        coords: &[f64],
+        targets: &[(usize, Vec<f64>)],
+        fraction: f64,
+        reference_quality: f64,
+        report: &mut super::StepReport,
+    ) -> Result<Attempt> {
+        let start = self.blended(coords, targets);
+        let blended = self.judged(&start, targets, fraction, report)?;
+        let min = |a: &Attempt| a.quality.iter().copied().fold(f64::INFINITY, f64::min);
+        let weak =
+            !blended.inversions.is_empty() || min(&blended) < QUALITY_DROP * reference_quality;
+        if self.blend.is_none() || !weak {
+            return Ok(blended);
+        }
+        let plain_start = reference_of(self.settings.reference, coords, &self.mesh.coords).to_vec();
+        let plain = self.judged(&plain_start, targets, fraction, report)?;
+        let valid = |a: &Attempt| a.info.converged && a.inversions.is_empty();
+        let better = valid(&plain) && (!valid(&blended) || min(&plain) > min(&blended));
+        let (kept, dropped) = if better {
+            (plain, blended)
+        } else {
+            (blended, plain)
+        };
+        report.add(&dropped.info);
+        Ok(kept)
+    }
+
+    /// [`Deformer::attempt`] from `start`, and when it converged but
+    /// inverted a cell, solved again to round-off: an inversion is never the
+    /// solver's fault, so the step solved exactly is what the guard judges.
+    /// Where no round-off solve converges, the accepted solve (error below
+    /// the bound) stays the one judged.
+    fn judged(
+        &mut self,
+        start: &[f64],
+        targets: &[(usize, Vec<f64>)],
+        fraction: f64,
+        report: &mut super::StepReport,
+    ) -> Result<Attempt> {
+        let attempt = self.attempt(start, targets, fraction, false)?;
+        let exact_wanted = self.settings.solve.escalate
+            && attempt.info.converged
+            && !attempt.inversions.is_empty()
+            && !attempt.info.stages.contains(&Stage::Direct);
+        if !exact_wanted {
+            return Ok(attempt);
+        }
+        let exact = self.attempt(start, targets, fraction, true)?;
+        if exact.info.converged {
+            report.add(&attempt.info);
+            Ok(exact)
+        } else {
+            report.add(&exact.info);
+            Ok(attempt)
+        }
+    }
+
+    /// Where a (sub-)step from `coords` towards `targets` starts: the
+    /// reference configuration (`coords`, or the input mesh with the fixed
+    /// and anchored references) moved by the blended rigid motion when it is on
+    /// (docs/method.md, "Blended rigid motion").
+    fn blended(&mut self, coords: &[f64], targets: &[(usize, Vec<f64>)]) -> Vec<f64> {
+        let reference = reference_of(self.settings.reference, coords, &self.mesh.coords);
+        let Some(blend) = &mut self.blend else {
+            return reference.to_vec();
+        };
+        let mut moved = blend.apply(reference, targets);
+        blend::keep_in_planes(
+            self.mesh.dim,
+            &self.roles,
+            &self.normals,
+            reference,
+            &mut moved,
+        );
+        moved
+    }
+
+    /// Whether `start` ([`Deformer::blended`]) already puts every
+    /// prescribed node at its target, to round-off (10⁻¹² of the mesh's
+    /// size): the springs have nothing to solve (a rigid body under the
+    /// blend, or a boundary back at the input mesh with a total unknown,
+    /// whose solution is then exactly `u = 0`).
+    fn nothing_left(&self, start: &[f64], targets: &[(usize, Vec<f64>)]) -> bool {
+        let dim = self.mesh.dim;
+        let left = targets
+            .iter()
+            .flat_map(|(node, p)| (0..dim).map(move |d| (p[d] - start[dim * node + d]).abs()))
+            .fold(0.0, f64::max);
+        (self.blend.is_some() || self.settings.reference != Reference::Updated)
+            && left <= self.round_off
+    }
+
+    /// One solve from `start` ([`Deformer::blended`]) with the prescribed
+    /// nodes at `targets`, an increment of `fraction` of a step; to
+    /// round-off when `exact` ([`SpringSolver::solve_exact`]). The springs are
+    /// built on `start` (on the input mesh with the fixed reference) and
+    /// solve for the move from `start`; where `start` already puts every
+    /// prescribed node at its target (a rigid body under the blend) that
+    /// move is zero and nothing is solved.
+    fn attempt(
+        &mut self,
+        start: &[f64],
+        targets: &[(usize, Vec<f64>)],
+        fraction: f64,
+        exact: bool,
+    ) -> Result<Attempt> {
+        let dim = self.mesh.dim;
+        let springs_at = match self.settings.reference {
+            Reference::Updated | Reference::Anchored => start,
+            Reference::Fixed => &self.mesh.coords,
+        };
+        let mut u: Vec<f64> = match &self.earlier {
+            Some(earlier) => self
+                .guess
+                .iter()
+                .zip(earlier)
+                .map(|(a, b)| (2.0 * a - b) * fraction)
+                .collect(),
+            None => self.guess.iter().map(|v| v * fraction).collect(),
+        };
+        clear_prescribed(dim, &self.roles, &self.normals, &mut u);
+        for (node, p) in targets {
+            for d in 0..dim {
+                u[dim * node + d] = p[d] - start[dim * node + d];
+            }
+        }
+        let info = if self.nothing_left(start, targets) {
+            u.fill(0.0);
+            SolveInfo {
+                converged: true,
+                ..SolveInfo::default()
+            }
+        } else if exact {
+            self.solver
+                .solve_exact(springs_at, &mut u, &self.settings.solve)?
+        } else {
+            self.solver
+                .solve(springs_at, &mut u, &self.settings.solve)?
+        };
+        let mut next: Vec<f64> = start.iter().zip(&u).map(|(x, d)| x + d).collect();
+        for (node, p) in targets {
+            next[dim * node..dim * (node + 1)].copy_from_slice(p);
+        }
+        let (quality, inversions) = check(&self.mesh, &next, &self.orientation);
+        Ok(Attempt {
+            coords: next,
+            u,
+            info,
+            quality,
+            inversions,
+        })
+    }
+}
+
+/// What one solve of a (sub-)step gave.
+pub(super) struct Attempt {
+    /// The new coordinates.
+    pub(super) coords: Vec<f64>,
+    /// The solved displacement (increment, or total for the fixed reference).
+    pub(super) u: Vec<f64>,
+    /// The solver's account.
+    pub(super) info: SolveInfo,
+    /// The quality of each cell.
+    pub(super) quality: Vec<f64>,
+    /// The inverted cells.
+    pub(super) inversions: Vec<Inversion>,
+}
+
+/// The reference configuration of a (sub-)step from `coords`: `coords`, or
+/// the input mesh `input` with the fixed and anchored references.
+pub(super) fn reference_of<'a>(
+    reference: Reference,
+    coords: &'a [f64],
+    input: &'a [f64],
+) -> &'a [f64] {
+    match reference {
+        Reference::Updated => coords,
+        Reference::Fixed | Reference::Anchored => input,
+    }
+}
