@@ -139,6 +139,11 @@ fn same_as_single(
 fn check_pieces(dir: &Path, name: &str, np: usize, whole: &Mesh, moved: &Mesh, meshio: bool) {
     let pvtu = std::fs::read_to_string(dir.join(format!("{name}.pvtu"))).unwrap();
     let mut cell_seen = vec![0u32; whole.cell_count()];
+    // The pieces carry the input's tags (1..N for SU2, Gmsh's own for MSH).
+    let index = |tags: &[u64]| -> std::collections::HashMap<u64, usize> {
+        tags.iter().enumerate().map(|(i, &t)| (t, i)).collect()
+    };
+    let (node_of, cell_of) = (index(&whole.node_tags), index(&whole.cell_tags));
     for r in 0..np {
         let piece = format!("{name}_{r}.vtu");
         assert!(
@@ -146,12 +151,15 @@ fn check_pieces(dir: &Path, name: &str, np: usize, whole: &Mesh, moved: &Mesh, m
             "{pvtu}"
         );
         let data = io::vtu::read(&dir.join(&piece)).unwrap();
-        for (i, &tag) in data.mesh.node_tags.iter().enumerate() {
-            let g = (tag - 1) as usize;
-            assert_eq!(data.mesh.point(i), moved.point(g), "piece {r} node {tag}");
+        for (i, tag) in data.mesh.node_tags.iter().enumerate() {
+            assert_eq!(
+                data.mesh.point(i),
+                moved.point(node_of[tag]),
+                "piece {r} node {tag}"
+            );
         }
-        for &tag in &data.mesh.cell_tags {
-            cell_seen[(tag - 1) as usize] += 1;
+        for tag in &data.mesh.cell_tags {
+            cell_seen[cell_of[tag]] += 1;
         }
         let rank = &data.fields.cell.iter().find(|f| f.0 == "rank").unwrap().2;
         assert!(rank.iter().all(|&v| v == r as f64));
@@ -286,6 +294,40 @@ fn tetrahedral_brick_with_sliding_sides_matches_one_process() {
         ],
         &[slide, lift],
         1,
+        robust,
+    );
+}
+
+/// A body resting on two symmetry planes, moved along their common line:
+/// the line's nodes slide along it ([`verbss::solve::NodeRole::Line`]) on
+/// every rank as in one process.
+#[test]
+fn a_body_moved_along_two_symmetry_planes_matches_one_process() {
+    if !mpi_ready() {
+        return;
+    }
+    let slide = Attachment {
+        groups: vec!["symmetry_y".into(), "symmetry_z".into()],
+        motion: Motion::Slide { normal: None },
+    };
+    let push = Attachment {
+        groups: vec!["body".into()],
+        motion: Motion::Translation {
+            displacement: [4.0, 0.0, 0.0],
+        },
+    };
+    same_as_single(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/meshes/symmetry-slice.msh"),
+        &[
+            "--moving",
+            "body",
+            "--translate",
+            "4,0,0",
+            "--slide",
+            "symmetry_y,symmetry_z",
+        ],
+        &[slide, push],
+        4,
         robust,
     );
 }
