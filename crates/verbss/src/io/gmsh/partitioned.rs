@@ -26,7 +26,11 @@
 //! `D − 1` that bounds exactly one entity of dimension `D` (`$Entities`'
 //! bounding lists), or an entity bounding one of those, recursively. For a
 //! conforming mesh this is the set of nodes on faces that belong to one
-//! cell of the whole mesh, the boundary of `verbss deform`.
+//! cell of the whole mesh, the boundary of `verbss deform`. In the same way
+//! a node is on a physical group ([`Share::group_nodes`]) when its parent
+//! is one of the group's model entities or bounds one, recursively: every
+//! share that holds a node agrees on its groups, whether or not it holds a
+//! facet of the group around it.
 
 use std::collections::{HashMap, HashSet};
 use std::ops::RangeInclusive;
@@ -56,6 +60,10 @@ pub struct Share {
     pub boundary: Vec<bool>,
     /// The number of partitions of the file.
     pub partitions: usize,
+    /// Every physical group of the file below the mesh dimension, by name,
+    /// with the nodes of [`Share::mesh`] on it (increasing; see the module
+    /// documentation).
+    pub group_nodes: Vec<(String, Vec<usize>)>,
 }
 
 /// What precedes `$Nodes`.
@@ -118,15 +126,29 @@ pub fn read_share(path: &Path, wanted: RangeInclusive<usize>) -> Result<Share> {
     let end = s.here();
     let c = Cursor::window(&[], path, end, head.binary);
     let (mesh, _) = finish(&c, nodes, (elements, at), &head.names, false, end)?;
-    let boundary_entities = boundary_entities(&head.entities, mesh.dim);
-    let boundary = entity_of_node
+    let parents: Vec<(usize, i32)> = entity_of_node
         .iter()
-        .map(|e| boundary_entities.contains(&head.entities.partitioned[e].parent))
+        .map(|e| head.entities.partitioned[e].parent)
+        .collect();
+    let on = |entities: &HashSet<(usize, i32)>| -> Vec<usize> {
+        (0..parents.len())
+            .filter(|&i| entities.contains(&parents[i]))
+            .collect()
+    };
+    let boundary_entities = closure(&head.entities, boundary_faces(&head.entities, mesh.dim));
+    let boundary = parents
+        .iter()
+        .map(|p| boundary_entities.contains(p))
+        .collect();
+    let group_nodes = physical_groups(&head, mesh.dim)
+        .into_iter()
+        .map(|(name, entities)| (name, on(&closure(&head.entities, entities))))
         .collect();
     Ok(Share {
         mesh,
         boundary,
         partitions: count,
+        group_nodes,
     })
 }
 
@@ -382,10 +404,9 @@ fn close_section(s: &mut Stream, keyword: &str, blocks: usize) -> Result<()> {
     }
 }
 
-/// The model entities on the boundary of a `dim`-dimensional model: those
-/// of dimension `dim − 1` bounding exactly one entity of dimension `dim`,
-/// and every entity bounding one of them, recursively.
-fn boundary_entities(entities: &Entities, dim: usize) -> HashSet<(usize, i32)> {
+/// The model entities of dimension `dim − 1` that bound exactly one
+/// entity of dimension `dim`: the faces of the model's boundary.
+fn boundary_faces(entities: &Entities, dim: usize) -> Vec<(usize, i32)> {
     let mut bounded: HashMap<i32, usize> = HashMap::new();
     for ((d, _), bounding) in &entities.bounding {
         if *d == dim {
@@ -394,11 +415,39 @@ fn boundary_entities(entities: &Entities, dim: usize) -> HashSet<(usize, i32)> {
             }
         }
     }
-    let mut todo: Vec<(usize, i32)> = bounded
+    bounded
         .into_iter()
         .filter(|&(_, n)| n == 1)
         .map(|(t, _)| (dim - 1, t))
+        .collect()
+}
+
+/// The physical groups of dimension below `dim`, by name (or tag as text,
+/// as the whole-file reader names them), each with its model entities.
+fn physical_groups(head: &Head, dim: usize) -> Vec<(String, Vec<(usize, i32)>)> {
+    let entities = &head.entities;
+    let mut groups: HashMap<(usize, i32), Vec<(usize, i32)>> = HashMap::new();
+    for (&(d, tag), range) in &entities.map {
+        if d < dim && !entities.partitioned.contains_key(&(d, tag)) {
+            for &p in &entities.physicals[range.clone()] {
+                groups.entry((d, p)).or_default().push((d, tag));
+            }
+        }
+    }
+    let mut named: Vec<(String, Vec<(usize, i32)>)> = groups
+        .into_iter()
+        .map(|(key, list)| {
+            let name = head.names.get(&key).cloned();
+            (name.unwrap_or_else(|| key.1.to_string()), list)
+        })
         .collect();
+    named.sort();
+    named
+}
+
+/// The entities `start` and every entity bounding one of them, recursively.
+fn closure(entities: &Entities, start: Vec<(usize, i32)>) -> HashSet<(usize, i32)> {
+    let mut todo = start;
     let mut found = HashSet::new();
     while let Some(e) = todo.pop() {
         if found.insert(e) && e.0 > 0 {

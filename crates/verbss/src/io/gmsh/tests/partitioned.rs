@@ -47,7 +47,8 @@ fn each_partition_holds_gmsh_counts() {
 
 /// The shares split the whole file's cells, each with its tag, nodes and
 /// coordinates; their group facets add up to the whole file's; a node is
-/// on the boundary in its share exactly when it is on the whole mesh's.
+/// on the boundary, or on a group, in its share exactly when it is in the
+/// whole mesh.
 #[test]
 fn shares_split_the_whole_mesh() {
     for name in FILES {
@@ -86,6 +87,21 @@ fn shares_split_the_whole_mesh() {
             }
             for g in &s.mesh.groups {
                 *facets.entry(g.name.clone()).or_default() += g.facets.len();
+            }
+            assert_eq!(s.group_nodes.len(), whole.groups.len(), "{name}");
+            for (group, nodes) in &s.group_nodes {
+                let want: Vec<usize> = whole.group(group).unwrap().nodes();
+                let have: Vec<usize> = nodes
+                    .iter()
+                    .map(|&i| node_of_tag[&s.mesh.node_tags[i]])
+                    .collect();
+                let shared: Vec<usize> = want
+                    .into_iter()
+                    .filter(|g| s.mesh.node_tags.contains(&whole.node_tags[*g]))
+                    .collect();
+                let mut have = have;
+                have.sort_unstable();
+                assert_eq!(have, shared, "{name} group {group} partition {p}");
             }
         }
         assert!(
