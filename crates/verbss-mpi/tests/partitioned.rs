@@ -278,3 +278,102 @@ fn gmsh_partitioned_box_read_on_one_to_three_ranks() {
     }
     reads_and_solves("box_part3_v41_binary.msh", "inlet");
 }
+
+/// The example `partitioned` (built with the tests), beside this test binary.
+fn example() -> PathBuf {
+    let exe = std::env::current_exe().unwrap();
+    exe.parent()
+        .unwrap()
+        .parent()
+        .unwrap()
+        .join("examples/partitioned")
+}
+
+/// Runs the example on `np` ranks; its output.
+fn run_example(np: usize, args: &[&str], session: &Path) -> std::process::Output {
+    common::mpirun(np, session)
+        .arg(example())
+        .args(args)
+        .output()
+        .expect("run mpirun (Debian: openmpi-bin)")
+}
+
+/// The example on 2 ranks: its pieces hold every cell of the file once, at
+/// the single-process exact solution's coordinates; a file with fewer
+/// partitions than ranks, and one not partitioned, are refused once with
+/// exit code 2.
+#[test]
+fn example_writes_each_ranks_cells_moved() {
+    if !common::mpi_ready() {
+        return;
+    }
+    let name = "channel_hole_part3_v41_ascii.msh";
+    let whole = verbss::io::read(&fixture(name)).unwrap();
+    let exact = direct(&whole, "wall");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("moved.pvtu");
+    let mesh = fixture(name);
+    let args = [
+        mesh.to_str().unwrap(),
+        out.to_str().unwrap(),
+        "wall",
+        "0.02,0.01",
+    ];
+    let o = run_example(2, &args, dir.path());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let index: HashMap<u64, usize> = whole
+        .node_tags
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| (t, i))
+        .collect();
+    let mut cells = Vec::new();
+    let mut worst = 0.0f64;
+    for r in 0..2 {
+        let piece = verbss::io::read(&dir.path().join(format!("moved_{r}.vtu"))).unwrap();
+        cells.extend_from_slice(&piece.cell_tags);
+        for (i, t) in piece.node_tags.iter().enumerate() {
+            let g = index[t];
+            for (d, u) in exact[t].iter().enumerate() {
+                let want = whole.coords[2 * g + d] + u;
+                worst = worst.max((piece.coords[2 * i + d] - want).abs());
+            }
+        }
+    }
+    cells.sort_unstable();
+    let mut all = whole.cell_tags.clone();
+    all.sort_unstable();
+    assert_eq!(cells, all);
+    let scale = (0.02f64 * 0.02 + 0.01 * 0.01).sqrt();
+    // The example stops at eq.-8 tolerance 1e-10; measured: 1.6e-10.
+    assert!(worst < 1e-9 * scale, "{worst:e}");
+    assert!(std::fs::read_to_string(&out)
+        .unwrap()
+        .contains("moved_1.vtu"));
+
+    let o = run_example(4, &args, dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(
+        stderr
+            .matches("has 3 partitions, fewer than the 4 ranks")
+            .count(),
+        1,
+        "{stderr}"
+    );
+    let plain = fixture("box_v41_ascii.msh");
+    let args = [
+        plain.to_str().unwrap(),
+        out.to_str().unwrap(),
+        "inlet",
+        "0.1,0,0",
+    ];
+    let o = run_example(2, &args, dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(
+        stderr.matches("it is not partitioned").count(),
+        1,
+        "{stderr}"
+    );
+}
