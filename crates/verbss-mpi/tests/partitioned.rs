@@ -300,8 +300,8 @@ fn run_example(np: usize, args: &[&str], session: &Path) -> std::process::Output
 
 /// The example on 2 ranks: its pieces hold every cell of the file once, at
 /// the single-process exact solution's coordinates; a file with fewer
-/// partitions than ranks, and one not partitioned, are refused once with
-/// exit code 2.
+/// partitions than ranks, one whose error only rank 1 reads, and one not
+/// partitioned, are refused once with exit code 2.
 #[test]
 fn example_writes_each_ranks_cells_moved() {
     if !common::mpi_ready() {
@@ -361,6 +361,29 @@ fn example_writes_each_ranks_cells_moved() {
         1,
         "{stderr}"
     );
+    // A bad node tag in the last element block, on entity 6 of dimension 2
+    // in partition 2 (quadrangles): rank 1 of 2 reads it, rank 0 steps over it.
+    let text = std::fs::read_to_string(fixture(name)).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let block = lines.iter().position(|l| l.trim() == "2 6 3 36").unwrap();
+    lines[block + 1] = "1 2 x 4 5".into();
+    let bad = dir.path().join("bad.msh");
+    std::fs::write(&bad, lines.join("\n") + "\n").unwrap();
+    let args = [
+        bad.to_str().unwrap(),
+        out.to_str().unwrap(),
+        "wall",
+        "0.02,0.01",
+    ];
+    let o = run_example(2, &args, dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let want = format!(
+        "rank 1 could not read its share: {}:{}: ",
+        bad.display(),
+        block + 2
+    );
+    assert_eq!(stderr.matches(&want).count(), 1, "{stderr}");
     let plain = fixture("box_v41_ascii.msh");
     let args = [
         plain.to_str().unwrap(),

@@ -173,6 +173,19 @@ fn errors_name_the_line_or_byte() {
             coordinate + 1
         )
     );
+    // A block size no file can hold.
+    let mut header: Vec<&str> = lines[n].split(' ').collect();
+    header[3] = "18446744073709551615";
+    edited[n] = header.join(" ");
+    std::fs::write(&bad, edited.join("\n") + "\n").unwrap();
+    assert_eq!(
+        share_error(&bad, 1..=1),
+        format!(
+            "{}:{}: node block size 18446744073709551615 is too large",
+            bad.display(),
+            n + 1
+        )
+    );
     let bytes = std::fs::read(fixture_dir().join(FILES[1])).unwrap();
     let short = dir.path().join("short_binary.msh");
     std::fs::write(&short, &bytes[..bytes.len() / 2]).unwrap();
