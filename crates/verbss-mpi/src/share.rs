@@ -62,11 +62,11 @@ pub fn global_numbers(share: &Share) -> Vec<u64> {
 /// (`D` per node) when the groups `moving` move by `displacement(x)`
 /// (a function of a node's coordinates): moving nodes and the other
 /// boundary nodes fixed, the others free. Fails when a group is not in the
-/// file (the same answer on every rank).
+/// file (the same answer on every rank) or `displacement` fails.
 pub fn prescribe(
     share: &Share,
     moving: &[String],
-    displacement: impl Fn(&[f64]) -> Vec<f64>,
+    displacement: impl Fn(&[f64]) -> Result<Vec<f64>>,
 ) -> Result<(Vec<NodeRole>, Vec<f64>)> {
     let mesh = &share.mesh;
     let dim = mesh.dim;
@@ -86,7 +86,7 @@ pub fn prescribe(
         };
         for &i in nodes {
             roles[i] = NodeRole::Fixed;
-            u[dim * i..dim * (i + 1)].copy_from_slice(&displacement(mesh.point(i)));
+            u[dim * i..dim * (i + 1)].copy_from_slice(&displacement(mesh.point(i))?);
         }
     }
     Ok((roles, u))

@@ -19,7 +19,9 @@
 use std::collections::{BTreeSet, HashMap};
 use std::path::{Path, PathBuf};
 
+use verbss::deform::{Deformer, Preset, Reference};
 use verbss::io::gmsh::partitioned::read_share;
+use verbss::motion::{Attachment, Motion};
 use verbss::solve::{default_roles, Engine, Method, SolveParams, Solver};
 use verbss::Mesh;
 use verbss_mpi::share::partitions_of;
@@ -54,7 +56,7 @@ fn worker() {
     let out = std::env::var("VERBSS_MPI_OUT").unwrap();
     let share = read_rank_share(&world, &path).unwrap();
     let dim = share.mesh.dim;
-    let (roles, mut u) = prescribe(&share, &[group], |_| translation(dim)).unwrap();
+    let (roles, mut u) = prescribe(&share, &[group], |_| Ok(translation(dim))).unwrap();
     let global = global_numbers(&share);
     let mut solver = LocalSolver::new(&world, &share.mesh, &global, &roles, &[]).unwrap();
     let mut params = SolveParams::default();
@@ -279,88 +281,205 @@ fn gmsh_partitioned_box_read_on_one_to_three_ranks() {
     reads_and_solves("box_part3_v41_binary.msh", "inlet");
 }
 
-/// The example `partitioned` (built with the tests), beside this test binary.
-fn example() -> PathBuf {
-    let exe = std::env::current_exe().unwrap();
-    exe.parent()
-        .unwrap()
-        .parent()
-        .unwrap()
-        .join("examples/partitioned")
-}
-
-/// Runs the example on `np` ranks; its output.
-fn run_example(np: usize, args: &[&str], session: &Path) -> std::process::Output {
+/// `mpirun -np NP verbss-mpi ARGS…`.
+fn verbss_mpi(np: usize, args: &[&str], session: &Path) -> std::process::Output {
     common::mpirun(np, session)
-        .arg(example())
+        .arg(env!("CARGO_BIN_EXE_verbss-mpi"))
         .args(args)
         .output()
         .expect("run mpirun (Debian: openmpi-bin)")
 }
 
-/// The example on 2 ranks: its pieces hold every cell of the file once, at
-/// the single-process exact solution's coordinates; a file with fewer
-/// partitions than ranks, one whose error only rank 1 reads, and one not
-/// partitioned, are refused once with exit code 2.
-#[test]
-fn example_writes_each_ranks_cells_moved() {
-    if !common::mpi_ready() {
-        return;
+/// The single-process run of the paper's method (the stepper of `verbss
+/// deform --method verbss`, without escalation: the sweeps converge).
+fn single(whole: &Mesh, group: &str, motion: Motion, steps: usize, reference: Reference) -> Mesh {
+    let mut settings = Preset::Verbss.settings(steps);
+    settings.reference = reference;
+    settings.solve.tolerance = TOLERANCE;
+    settings.solve.escalate = false;
+    settings.solve.max_iterations = 100_000;
+    let attachments = [Attachment {
+        groups: vec![group.into()],
+        motion,
+    }];
+    let mut d = Deformer::new(whole, &attachments, settings).unwrap();
+    for n in 1..=steps {
+        d.step(n).unwrap();
     }
-    let name = "channel_hole_part3_v41_ascii.msh";
+    d.mesh()
+}
+
+/// The eq.-8 tolerance of both runs.
+const TOLERANCE: f64 = 1e-12;
+
+/// `verbss-mpi deform` on a partitioned input with a `.pvtu` output on 1, 2
+/// and 3 ranks: the pieces hold every cell of the file once, at the
+/// single-process run's coordinates to 1e-10 of the largest displacement.
+fn deforms_like_one_process(
+    name: &str,
+    group: &str,
+    motion: &[&str],
+    reference: Reference,
+    scale: f64,
+) {
     let whole = verbss::io::read(&fixture(name)).unwrap();
-    let exact = direct(&whole, "wall");
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("moved.pvtu");
-    let mesh = fixture(name);
-    let args = [
-        mesh.to_str().unwrap(),
-        out.to_str().unwrap(),
-        "wall",
-        "0.02,0.01",
-    ];
-    let o = run_example(2, &args, dir.path());
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let motion_of = match motion[0] {
+        "--translate" => {
+            let d: Vec<f64> = motion[1].split(',').map(|x| x.parse().unwrap()).collect();
+            Motion::Translation {
+                displacement: [d[0], d[1], d.get(2).copied().unwrap_or(0.0)],
+            }
+        }
+        _ => Motion::Rotation {
+            center: [0.5, 0.5, 0.5],
+            axis: [0.0, 0.0, 1.0],
+            angle: motion[1].parse::<f64>().unwrap().to_radians(),
+        },
+    };
+    let one = single(&whole, group, motion_of, 2, reference);
     let index: HashMap<u64, usize> = whole
         .node_tags
         .iter()
         .enumerate()
         .map(|(i, &t)| (t, i))
         .collect();
-    let mut cells = Vec::new();
-    let mut worst = 0.0f64;
-    for r in 0..2 {
-        let piece = verbss::io::read(&dir.path().join(format!("moved_{r}.vtu"))).unwrap();
-        cells.extend_from_slice(&piece.cell_tags);
-        for (i, t) in piece.node_tags.iter().enumerate() {
-            let g = index[t];
-            for (d, u) in exact[t].iter().enumerate() {
-                let want = whole.coords[2 * g + d] + u;
-                worst = worst.max((piece.coords[2 * i + d] - want).abs());
+    let dim = whole.dim;
+    let reference = match reference {
+        Reference::Fixed => "fixed",
+        _ => "updated",
+    };
+    for np in 1..=3 {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("moved.pvtu");
+        let mesh = fixture(name);
+        let tolerance = TOLERANCE.to_string();
+        let mut args = vec![
+            "deform",
+            mesh.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--moving",
+            group,
+            "--method",
+            "verbss",
+            "--steps",
+            "2",
+            "--reference",
+            reference,
+            "--tolerance",
+            &tolerance,
+            "--max-iterations",
+            "100000",
+            "-q",
+        ];
+        args.extend_from_slice(motion);
+        let o = verbss_mpi(np, &args, dir.path());
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let mut cells = Vec::new();
+        let mut worst = 0.0f64;
+        for r in 0..np {
+            let piece = verbss::io::read(&dir.path().join(format!("moved_{r}.vtu"))).unwrap();
+            cells.extend_from_slice(&piece.cell_tags);
+            for (i, t) in piece.node_tags.iter().enumerate() {
+                let g = index[t];
+                for d in 0..dim {
+                    worst = worst.max((piece.coords[dim * i + d] - one.coords[dim * g + d]).abs());
+                }
             }
         }
+        cells.sort_unstable();
+        let mut all = whole.cell_tags.clone();
+        all.sort_unstable();
+        assert_eq!(cells, all, "{name}: {np} ranks");
+        assert!(worst < 1e-10 * scale, "{name}: {np} ranks: {worst:e}");
+        let pvtu = std::fs::read_to_string(&out).unwrap();
+        assert_eq!(pvtu.matches("<Piece ").count(), np);
     }
-    cells.sort_unstable();
-    let mut all = whole.cell_tags.clone();
-    all.sort_unstable();
-    assert_eq!(cells, all);
-    let scale = (0.02f64 * 0.02 + 0.01 * 0.01).sqrt();
-    // The example stops at eq.-8 tolerance 1e-10; measured: 1.6e-10.
-    assert!(worst < 1e-9 * scale, "{worst:e}");
-    assert!(std::fs::read_to_string(&out)
-        .unwrap()
-        .contains("moved_1.vtu"));
+}
 
-    let o = run_example(4, &args, dir.path());
-    assert_eq!(o.status.code(), Some(2));
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(
-        stderr
-            .matches("has 3 partitions, fewer than the 4 ranks")
-            .count(),
-        1,
-        "{stderr}"
+#[test]
+fn deform_a_partitioned_channel_on_one_to_three_ranks() {
+    if !common::mpi_ready() {
+        return;
+    }
+    let scale = (0.02f64 * 0.02 + 0.01 * 0.01).sqrt();
+    let motion = ["--translate", "0.02,0.01"];
+    deforms_like_one_process(
+        "channel_hole_part3_v41_ascii.msh",
+        "wall",
+        &motion,
+        Reference::Updated,
+        scale,
     );
+}
+
+#[test]
+fn deform_a_partitioned_box_on_one_to_three_ranks() {
+    if !common::mpi_ready() {
+        return;
+    }
+    // 3 degrees about the box's axis: the inlet's corners move by
+    // 0.5·√2·sin 3° ≈ 0.037.
+    let motion = [
+        "--rotate",
+        "3",
+        "--center",
+        "0.5,0.5,0.5",
+        "--axis",
+        "0,0,1",
+    ];
+    deforms_like_one_process(
+        "box_part3_v41_binary.msh",
+        "inlet",
+        &motion,
+        Reference::Fixed,
+        0.037,
+    );
+}
+
+/// Refused with exit code 2 and one message: more ranks than partitions,
+/// an error only rank 1 reads, the near-wall treatments, an option that
+/// needs the whole mesh.
+#[test]
+fn deform_refuses_a_partitioned_input_it_cannot_run() {
+    if !common::mpi_ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("moved.pvtu");
+    let name = "channel_hole_part3_v41_ascii.msh";
+    let refused = |np: usize, mesh: &Path, extra: &[&str], message: &str| {
+        let mut args = vec![
+            "deform",
+            mesh.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--moving",
+            "wall",
+            "--translate",
+            "0.02,0.01",
+        ];
+        args.extend_from_slice(extra);
+        let o = verbss_mpi(np, &args, dir.path());
+        assert_eq!(o.status.code(), Some(2));
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(stderr.matches(message).count(), 1, "{stderr}");
+    };
+    let verbss = ["--method", "verbss"];
+    refused(
+        4,
+        &fixture(name),
+        &verbss,
+        "has 3 partitions, fewer than the 4 ranks",
+    );
+    refused(
+        2,
+        &fixture(name),
+        &[],
+        "which runs --method verbss or spring",
+    );
+    let slide = ["--method", "verbss", "--slide", "sides"];
+    refused(2, &fixture(name), &slide, "where --slide is not available");
     // A bad node tag in the last element block, on entity 6 of dimension 2
     // in partition 2 (quadrangles): rank 1 of 2 reads it, rank 0 steps over it.
     let text = std::fs::read_to_string(fixture(name)).unwrap();
@@ -369,34 +488,10 @@ fn example_writes_each_ranks_cells_moved() {
     lines[block + 1] = "1 2 x 4 5".into();
     let bad = dir.path().join("bad.msh");
     std::fs::write(&bad, lines.join("\n") + "\n").unwrap();
-    let args = [
-        bad.to_str().unwrap(),
-        out.to_str().unwrap(),
-        "wall",
-        "0.02,0.01",
-    ];
-    let o = run_example(2, &args, dir.path());
-    assert_eq!(o.status.code(), Some(2));
-    let stderr = String::from_utf8_lossy(&o.stderr);
     let want = format!(
         "rank 1 could not read its share: {}:{}: ",
         bad.display(),
         block + 2
     );
-    assert_eq!(stderr.matches(&want).count(), 1, "{stderr}");
-    let plain = fixture("box_v41_ascii.msh");
-    let args = [
-        plain.to_str().unwrap(),
-        out.to_str().unwrap(),
-        "inlet",
-        "0.1,0,0",
-    ];
-    let o = run_example(2, &args, dir.path());
-    assert_eq!(o.status.code(), Some(2));
-    let stderr = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(
-        stderr.matches("it is not partitioned").count(),
-        1,
-        "{stderr}"
-    );
+    refused(2, &bad, &verbss, &want);
 }
