@@ -12,7 +12,7 @@
 //! displacement. A step that inverts a cell stops the run with exit code 3
 //! (the pieces hold the last valid mesh), sweeps that do not converge with
 //! exit code 4: without the whole mesh there is no exact solve to escalate
-//! to.
+//! to. Unless `--quiet`, every rank says what it holds.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -25,7 +25,7 @@ use verbss::quality;
 use verbss_cli::deform::DeformArgs;
 use verbss_mpi::coupled::LocalSolver;
 use verbss_mpi::pieces::{write_local_piece, write_pvtu};
-use verbss_mpi::share::{global_numbers, prescribe, read_rank_share};
+use verbss_mpi::share::{global_numbers, partitions_of, prescribe, read_rank_share};
 use verbss_mpi::Comm;
 
 /// Whether `verbss-mpi deform` takes this path: a partitioned MSH 4.1
@@ -66,6 +66,23 @@ pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
     };
     let (roles, _) = at(0)?;
     let mut solver = LocalSolver::new(&world, mesh, &global_numbers(&share), &roles, &[])?;
+    if !job.quiet {
+        let part = solver.part();
+        let size = world.size() as usize;
+        let partitions = partitions_of(share.partitions, size, world.rank() as usize, args.mesh())?;
+        println!(
+            "rank {}: partitions {}-{} of {}: {} nodes and {} cells read; with the ghost \
+             layer {} nodes and {} cells",
+            world.rank(),
+            partitions.start(),
+            partitions.end(),
+            share.partitions,
+            mesh.node_count(),
+            mesh.cell_count(),
+            part.node_count(),
+            part.cells.len()
+        );
+    }
     let orientation = quality::orientation(mesh);
     let mut coords = mesh.coords.clone();
     let mut sweeps = 0;
