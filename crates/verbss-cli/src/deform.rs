@@ -21,7 +21,7 @@ use verbss::solve::{Accel, Solver};
 use crate::msh::MshArgs;
 use crate::overwrite::refuse_input_as_output;
 use crate::render::{PictureArgs, Recorder};
-use crate::run::{file_stem, parse_every, run_here, Job, Prepared};
+use crate::run::{file_stem, output_dir, parse_every, run_here, Job, Prepared};
 use crate::zone::{self, ZoneArg};
 
 /// Arguments of `verbss deform`.
@@ -225,10 +225,7 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
         Format::Foam => std::path::absolute(&args.output)?.components().collect(),
         _ => args.output.clone(),
     };
-    let dir = match output.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
+    let dir = output_dir(&output);
     let job = Job {
         name: file_stem(&output),
         source: args.mesh.display().to_string(),

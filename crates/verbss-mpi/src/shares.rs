@@ -14,7 +14,6 @@
 //! exit code 4: without the whole mesh there is no exact solve to escalate
 //! to. Unless `--quiet`, every rank says what it holds.
 
-use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::bail;
@@ -23,6 +22,7 @@ use verbss::mesh::Mesh;
 use verbss::motion::{Clock, Frame, Motion};
 use verbss::quality;
 use verbss_cli::deform::DeformArgs;
+use verbss_cli::run::{file_stem, output_dir};
 use verbss_mpi::coupled::LocalSolver;
 use verbss_mpi::pieces::{write_local_piece, write_pvtu};
 use verbss_mpi::share::{global_numbers, partitions_of, prescribe, read_rank_share};
@@ -150,11 +150,8 @@ fn write(
     orientation: &[i8],
 ) -> anyhow::Result<()> {
     let dim = mesh.dim;
-    let dir = match output.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = verbss_cli::run::file_stem(output);
+    let dir = output_dir(output);
+    let name = file_stem(output);
     let mut moved = mesh.clone();
     moved.coords = coords.to_vec();
     let mut displacement = vec![0.0; 3 * mesh.node_count()];
