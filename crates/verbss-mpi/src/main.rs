@@ -10,7 +10,7 @@
 //! report; every rank writes its piece `OUT-STEM_RANK.vtu` beside OUT, and
 //! rank 0 the `OUT-STEM.pvtu` joining them.
 //!
-//! A partitioned MSH 4.1 input with a `.pvtu` output goes another way
+//! A `.pvtu` output, from a partitioned MSH 4.1 input, goes another way
 //! ([`shares::run_shares`]): every rank reads only its own partitions and
 //! writes only its own cells, and no rank holds the whole mesh.
 //!

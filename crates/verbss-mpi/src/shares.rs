@@ -1,5 +1,5 @@
-//! `verbss-mpi deform` on a partitioned MSH 4.1 input with a `.pvtu`
-//! output: every rank reads only its own partitions
+//! `verbss-mpi deform` with a `.pvtu` output, from a partitioned MSH 4.1
+//! input: every rank reads only its own partitions
 //! ([`verbss_mpi::share::read_rank_share`]), the flow-solver entry
 //! ([`verbss_mpi::coupled::LocalSolver`]) adds the ghost layer and sweeps,
 //! and every rank checks and writes its own cells — no rank holds the whole
@@ -14,10 +14,12 @@
 //! exit code 4: without the whole mesh there is no exact solve to escalate
 //! to. Unless `--quiet`, every rank says what it holds.
 
+use std::path::Path;
 use std::process::ExitCode;
 
 use anyhow::bail;
 use verbss::deform::Reference;
+use verbss::io::gmsh::partitioned::partition_count;
 use verbss::mesh::Mesh;
 use verbss::motion::{Clock, Frame, Motion};
 use verbss::quality;
@@ -28,12 +30,27 @@ use verbss_mpi::pieces::{write_local_piece, write_pvtu};
 use verbss_mpi::share::{global_numbers, partitions_of, prescribe, read_rank_share};
 use verbss_mpi::Comm;
 
-/// Whether `verbss-mpi deform` takes this path: a partitioned MSH 4.1
-/// input (any file the partitioned reader cannot open is left to the
-/// whole-mesh path and its messages) and a `.pvtu` output.
+/// Whether `verbss-mpi deform` takes this path: a `.pvtu` output, which
+/// only a partitioned MSH 4.1 input is written to.
 pub fn applies(args: &DeformArgs) -> bool {
     args.output().extension().is_some_and(|e| e == "pvtu")
-        && verbss::io::gmsh::partitioned::partition_count(args.mesh()).is_ok_and(|k| k > 0)
+}
+
+/// Fails unless `input` is a partitioned MSH 4.1 file.
+fn check_partitioned(input: &Path, output: &Path) -> anyhow::Result<()> {
+    let is_msh = input
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("msh"));
+    if is_msh && partition_count(input)? > 0 {
+        return Ok(());
+    }
+    bail!(
+        "{}: a .pvtu output is written rank by rank, from a partitioned MSH 4.1 input \
+         (`gmsh -part N -format msh41`), and {} is not partitioned: give another output \
+         format, or partition the mesh",
+        output.display(),
+        input.display()
+    )
 }
 
 /// The displacement of input position `p` at step `step` of `steps`.
@@ -50,6 +67,7 @@ fn displacement(motion: &Motion, p: &[f64], step: usize, steps: usize) -> verbss
 
 /// Runs the job on every rank (see the module documentation).
 pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
+    check_partitioned(args.mesh(), args.output())?;
     let world = Comm::world();
     let root = world.rank() == 0;
     let share = read_rank_share(&world, args.mesh())?;
@@ -144,7 +162,7 @@ pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
 /// rank 0 the `.pvtu` joining them.
 fn write(
     world: &Comm,
-    output: &std::path::Path,
+    output: &Path,
     mesh: &Mesh,
     coords: &[f64],
     orientation: &[i8],

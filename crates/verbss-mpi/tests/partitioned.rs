@@ -438,8 +438,8 @@ fn deform_a_partitioned_box_on_one_to_three_ranks() {
 }
 
 /// Refused with exit code 2 and one message: more ranks than partitions,
-/// an error only rank 1 reads, the near-wall treatments, an option that
-/// needs the whole mesh.
+/// an input that is not partitioned, an error only rank 1 reads, the
+/// near-wall treatments, an option that needs the whole mesh.
 #[test]
 fn deform_refuses_a_partitioned_input_it_cannot_run() {
     if !common::mpi_ready() {
@@ -480,6 +480,14 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
     );
     let slide = ["--method", "verbss", "--slide", "sides"];
     refused(2, &fixture(name), &slide, "where --slide is not available");
+    let plain = fixture("channel_hole_v41_ascii.msh");
+    let not_partitioned = "is not partitioned: give another output format";
+    refused(2, &plain, &verbss, not_partitioned);
+    let su2 =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/meshes/su2/mesh_NACA0012_inv.su2");
+    refused(2, &su2, &verbss, not_partitioned);
+    let v22 = fixture("channel_hole_v22_ascii.msh");
+    refused(2, &v22, &verbss, "MSH 2.2 has no partitioned entities");
     // A bad node tag in the last element block, on entity 6 of dimension 2
     // in partition 2 (quadrangles): rank 1 of 2 reads it, rank 0 steps over it.
     let text = std::fs::read_to_string(fixture(name)).unwrap();
@@ -494,4 +502,59 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
         block + 2
     );
     refused(2, &bad, &verbss, &want);
+}
+
+/// A step that inverts a cell (the hole pushed through the top wall) stops
+/// with exit code 3, sweeps that do not converge with exit code 4: one
+/// message each, and the pieces hold the last valid mesh, the input.
+#[test]
+fn deform_stops_at_an_inverted_cell_and_at_unconverged_sweeps() {
+    if !common::mpi_ready() {
+        return;
+    }
+    let name = "channel_hole_part3_v41_ascii.msh";
+    let whole = verbss::io::read(&fixture(name)).unwrap();
+    let mesh = fixture(name);
+    let index: HashMap<u64, usize> = whole
+        .node_tags
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| (t, i))
+        .collect();
+    for (extra, code, message) in [
+        (
+            ["--translate", "0,0.45", "--max-iterations", "100000"],
+            3,
+            "error: step 1 inverts ",
+        ),
+        (
+            ["--translate", "0.02,0.01", "--max-iterations", "2"],
+            4,
+            "the sweeps did not converge in 2 sweeps",
+        ),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("moved.pvtu");
+        let mut args = vec![
+            "deform",
+            mesh.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--moving",
+            "wall",
+            "--method",
+            "verbss",
+        ];
+        args.extend_from_slice(&extra);
+        let o = verbss_mpi(2, &args, dir.path());
+        assert_eq!(o.status.code(), Some(code));
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(stderr.matches(message).count(), 1, "{stderr}");
+        for r in 0..2 {
+            let piece = verbss::io::read(&dir.path().join(format!("moved_{r}.vtu"))).unwrap();
+            for (i, t) in piece.node_tags.iter().enumerate() {
+                assert_eq!(piece.point(i), whole.point(index[t]), "node {t}");
+            }
+        }
+    }
 }
