@@ -1,5 +1,6 @@
 //! A rank's share of a partitioned MSH 4.1 file (`gmsh -part K`), read by
-//! the rank itself: no rank reads, stores or receives the whole mesh.
+//! the rank itself: no rank stores or receives the whole mesh (each steps
+//! over the other partitions' blocks of the file).
 //!
 //! **Partitions to ranks.** The file's `K` partitions go to the `P` ranks
 //! in contiguous blocks: rank `r` reads partitions `⌊rK/P⌋ + 1 ..=
