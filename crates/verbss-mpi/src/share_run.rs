@@ -73,10 +73,8 @@ pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
     let share = read_rank_share(&world, args.mesh())?;
     let job = args.share_job(share.mesh.dim)?;
     let mesh = &share.mesh;
+    job.settings.validate()?;
     let steps = job.settings.steps;
-    if steps == 0 {
-        bail!("--steps must be at least 1");
-    }
     let at = |step| {
         prescribe(&share, &job.moving, |p| {
             displacement(&job.motion, p, step, steps)
@@ -179,8 +177,16 @@ fn write(
         }
     }
     let quality = quality::qualities(mesh, coords, orientation);
-    write_local_piece(&dir, &name, world.rank(), &moved, displacement, quality)?;
-    world.barrier();
+    let written = write_local_piece(&dir, &name, world.rank(), &moved, displacement, quality);
+    // Every rank learns of a failure, so that none waits for the others.
+    let failed = world.sum(u64::from(written.is_err()));
+    written?;
+    if failed > 0 {
+        bail!(
+            "{failed} ranks could not write their pieces beside {}",
+            output.display()
+        );
+    }
     if world.rank() == 0 {
         write_pvtu(&dir, &name, world.size())?;
     }

@@ -439,7 +439,8 @@ fn deform_a_partitioned_box_on_one_to_three_ranks() {
 
 /// Refused with exit code 2 and one message: more ranks than partitions,
 /// an input that is not partitioned, an error only rank 1 reads, the
-/// near-wall treatments, an option that needs the whole mesh.
+/// near-wall treatments, an option that needs the whole mesh, no steps, an
+/// output folder that does not exist.
 #[test]
 fn deform_refuses_a_partitioned_input_it_cannot_run() {
     if !common::mpi_ready() {
@@ -480,6 +481,40 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
     );
     let slide = ["--method", "verbss", "--slide", "sides"];
     refused(2, &fixture(name), &slide, "where --slide is not available");
+    // Pieces that cannot be written: every rank stops, rank 0 says why.
+    let nowhere = dir.path().join("missing/moved.pvtu");
+    let mesh = fixture(name);
+    let args = [
+        "deform",
+        mesh.to_str().unwrap(),
+        "-o",
+        nowhere.to_str().unwrap(),
+        "--moving",
+        "wall",
+        "--translate",
+        "0.02,0.01",
+        "--method",
+        "verbss",
+        "-q",
+    ];
+    let o = verbss_mpi(2, &args, dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let piece = dir.path().join("missing/moved_0.vtu");
+    assert_eq!(
+        stderr
+            .matches(&format!("error: {}", piece.display()))
+            .count(),
+        1,
+        "{stderr}"
+    );
+    let steps = ["--method", "verbss", "--steps", "0"];
+    refused(
+        2,
+        &fixture(name),
+        &steps,
+        "the number of steps must be at least 1",
+    );
     let plain = fixture("channel_hole_v41_ascii.msh");
     let not_partitioned = "is not partitioned: give another output format";
     refused(2, &plain, &verbss, not_partitioned);
