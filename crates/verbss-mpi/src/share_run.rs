@@ -26,9 +26,11 @@ use verbss::quality;
 use verbss_cli::deform::DeformArgs;
 use verbss_cli::run::{file_stem, output_dir};
 use verbss_mpi::coupled::LocalSolver;
-use verbss_mpi::pieces::{write_local_piece, write_pvtu};
+use verbss_mpi::pieces::write_local_piece;
 use verbss_mpi::share::{global_numbers, partitions_of, prescribe, read_rank_share};
 use verbss_mpi::Comm;
+
+use crate::run::join_pieces;
 
 /// Whether `verbss-mpi deform` takes this path: a `.pvtu` output, which
 /// only a partitioned MSH 4.1 input is written to.
@@ -178,17 +180,5 @@ fn write(
     }
     let quality = quality::qualities(mesh, coords, orientation);
     let written = write_local_piece(&dir, &name, world.rank(), &moved, displacement, quality);
-    // Every rank learns of a failure, so that none waits for the others.
-    let failed = world.sum(u64::from(written.is_err()));
-    written?;
-    if failed > 0 {
-        bail!(
-            "{failed} ranks could not write their pieces beside {}",
-            output.display()
-        );
-    }
-    if world.rank() == 0 {
-        write_pvtu(&dir, &name, world.size())?;
-    }
-    Ok(())
+    join_pieces(world, &dir, &name, written)
 }
