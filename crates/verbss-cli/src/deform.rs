@@ -7,12 +7,12 @@
 //! beside it (`OUT-STEM.failed.vtu`). `--every K` also writes the `.vtu`
 //! series of every K-th step beside OUT (`OUT-STEM_NNNN.vtu`, `OUT-STEM.pvd`).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::bail;
 use clap::{ArgGroup, Args};
-use verbss::deform::{Predictor, Preset, Reference};
+use verbss::deform::{Predictor, Preset, Reference, Settings};
 use verbss::io::Format;
 use verbss::motion::{Attachment, Motion, PositionSource};
 use verbss::robust::Layer;
@@ -21,7 +21,7 @@ use verbss::solve::{Accel, Solver};
 use crate::msh::MshArgs;
 use crate::overwrite::refuse_input_as_output;
 use crate::render::{PictureArgs, Recorder};
-use crate::run::{file_stem, parse_every, run_here, Job, Prepared};
+use crate::run::{file_stem, output_dir, parse_every, run_here, Job, Prepared};
 use crate::zone::{self, ZoneArg};
 
 /// Arguments of `verbss deform`.
@@ -212,59 +212,20 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
             return Err(zone::missing_group(e, &args.mesh, g));
         }
     }
-    let motion = if let Some(t) = &args.translate {
-        Motion::Translation {
-            displacement: point3("translate", t, dim)?,
-        }
-    } else if let Some(degrees) = args.rotate {
-        if !degrees.is_finite() {
-            bail!("--rotate has a non-finite angle ({degrees})");
-        }
-        let center = point3("center", args.center.as_deref().unwrap_or_default(), dim)?;
-        let axis = match (&args.axis, dim) {
-            (Some(a), 3) => point3("axis", a, 3)?,
-            (Some(_), _) => bail!("--axis applies to 3D meshes only"),
-            (None, _) => [0.0, 0.0, 1.0],
-        };
-        Motion::Rotation {
-            center,
-            axis,
-            angle: degrees.to_radians(),
-        }
-    } else if let Some(path) = &args.positions {
-        Motion::Positions(PositionSource::for_groups(path, &mesh, &args.moving)?)
-    } else {
-        unreachable!("clap requires one motion")
+    let motion = match args.field_motion(dim)? {
+        Some(motion) => motion,
+        None => match &args.positions {
+            Some(path) => Motion::Positions(PositionSource::for_groups(path, &mesh, &args.moving)?),
+            None => unreachable!("clap requires one motion"),
+        },
     };
-    let mut settings = args.method.settings(args.steps);
-    settings.reference = args.reference.unwrap_or(match args.method {
-        Preset::Robust => Reference::for_motions([&motion]),
-        _ => settings.reference,
-    });
-    settings.predictor = args.predictor;
-    let robust = &mut settings.robust;
-    robust.layer = args.rigid_layer.unwrap_or(robust.layer);
-    robust.substeps = args.substeps.unwrap_or(robust.substeps);
-    robust.stiffening = args.stiffening.unwrap_or(robust.stiffening);
-    robust.blend = args.blend.unwrap_or(robust.blend);
-    let s = &mut settings.solve;
-    s.solver = args.solver.unwrap_or(s.solver);
-    s.accel = args.accel.unwrap_or(s.accel);
-    s.escalate = args.solver.is_none() && args.accel.is_none() && args.omega.is_none();
-    s.tolerance = args.tolerance.unwrap_or(s.tolerance);
-    s.absolute_tolerance = args.absolute_tolerance;
-    s.max_iterations = args.max_iterations.unwrap_or(s.max_iterations);
-    s.omega = args.omega.unwrap_or(s.omega);
-    s.threads = args.threads;
+    let settings = args.settings(&motion);
     // `-o .` names its directory by its path only.
     let output = match format {
         Format::Foam => std::path::absolute(&args.output)?.components().collect(),
         _ => args.output.clone(),
     };
-    let dir = match output.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
+    let dir = output_dir(&output);
     let job = Job {
         name: file_stem(&output),
         source: args.mesh.display().to_string(),
@@ -295,6 +256,142 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
         quiet: args.quiet,
         recorder,
     })
+}
+
+impl DeformArgs {
+    /// The input mesh.
+    pub fn mesh(&self) -> &Path {
+        &self.mesh
+    }
+
+    /// The output.
+    pub fn output(&self) -> &Path {
+        &self.output
+    }
+
+    /// `--translate` or `--rotate` for a `dim`-dimensional mesh; `None`
+    /// for `--positions`.
+    fn field_motion(&self, dim: usize) -> anyhow::Result<Option<Motion>> {
+        if let Some(t) = &self.translate {
+            return Ok(Some(Motion::Translation {
+                displacement: point3("translate", t, dim)?,
+            }));
+        }
+        let Some(degrees) = self.rotate else {
+            return Ok(None);
+        };
+        if !degrees.is_finite() {
+            bail!("--rotate has a non-finite angle ({degrees})");
+        }
+        let center = point3("center", self.center.as_deref().unwrap_or_default(), dim)?;
+        let axis = match (&self.axis, dim) {
+            (Some(a), 3) => point3("axis", a, 3)?,
+            (Some(_), _) => bail!("--axis applies to 3D meshes only"),
+            (None, _) => [0.0, 0.0, 1.0],
+        };
+        Ok(Some(Motion::Rotation {
+            center,
+            axis,
+            angle: degrees.to_radians(),
+        }))
+    }
+
+    /// The settings of `--method` and the options that change them.
+    fn settings(&self, motion: &Motion) -> Settings {
+        let mut settings = self.method.settings(self.steps);
+        settings.reference = self.reference.unwrap_or(match self.method {
+            Preset::Robust => Reference::for_motions([motion]),
+            _ => settings.reference,
+        });
+        settings.predictor = self.predictor;
+        let robust = &mut settings.robust;
+        robust.layer = self.rigid_layer.unwrap_or(robust.layer);
+        robust.substeps = self.substeps.unwrap_or(robust.substeps);
+        robust.stiffening = self.stiffening.unwrap_or(robust.stiffening);
+        robust.blend = self.blend.unwrap_or(robust.blend);
+        let s = &mut settings.solve;
+        s.solver = self.solver.unwrap_or(s.solver);
+        s.accel = self.accel.unwrap_or(s.accel);
+        s.escalate = self.solver.is_none() && self.accel.is_none() && self.omega.is_none();
+        s.tolerance = self.tolerance.unwrap_or(s.tolerance);
+        s.absolute_tolerance = self.absolute_tolerance;
+        s.max_iterations = self.max_iterations.unwrap_or(s.max_iterations);
+        s.omega = self.omega.unwrap_or(s.omega);
+        s.threads = self.threads;
+        settings
+    }
+
+    /// The job of a run whose ranks each read their own partitions of a
+    /// partitioned MSH 4.1 input of dimension `dim` (`verbss-mpi deform`,
+    /// docs/distributed.md): refuses, with the reason, what needs the whole
+    /// mesh or is not written rank by rank.
+    pub fn share_job(&self, dim: usize) -> anyhow::Result<ShareJob> {
+        if !matches!(self.method, Preset::Verbss | Preset::Spring) {
+            bail!(
+                "{}: a partitioned input is read rank by rank, which runs --method verbss or \
+                 spring (the near-wall treatments of robust need the whole mesh)",
+                self.mesh.display()
+            );
+        }
+        let whole_mesh = [
+            (self.positions.is_some(), "--positions"),
+            (!self.slide.is_empty(), "--slide"),
+            (self.rigid_layer.is_some(), "--rigid-layer"),
+            (self.substeps.is_some_and(|k| k > 0), "--substeps"),
+            (self.stiffening.is_some_and(|p| p > 0.0), "--stiffening"),
+            (self.blend == Some(true), "--blend on"),
+            (self.solver.is_some(), "--solver"),
+            (self.accel.is_some(), "--accel"),
+            (
+                self.reference == Some(Reference::Anchored),
+                "--reference anchored",
+            ),
+            (self.predictor != Predictor::Previous, "--predictor"),
+            (self.zone.zone.is_some(), "--zone"),
+            (self.every.is_some(), "--every"),
+            (self.report.is_some(), "--report"),
+            (self.pictures.html.is_some(), "--html"),
+            (self.pictures.gif.is_some(), "--gif"),
+        ];
+        if let Some((_, option)) = whole_mesh.iter().find(|(given, _)| *given) {
+            bail!(
+                "{}: a partitioned input is read rank by rank, where {option} is not \
+                 available (it needs the whole mesh)",
+                self.mesh.display()
+            );
+        }
+        if self.output.extension().is_none_or(|e| e != "pvtu") {
+            bail!(
+                "{}: a partitioned input is written rank by rank: the output is a .pvtu file \
+                 (one .vtu piece per rank beside it)",
+                self.output.display()
+            );
+        }
+        let Some(motion) = self.field_motion(dim)? else {
+            bail!("--positions is not available on a partitioned input");
+        };
+        Ok(ShareJob {
+            output: self.output.clone(),
+            moving: self.moving.clone(),
+            settings: self.settings(&motion),
+            motion,
+            quiet: self.quiet,
+        })
+    }
+}
+
+/// A `verbss-mpi deform` job on a partitioned input ([`DeformArgs::share_job`]).
+pub struct ShareJob {
+    /// The `.pvtu` output.
+    pub output: PathBuf,
+    /// The moving groups.
+    pub moving: Vec<String>,
+    /// Their motion: a translation or a rotation.
+    pub motion: Motion,
+    /// The settings (method verbss or spring, no near-wall treatment).
+    pub settings: Settings,
+    /// No progress output.
+    pub quiet: bool,
 }
 
 /// The `--slide` values as slide motions: `GROUP` slides in its own plane

@@ -143,6 +143,14 @@ pub fn file_stem(path: &Path) -> String {
         .unwrap_or_else(|| "mesh".into())
 }
 
+/// The folder of an output file (`.` for a bare file name).
+pub fn output_dir(path: &Path) -> PathBuf {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
 /// Everything a run needs: the mesh, its motions, the settings and the outputs.
 pub struct Job {
     /// Base name of the output files.

@@ -209,6 +209,11 @@ impl<'c> LocalSolver<'c> {
         Ok(info)
     }
 
+    /// This rank's part: its cells, its nodes and their ghosts.
+    pub fn part(&self) -> &Part {
+        self.sweeper.part()
+    }
+
     /// The number of colours of the unknowns.
     pub fn colours(&self) -> u32 {
         self.colours

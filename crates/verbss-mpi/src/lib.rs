@@ -10,12 +10,14 @@
 //! * `verbss-mpi deform …` (the binary) takes the arguments of `verbss deform`;
 //! * [`coupled::LocalSolver`] is the entry point of a flow solver that
 //!   already has its partition and communicator;
-//! * [`cost`] counts what one sweep sends on a given partition.
+//! * [`cost`] counts what one sweep sends on a given partition;
+//! * [`share`] reads a rank's own partitions of a partitioned MSH 4.1 file,
+//!   for [`coupled::LocalSolver`], without any rank holding the whole mesh.
 //!
 //! The MPI parts ([`Comm`], [`coupled`], [`halo`], [`partition`],
 //! [`stepper`], [`sweeper`]) are built when `build.rs` finds MPI and METIS
-//! ([`missing`] says why they were not); [`colouring`], [`cost`], [`part`]
-//! and [`pieces`] need neither. The crate's only `unsafe` code calls MPI and
+//! ([`missing`] says why they were not); [`colouring`], [`cost`], [`part`],
+//! [`pieces`] and [`share`] (except [`share::read_rank_share`]) need neither. The crate's only `unsafe` code calls MPI and
 //! METIS (the private module `sys`).
 //!
 //! See `docs/distributed.md`.
@@ -33,6 +35,7 @@ pub mod part;
 #[cfg(with_mpi)]
 pub mod partition;
 pub mod pieces;
+pub mod share;
 #[cfg(with_mpi)]
 pub mod stepper;
 #[cfg(with_mpi)]

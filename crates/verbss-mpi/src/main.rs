@@ -10,6 +10,10 @@
 //! report; every rank writes its piece `OUT-STEM_RANK.vtu` beside OUT, and
 //! rank 0 the `OUT-STEM.pvtu` joining them.
 //!
+//! A `.pvtu` output, from a partitioned MSH 4.1 input, goes another way
+//! ([`share_run::run_shares`]): every rank reads only its own partitions and
+//! writes only its own cells, and no rank holds the whole mesh.
+//!
 //! Exit codes as `verbss`: 0 success, 2 bad input, 3 an inverted element,
 //! 4 a step no solver could solve. Built without MPI or METIS (see
 //! `build.rs`), it says so and exits with 2.
@@ -18,6 +22,8 @@
 
 #[cfg(with_mpi)]
 mod run;
+#[cfg(with_mpi)]
+mod share_run;
 
 use std::process::ExitCode;
 
@@ -50,6 +56,7 @@ fn main() -> ExitCode {
     };
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Deform(args) if share_run::applies(&args) => share_run::run_shares(*args),
         Command::Deform(args) => deform::prepare(*args).and_then(run::run_distributed),
     };
     let code = match result {

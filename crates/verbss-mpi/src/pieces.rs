@@ -69,20 +69,32 @@ pub fn write_piece(
         groups: Vec::new(),
         origin: FileOrigin::default(),
     };
+    let quality = cells
+        .iter()
+        .map(|&c| quality[part.cell_global[c] as usize])
+        .collect();
+    write_local_piece(dir, name, part.rank, &mesh, displacement, quality)
+}
+
+/// Writes rank `rank`'s piece `dir/NAME_RANK.vtu`: `mesh` (its cells, at
+/// their moved coordinates, with their tags), the `displacement` of its
+/// nodes (3 numbers each) and the `quality` of its cells.
+pub fn write_local_piece(
+    dir: &Path,
+    name: &str,
+    rank: i32,
+    mesh: &Mesh,
+    displacement: Vec<f64>,
+    quality: Vec<f64>,
+) -> Result<()> {
+    let cells = mesh.cell_count();
     let mut fields = vtu::Fields::default();
     fields.point.push(("displacement".into(), 3, displacement));
-    fields.cell.push((
-        "quality".into(),
-        1,
-        cells
-            .iter()
-            .map(|&c| quality[part.cell_global[c] as usize])
-            .collect(),
-    ));
+    fields.cell.push(("quality".into(), 1, quality));
     fields
         .cell
-        .push(("rank".into(), 1, vec![f64::from(part.rank); cells.len()]));
-    vtu::write(&piece_path(dir, name, part.rank), &mesh, &fields)
+        .push(("rank".into(), 1, vec![f64::from(rank); cells]));
+    vtu::write(&piece_path(dir, name, rank), mesh, &fields)
 }
 
 /// `dir/NAME_RANK.vtu`.

@@ -3,8 +3,10 @@
 //! distributed stepper, rank 0 writing the outputs, and the per-rank pieces
 //! added.
 
+use std::path::Path;
 use std::process::ExitCode;
 
+use anyhow::bail;
 use verbss_cli::run::{execute, Prepared};
 use verbss_mpi::pieces::{write_piece, write_pvtu};
 use verbss_mpi::stepper::stepper;
@@ -33,18 +35,38 @@ pub fn run_distributed(mut prepared: Prepared) -> anyhow::Result<ExitCode> {
     summary.ranks = Some(world.size() as usize);
     if summary.failure.is_none() {
         let current = stepper.current();
-        write_piece(
+        let written = write_piece(
             &job.dir,
             &job.name,
             stepper.solver().part(),
             &job.mesh,
             &current.coords,
             &current.quality,
-        )?;
-        world.barrier();
-        if root {
-            write_pvtu(&job.dir, &job.name, world.size())?;
-        }
+        );
+        join_pieces(&world, &job.dir, &job.name, written)?;
     }
     Ok(summary.print(job, root))
+}
+
+/// After every rank wrote its piece `dir/NAME_RANK.vtu` (`written`, its
+/// outcome), rank 0 writes `dir/NAME.pvtu` joining them (collective). Every
+/// rank learns of a failure, so that none waits for the others.
+pub fn join_pieces(
+    world: &Comm,
+    dir: &Path,
+    name: &str,
+    written: verbss::Result<()>,
+) -> anyhow::Result<()> {
+    let failed = world.sum(u64::from(written.is_err()));
+    written?;
+    if failed > 0 {
+        bail!(
+            "{failed} ranks could not write their pieces {}",
+            dir.join(format!("{name}_RANK.vtu")).display()
+        );
+    }
+    if world.rank() == 0 {
+        write_pvtu(dir, name, world.size())?;
+    }
+    Ok(())
 }

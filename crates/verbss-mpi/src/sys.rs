@@ -358,6 +358,11 @@ impl Comm {
             },
             "MPI_Allgather",
         );
+        if total(&counts) == 0 {
+            // Two empty buffers share one dangling address, which MPI
+            // refuses as a send buffer that is also the receive buffer.
+            return vec![Vec::new(); size];
+        }
         let displs = displacements(&counts);
         let mut all = vec![T::default(); total(&counts)];
         // SAFETY: `mine` is read whole; `all` is sized from the counts and
@@ -483,6 +488,7 @@ mod tests {
         assert_eq!(data, [1, 2, 3]);
         assert_eq!(world.all_to_all(&[vec![4u64, 5]]), [vec![4u64, 5]]);
         assert_eq!(world.all_gather(&[1.5f64, -2.0]), [vec![1.5, -2.0]]);
+        assert_eq!(world.all_gather::<u8>(&[]), [Vec::<u8>::new()]);
         let mut recv = [vec![0.0; 2], Vec::new()];
         world.exchange(&[0, 0], &[vec![3.0, 4.0], Vec::new()], &mut recv);
         assert_eq!(recv, [vec![3.0, 4.0], Vec::new()]);

@@ -23,6 +23,8 @@ pub(super) struct Cursor<'a> {
     mark: Mark,
     binary: bool,
     path: &'a Path,
+    /// Offset of `bytes` in the file (a window of it, [`Cursor::window`]).
+    base: usize,
 }
 
 /// At most this many bytes of an unexpected token are quoted in a message.
@@ -45,6 +47,24 @@ impl<'a> Cursor<'a> {
             mark: Mark { offset: 0, line: 1 },
             binary: false,
             path,
+            base: 0,
+        }
+    }
+
+    /// A cursor over `bytes`, a window of the file that starts at `start`:
+    /// errors name the file's lines and offsets.
+    pub fn window(bytes: &'a [u8], path: &'a Path, start: Mark, binary: bool) -> Self {
+        Cursor {
+            bytes,
+            pos: 0,
+            line: start.line,
+            mark: Mark {
+                offset: 0,
+                line: start.line,
+            },
+            binary,
+            path,
+            base: start.offset,
         }
     }
 
@@ -88,7 +108,7 @@ impl<'a> Cursor<'a> {
         if self.binary {
             Error::Binary {
                 path,
-                offset: mark.offset as u64,
+                offset: (self.base + mark.offset) as u64,
                 message,
             }
         } else {

@@ -1,5 +1,7 @@
 //! MSH 4.1 `$Entities` and `$PartitionedEntities`: the physical tags of
-//! each geometric entity, which the element blocks refer to.
+//! each geometric entity, which the element blocks refer to, the entities
+//! bounding each model entity, and the parent and partitions of each
+//! partition entity.
 
 use std::collections::{HashMap, HashSet};
 use std::ops::Range;
@@ -18,6 +20,22 @@ pub(super) struct Entities {
     pub map: HashMap<(usize, i32), Range<usize>>,
     /// The physical tags of all entities, concatenated.
     pub physicals: Vec<i32>,
+    /// The number of partitions `$PartitionedEntities` declares (0 without one).
+    pub partitions: usize,
+    /// Per partition entity: its parent model entity and its partitions.
+    pub partitioned: HashMap<(usize, i32), Partitioned>,
+    /// Per model entity of dimension 1 to 3: the tags (sign dropped) of the
+    /// entities one dimension lower that bound it.
+    pub bounding: HashMap<(usize, i32), Vec<i32>>,
+}
+
+/// A partition entity of `$PartitionedEntities`.
+pub(super) struct Partitioned {
+    /// The model entity `(dimension, tag)` it is a piece of; of the
+    /// partitioned dimension itself for the entities between partitions.
+    pub parent: (usize, i32),
+    /// The partitions (1-based) it belongs to.
+    pub partitions: Vec<i32>,
 }
 
 const ENTITY_KINDS: [&str; 4] = ["points", "curves", "surfaces", "volumes"];
@@ -40,11 +58,11 @@ pub(super) fn read_entities(c: &mut Cursor, entities: &mut Entities) -> Result<(
 pub(super) fn read_partitioned(c: &mut Cursor, entities: &mut Entities) -> Result<()> {
     if c.binary() {
         c.newline()?;
-        c.count_le("the number of partitions")?;
+        entities.partitions = c.count_le("the number of partitions")?;
         let ghosts = c.count_le("the number of ghost entities")?;
         c.take_n(ghosts, 8, "the ghost entities")?;
     } else {
-        c.count("the number of partitions")?;
+        entities.partitions = c.count("the number of partitions")?;
         let ghosts = c.count("the number of ghost entities")?;
         for i in 0..ghosts {
             early_end(c, || {
@@ -85,9 +103,9 @@ fn read_all(
             }
             let start = entities.physicals.len();
             let tag = if c.binary() {
-                read_binary(c, dim, partitioned, &mut entities.physicals)?
+                read_binary(c, dim, partitioned, entities)?
             } else {
-                read_ascii(c, dim, partitioned, &mut entities.physicals)?
+                read_ascii(c, dim, partitioned, entities)?
             };
             dedupe(&mut entities.physicals, start);
             entities
@@ -103,63 +121,113 @@ fn read_all(
     )
 }
 
-/// Reads one binary entity of dimension `dim`; appends its physical tags to
-/// `physicals` and returns its tag.
+/// Reads one binary entity of dimension `dim` into `entities` (its physical
+/// tags appended to `physicals`); returns its tag.
 fn read_binary(
     c: &mut Cursor,
     dim: usize,
     partitioned: bool,
-    physicals: &mut Vec<i32>,
+    entities: &mut Entities,
 ) -> Result<i32> {
     let tag = c.i32_le("an entity tag")?;
-    if partitioned {
-        c.take(8, "the parent entity")?;
+    let parent = if partitioned {
+        let p = c.take(8, "the parent entity")?;
         let np = c.count_le("a number of partitions")?;
-        c.take_n(np, 4, "partition tags")?;
-    }
+        let parts = c.take_n(np, 4, "partition tags")?;
+        let partitions = parts.chunks_exact(4).map(|b| i32_at(b, 0)).collect();
+        Some((i32_at(p, 0), i32_at(p, 4), partitions))
+    } else {
+        None
+    };
     // A point stores x y z, the others a bounding box.
     c.take(if dim == 0 { 24 } else { 48 }, "an entity's coordinates")?;
     let np = c.count_le("a number of physical tags")?;
     let tags = c.take_n(np, 4, "physical tags")?;
-    physicals.extend(tags.chunks_exact(4).map(|b| i32_at(b, 0)));
+    entities
+        .physicals
+        .extend(tags.chunks_exact(4).map(|b| i32_at(b, 0)));
+    let mut bounding = Vec::new();
     if dim > 0 {
         let nb = c.count_le("a number of bounding entities")?;
-        c.take_n(nb, 4, "bounding entities")?;
+        let tags = c.take_n(nb, 4, "bounding entities")?;
+        bounding.extend(tags.chunks_exact(4).map(|b| i32_at(b, 0)));
     }
+    record(c, entities, (dim, tag), parent, bounding)?;
     Ok(tag)
 }
 
-/// Reads one ASCII entity of dimension `dim`; appends its physical tags to
-/// `physicals` and returns its tag.
+/// Reads one ASCII entity of dimension `dim` into `entities` (its physical
+/// tags appended to `physicals`); returns its tag.
 fn read_ascii(
     c: &mut Cursor,
     dim: usize,
     partitioned: bool,
-    physicals: &mut Vec<i32>,
+    entities: &mut Entities,
 ) -> Result<i32> {
     let tag = c.int("an entity tag")?;
-    if partitioned {
-        c.int("a parent entity dimension")?;
-        c.int("a parent entity tag")?;
+    let parent = if partitioned {
+        let parent_dim = c.int("a parent entity dimension")?;
+        let parent_tag = c.int("a parent entity tag")?;
         let np = c.count("a number of partitions")?;
+        let mut partitions = Vec::with_capacity(np.min(c.remaining() / 2));
         for _ in 0..np {
-            c.int("a partition tag")?;
+            partitions.push(c.int("a partition tag")?);
         }
-    }
+        Some((parent_dim, parent_tag, partitions))
+    } else {
+        None
+    };
     for _ in 0..if dim == 0 { 3 } else { 6 } {
         c.float("a coordinate")?;
     }
     let np = c.count("a number of physical tags")?;
     for _ in 0..np {
-        physicals.push(c.int("a physical tag")?);
+        entities.physicals.push(c.int("a physical tag")?);
     }
+    let mut bounding = Vec::new();
     if dim > 0 {
         let nb = c.count("a number of bounding entities")?;
         for _ in 0..nb {
-            c.int("a bounding entity tag")?;
+            bounding.push(c.int("a bounding entity tag")?);
         }
     }
+    record(c, entities, (dim, tag), parent, bounding)?;
     Ok(tag)
+}
+
+/// Keeps a partition entity's parent `(dimension, tag)` and partitions, or
+/// a model entity's bounding entities (their tags' signs dropped).
+fn record(
+    c: &Cursor,
+    entities: &mut Entities,
+    entity: (usize, i32),
+    parent: Option<(i32, i32, Vec<i32>)>,
+    bounding: Vec<i32>,
+) -> Result<()> {
+    match parent {
+        Some((dim, tag, partitions)) => {
+            let dim = usize::try_from(dim)
+                .ok()
+                .filter(|&d| d <= 3)
+                .ok_or_else(|| {
+                    c.error(format!("parent entity dimension {dim} (expected 0 to 3)"))
+                })?;
+            entities.partitioned.insert(
+                entity,
+                Partitioned {
+                    parent: (dim, tag),
+                    partitions,
+                },
+            );
+        }
+        None if entity.0 > 0 => {
+            entities
+                .bounding
+                .insert(entity, bounding.iter().map(|t| t.abs()).collect());
+        }
+        None => {}
+    }
+    Ok(())
 }
 
 /// Drops repeated tags from `tags[start..]`, keeping the first of each.

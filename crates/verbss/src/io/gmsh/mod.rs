@@ -24,6 +24,9 @@
 //! Node tags may be sparse and in any order; they are kept as `node_tags`.
 //! Gmsh always stores `z`: when `D = 2` every node must have `z = 0`.
 //!
+//! A partitioned MSH 4.1 file (`gmsh -part N`) reads whole as above;
+//! [`partitioned::read_share`] reads only some of its partitions.
+//!
 //! # What is written
 //!
 //! A mesh read from a file, written in that file's version and encoding with
@@ -55,7 +58,9 @@
 mod cursor;
 mod entities;
 mod model;
+pub mod partitioned;
 mod source;
+mod stream;
 mod v22;
 mod v41;
 mod write;

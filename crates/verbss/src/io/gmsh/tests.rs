@@ -4,6 +4,7 @@
 
 mod errors;
 mod hand_written;
+mod partitioned;
 mod source;
 
 use std::path::Path;

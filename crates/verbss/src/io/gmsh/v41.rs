@@ -12,16 +12,16 @@ use super::model::{
 use super::write::{runs, Out, Plan};
 use super::{close, early_end};
 use crate::error::Result;
-use crate::mesh::Cells;
+use crate::mesh::{CellKind, Cells};
 
 /// Bytes of a binary block header: three `int`s and a `size_t`.
 const BLOCK_HEADER: usize = 3 * 4 + 8;
 
-/// Reads the four `size_t` (or ASCII) numbers heading `$Nodes` and `$Elements`:
-/// block count and item count (the smallest and largest tag are not needed).
-fn section_header(c: &mut Cursor, items: &str) -> Result<(usize, usize)> {
+/// Reads the four `size_t` (or ASCII) numbers heading `$Nodes` and `$Elements`
+/// (in a binary file, after the keyword's line break): block count and item
+/// count (the smallest and largest tag are not needed).
+pub(super) fn section_header(c: &mut Cursor, items: &str) -> Result<(usize, usize)> {
     if c.binary() {
-        c.newline()?;
         let blocks = c.count_le("the number of blocks")?;
         let n = c.count_le(items)?;
         c.take(16, "the smallest and largest tag")?;
@@ -35,8 +35,30 @@ fn section_header(c: &mut Cursor, items: &str) -> Result<(usize, usize)> {
     }
 }
 
+/// A block header: `(entity dimension, entity tag, third int, count, mark)`.
+pub(super) type BlockHeader = (usize, i32, i32, usize, Mark);
+
+/// Reads the header of block `b` of the `blocks` that `section` declares
+/// (`$Nodes`: third int the parametric flag; `$Elements`: the element type).
+pub(super) fn next_block(
+    c: &mut Cursor,
+    section: &str,
+    blocks: usize,
+    b: usize,
+) -> Result<BlockHeader> {
+    if !c.binary() {
+        early_end(c, || {
+            format!("{section} declares {blocks} blocks but ends after {b}")
+        })?;
+    }
+    match section {
+        "$Nodes" => block_header(c, "the parametric flag", "a node block header"),
+        _ => block_header(c, "an element type", "an element block header"),
+    }
+}
+
 /// Reads a block header: `(entity dimension, entity tag, third int, count)`.
-fn block_header(c: &mut Cursor, third: &str, what: &str) -> Result<(usize, i32, i32, usize, Mark)> {
+fn block_header(c: &mut Cursor, third: &str, what: &str) -> Result<BlockHeader> {
     let (dim, tag, x, n, mark) = if c.binary() {
         let h = c.take(BLOCK_HEADER, what)?;
         let mark = c.mark();
@@ -60,84 +82,15 @@ fn block_header(c: &mut Cursor, third: &str, what: &str) -> Result<(usize, i32, 
 
 /// Reads the body of `$Nodes` and its closing keyword.
 pub(super) fn read_nodes(c: &mut Cursor) -> Result<Nodes> {
+    if c.binary() {
+        c.newline()?;
+    }
     let (blocks, total) = section_header(c, "the number of nodes")?;
     let mut nodes = Nodes::default();
     for b in 0..blocks {
-        if !c.binary() {
-            early_end(c, || {
-                format!("$Nodes declares {blocks} blocks but ends after {b}")
-            })?;
-        }
-        let (dim, _, parametric, n, mark) =
-            block_header(c, "the parametric flag", "a node block header")?;
-        let params = match parametric {
-            0 => 0,
-            1 => dim,
-            _ => {
-                return Err(c.error_at(
-                    mark,
-                    format!("parametric flag {parametric} (expected 0 or 1)"),
-                ))
-            }
-        };
-        if c.binary() {
-            let reals = 8 * (3 + params);
-            let tags = c.take_n(n, 8, "the node tags of a block")?;
-            let tags_at = c.mark().offset;
-            let xyz = c.take_n(n, reals, "the node coordinates of a block")?;
-            let xyz_at = c.mark().offset;
-            nodes.reserve(n);
-            for i in 0..n {
-                let tag = u64_at(tags, 8 * i);
-                if tag == 0 {
-                    return Err(c.error_at_offset(tags_at + 8 * i, zero_tag("node")));
-                }
-                let p = [
-                    f64_at(xyz, reals * i),
-                    f64_at(xyz, reals * i + 8),
-                    f64_at(xyz, reals * i + 16),
-                ];
-                let at = Mark {
-                    offset: xyz_at + reals * i,
-                    line: 0,
-                };
-                nodes.push(c, at, at.offset + 24, tag, p)?;
-            }
-        } else {
-            let mut tags = Vec::with_capacity(n.min(c.remaining() / 2));
-            for i in 0..n {
-                early_end(c, || {
-                    format!("node block {} declares {n} nodes but ends after {i}", b + 1)
-                })?;
-                let tag = c.uint("a node tag")?;
-                if tag == 0 {
-                    return Err(c.error(zero_tag("node")));
-                }
-                tags.push(tag);
-            }
-            nodes.reserve(n.min(c.remaining() / 6));
-            for (i, &tag) in tags.iter().enumerate() {
-                let mut v = [0.0; 6];
-                let mut mark = c.here();
-                let mut end = 0;
-                for (k, slot) in v[..3 + params].iter_mut().enumerate() {
-                    early_end(c, || {
-                        format!(
-                            "node block {} declares {n} nodes but holds coordinates for {i}",
-                            b + 1
-                        )
-                    })?;
-                    *slot = c.float("a coordinate")?;
-                    if k == 0 {
-                        mark = c.mark();
-                    }
-                    if k == 2 {
-                        end = c.here().offset;
-                    }
-                }
-                nodes.push(c, mark, end, tag, [v[0], v[1], v[2]])?;
-            }
-        }
+        let (dim, _, parametric, n, mark) = next_block(c, "$Nodes", blocks, b)?;
+        let params = node_parameters(c, dim, parametric, mark)?;
+        read_node_block(c, b, n, params, &mut nodes)?;
     }
     if nodes.len() != total {
         return Err(c.error_at(
@@ -152,94 +105,117 @@ pub(super) fn read_nodes(c: &mut Cursor) -> Result<Nodes> {
     Ok(nodes)
 }
 
+/// The parametric coordinates per node of a block on an entity of
+/// dimension `dim` with flag `parametric` (read at `mark`).
+pub(super) fn node_parameters(
+    c: &Cursor,
+    dim: usize,
+    parametric: i32,
+    mark: Mark,
+) -> Result<usize> {
+    match parametric {
+        0 => Ok(0),
+        1 => Ok(dim),
+        _ => Err(c.error_at(
+            mark,
+            format!("parametric flag {parametric} (expected 0 or 1)"),
+        )),
+    }
+}
+
+/// Bytes of the body of a binary node block: `n` tags, then `n` times
+/// `x y z` and `params` parametric coordinates.
+pub(super) fn node_block_bytes(n: usize, params: usize) -> Option<usize> {
+    n.checked_mul(8 * (4 + params))
+}
+
+/// Reads the `n` nodes of block `b` (after its header) into `nodes`.
+pub(super) fn read_node_block(
+    c: &mut Cursor,
+    b: usize,
+    n: usize,
+    params: usize,
+    nodes: &mut Nodes,
+) -> Result<()> {
+    if c.binary() {
+        let reals = 8 * (3 + params);
+        let tags = c.take_n(n, 8, "the node tags of a block")?;
+        let tags_at = c.mark().offset;
+        let xyz = c.take_n(n, reals, "the node coordinates of a block")?;
+        let xyz_at = c.mark().offset;
+        nodes.reserve(n);
+        for i in 0..n {
+            let tag = u64_at(tags, 8 * i);
+            if tag == 0 {
+                return Err(c.error_at_offset(tags_at + 8 * i, zero_tag("node")));
+            }
+            let p = [
+                f64_at(xyz, reals * i),
+                f64_at(xyz, reals * i + 8),
+                f64_at(xyz, reals * i + 16),
+            ];
+            let at = Mark {
+                offset: xyz_at + reals * i,
+                line: 0,
+            };
+            nodes.push(c, at, at.offset + 24, tag, p)?;
+        }
+        return Ok(());
+    }
+    let mut tags = Vec::with_capacity(n.min(c.remaining() / 2));
+    for i in 0..n {
+        early_end(c, || {
+            format!("node block {} declares {n} nodes but ends after {i}", b + 1)
+        })?;
+        let tag = c.uint("a node tag")?;
+        if tag == 0 {
+            return Err(c.error(zero_tag("node")));
+        }
+        tags.push(tag);
+    }
+    nodes.reserve(n.min(c.remaining() / 6));
+    for (i, &tag) in tags.iter().enumerate() {
+        let mut v = [0.0; 6];
+        let mut mark = c.here();
+        let mut end = 0;
+        for (k, slot) in v[..3 + params].iter_mut().enumerate() {
+            early_end(c, || {
+                format!(
+                    "node block {} declares {n} nodes but holds coordinates for {i}",
+                    b + 1
+                )
+            })?;
+            *slot = c.float("a coordinate")?;
+            if k == 0 {
+                mark = c.mark();
+            }
+            if k == 2 {
+                end = c.here().offset;
+            }
+        }
+        nodes.push(c, mark, end, tag, [v[0], v[1], v[2]])?;
+    }
+    Ok(())
+}
+
 /// Reads the body of `$Elements` and its closing keyword.
 pub(super) fn read_elements(
     c: &mut Cursor,
     index: &NodeIndex,
     entities: &Entities,
 ) -> Result<Elements> {
+    if c.binary() {
+        c.newline()?;
+    }
     let (blocks, total) = section_header(c, "the number of elements")?;
     let mut elements = Elements::with_physicals(entities.physicals.clone());
     let mut read = 0;
-    let mut ids = [0usize; 8];
     for b in 0..blocks {
-        if !c.binary() {
-            early_end(c, || {
-                format!("$Elements declares {blocks} blocks but ends after {b}")
-            })?;
-        }
-        let (dim, entity, etype, n, mark) =
-            block_header(c, "an element type", "an element block header")?;
-        let kind = kind_of_type(etype).map_err(|m| c.error_at(mark, m))?;
-        if kind.dim() != dim {
-            return Err(c.error_at(
-                mark,
-                format!(
-                    "an element block on an entity of dimension {dim} holds {} elements (dimension {})",
-                    kind.name(),
-                    kind.dim()
-                ),
-            ));
-        }
-        let physicals = match entities.map.get(&(dim, entity)) {
-            Some(r) => r.clone(),
-            None if !entities.present => 0..0,
-            None => {
-                return Err(c.error_at(
-                    mark,
-                    format!(
-                        "element block on entity {entity} of dimension {dim}, which neither \
-                         $Entities nor $PartitionedEntities lists"
-                    ),
-                ))
-            }
-        };
-        elements
-            .set_run(dim, physicals)
-            .map_err(|m| c.error_at(mark, m))?;
-        let nn = kind.node_count();
-        if c.binary() {
-            let size = 8 * (1 + nn);
-            let data = c.take_n(n, size, "an element block")?;
-            let start = c.mark().offset;
-            elements.reserve(kind, n);
-            for (e, rec) in data.chunks_exact(size).enumerate() {
-                let at = start + e * size;
-                let tag = u64_at(rec, 0);
-                if tag == 0 {
-                    return Err(c.error_at_offset(at, zero_tag("element")));
-                }
-                for (k, id) in ids[..nn].iter_mut().enumerate() {
-                    let node = u64_at(rec, 8 * (1 + k));
-                    *id = index.get(node).ok_or_else(|| {
-                        c.error_at_offset(at + 8 * (1 + k), unknown_node(tag, node))
-                    })?;
-                }
-                elements.push(kind, tag, &ids[..nn]);
-            }
-        } else {
-            elements.reserve(kind, n.min(c.remaining() / (2 * (1 + nn))));
-            for e in 0..n {
-                early_end(c, || {
-                    format!(
-                        "element block {} declares {n} elements but ends after {e}",
-                        b + 1
-                    )
-                })?;
-                let tag = c.uint("an element tag")?;
-                if tag == 0 {
-                    return Err(c.error(zero_tag("element")));
-                }
-                for id in &mut ids[..nn] {
-                    let node = c.uint("a node tag")?;
-                    *id = index
-                        .get(node)
-                        .ok_or_else(|| c.error(unknown_node(tag, node)))?;
-                }
-                elements.push(kind, tag, &ids[..nn]);
-            }
-        }
-        read += n;
+        let header = next_block(c, "$Elements", blocks, b)?;
+        let kind = element_kind(c, header)?;
+        start_element_block(c, header, entities, &mut elements)?;
+        read_element_block(c, b, kind, header.3, index, &mut elements)?;
+        read += header.3;
     }
     if read != total {
         return Err(c.error_at(
@@ -249,6 +225,109 @@ pub(super) fn read_elements(
     }
     close(c, "$EndElements", blocks, "blocks")?;
     Ok(elements)
+}
+
+/// The element kind of an element block, which must match its entity's dimension.
+pub(super) fn element_kind(c: &Cursor, (dim, _, etype, _, mark): BlockHeader) -> Result<CellKind> {
+    let kind = kind_of_type(etype).map_err(|m| c.error_at(mark, m))?;
+    if kind.dim() != dim {
+        return Err(c.error_at(
+            mark,
+            format!(
+                "an element block on an entity of dimension {dim} holds {} elements (dimension {})",
+                kind.name(),
+                kind.dim()
+            ),
+        ));
+    }
+    Ok(kind)
+}
+
+/// Bytes of the body of a binary block of `n` elements of `kind`: per
+/// element its tag and node tags.
+pub(super) fn element_block_bytes(n: usize, kind: CellKind) -> Option<usize> {
+    n.checked_mul(8 * (1 + kind.node_count()))
+}
+
+/// Gives the elements of the block from now on the physical tags of its entity.
+pub(super) fn start_element_block(
+    c: &Cursor,
+    (dim, entity, _, _, mark): BlockHeader,
+    entities: &Entities,
+    elements: &mut Elements,
+) -> Result<()> {
+    let physicals = match entities.map.get(&(dim, entity)) {
+        Some(r) => r.clone(),
+        None if !entities.present => 0..0,
+        None => {
+            return Err(c.error_at(
+                mark,
+                format!(
+                    "element block on entity {entity} of dimension {dim}, which neither \
+                     $Entities nor $PartitionedEntities lists"
+                ),
+            ))
+        }
+    };
+    elements
+        .set_run(dim, physicals)
+        .map_err(|m| c.error_at(mark, m))
+}
+
+/// Reads the `n` elements of `kind` of block `b` (after its header) into
+/// `elements`, their nodes by `index`.
+pub(super) fn read_element_block(
+    c: &mut Cursor,
+    b: usize,
+    kind: CellKind,
+    n: usize,
+    index: &NodeIndex,
+    elements: &mut Elements,
+) -> Result<()> {
+    let mut ids = [0usize; 8];
+    let nn = kind.node_count();
+    if c.binary() {
+        let size = 8 * (1 + nn);
+        let data = c.take_n(n, size, "an element block")?;
+        let start = c.mark().offset;
+        elements.reserve(kind, n);
+        for (e, rec) in data.chunks_exact(size).enumerate() {
+            let at = start + e * size;
+            let tag = u64_at(rec, 0);
+            if tag == 0 {
+                return Err(c.error_at_offset(at, zero_tag("element")));
+            }
+            for (k, id) in ids[..nn].iter_mut().enumerate() {
+                let node = u64_at(rec, 8 * (1 + k));
+                *id = index
+                    .get(node)
+                    .ok_or_else(|| c.error_at_offset(at + 8 * (1 + k), unknown_node(tag, node)))?;
+            }
+            elements.push(kind, tag, &ids[..nn]);
+        }
+        return Ok(());
+    }
+    elements.reserve(kind, n.min(c.remaining() / (2 * (1 + nn))));
+    for e in 0..n {
+        early_end(c, || {
+            format!(
+                "element block {} declares {n} elements but ends after {e}",
+                b + 1
+            )
+        })?;
+        let tag = c.uint("an element tag")?;
+        if tag == 0 {
+            return Err(c.error(zero_tag("element")));
+        }
+        for id in &mut ids[..nn] {
+            let node = c.uint("a node tag")?;
+            *id = index
+                .get(node)
+                .ok_or_else(|| c.error(unknown_node(tag, node)))?;
+        }
+        elements.push(kind, tag, &ids[..nn]);
+    }
+    Ok(())
 }
 
 /// Writes the whole file.

@@ -1,0 +1,184 @@
+//! `verbss-mpi deform` with a `.pvtu` output, from a partitioned MSH 4.1
+//! input: every rank reads only its own partitions
+//! ([`verbss_mpi::share::read_rank_share`]), the flow-solver entry
+//! ([`verbss_mpi::coupled::LocalSolver`]) adds the ghost layer and sweeps,
+//! and every rank checks and writes its own cells — no rank holds the whole
+//! mesh (docs/distributed.md).
+//!
+//! Step `n` of `N` prescribes the moving nodes where the motion puts their
+//! input positions at `n/N`, the other boundary nodes where they are; with
+//! `--reference updated` the springs are on the current mesh and the solve
+//! is for the increment, with `fixed` on the input mesh for the total
+//! displacement. A step that inverts a cell stops the run with exit code 3
+//! (the pieces hold the last valid mesh), sweeps that do not converge with
+//! exit code 4: without the whole mesh there is no exact solve to escalate
+//! to. Unless `--quiet`, every rank says what it holds.
+
+use std::path::Path;
+use std::process::ExitCode;
+
+use anyhow::bail;
+use verbss::deform::Reference;
+use verbss::io::gmsh::partitioned::partition_count;
+use verbss::mesh::Mesh;
+use verbss::motion::{Clock, Frame, Motion};
+use verbss::quality;
+use verbss_cli::deform::DeformArgs;
+use verbss_cli::run::{file_stem, output_dir};
+use verbss_mpi::coupled::LocalSolver;
+use verbss_mpi::pieces::write_local_piece;
+use verbss_mpi::share::{global_numbers, partitions_of, prescribe, read_rank_share};
+use verbss_mpi::Comm;
+
+use crate::run::join_pieces;
+
+/// Whether `verbss-mpi deform` takes this path: a `.pvtu` output, which
+/// only a partitioned MSH 4.1 input is written to.
+pub fn applies(args: &DeformArgs) -> bool {
+    args.output().extension().is_some_and(|e| e == "pvtu")
+}
+
+/// Fails unless `input` is a partitioned MSH 4.1 file.
+fn check_partitioned(input: &Path, output: &Path) -> anyhow::Result<()> {
+    let is_msh = input
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("msh"));
+    if is_msh && partition_count(input)? > 0 {
+        return Ok(());
+    }
+    bail!(
+        "{}: a .pvtu output is written rank by rank, from a partitioned MSH 4.1 input \
+         (`gmsh -part N -format msh41`), and {} is not partitioned: give another output \
+         format, or partition the mesh",
+        output.display(),
+        input.display()
+    )
+}
+
+/// The displacement of input position `p` at step `step` of `steps`.
+fn displacement(motion: &Motion, p: &[f64], step: usize, steps: usize) -> verbss::Result<Vec<f64>> {
+    let clock = Clock {
+        step,
+        steps,
+        dt: 1.0,
+    };
+    let mut x = p.to_vec();
+    motion.apply(0, &mut x, clock, &Frame::default())?;
+    Ok(x.iter().zip(p).map(|(a, b)| a - b).collect())
+}
+
+/// Runs the job on every rank (see the module documentation).
+pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
+    check_partitioned(args.mesh(), args.output())?;
+    let world = Comm::world();
+    let root = world.rank() == 0;
+    let share = read_rank_share(&world, args.mesh())?;
+    let job = args.share_job(share.mesh.dim)?;
+    let mesh = &share.mesh;
+    job.settings.validate()?;
+    let steps = job.settings.steps;
+    let at = |step| {
+        prescribe(&share, &job.moving, |p| {
+            displacement(&job.motion, p, step, steps)
+        })
+    };
+    let (roles, _) = at(0)?;
+    let mut solver = LocalSolver::new(&world, mesh, &global_numbers(&share), &roles, &[])?;
+    if !job.quiet {
+        let part = solver.part();
+        let size = world.size() as usize;
+        let partitions = partitions_of(share.partitions, size, world.rank() as usize, args.mesh())?;
+        println!(
+            "rank {}: partitions {}-{} of {}: {} nodes and {} cells read; with the ghost \
+             layer {} nodes and {} cells",
+            world.rank(),
+            partitions.start(),
+            partitions.end(),
+            share.partitions,
+            mesh.node_count(),
+            mesh.cell_count(),
+            part.node_count(),
+            part.cells.len()
+        );
+    }
+    let orientation = quality::orientation(mesh);
+    let mut coords = mesh.coords.clone();
+    let mut sweeps = 0;
+    for step in 1..=steps {
+        let (_, target) = at(step)?;
+        let (springs, mut u) = match job.settings.reference {
+            Reference::Fixed => (mesh.coords.clone(), target),
+            _ => {
+                let (_, before) = at(step - 1)?;
+                let increment = target.iter().zip(&before).map(|(a, b)| a - b).collect();
+                (coords.clone(), increment)
+            }
+        };
+        let info = solver.solve(&springs, &mut u, &job.settings.solve)?;
+        if !info.converged {
+            if root {
+                eprintln!(
+                    "error: step {step}: the sweeps did not converge in {} sweeps (eq.-8 value \
+                     {:e}); a partitioned input has no exact solve to escalate to: raise \
+                     --max-iterations, or take more --steps",
+                    info.iterations, info.residual
+                );
+            }
+            write(&world, &job.output, mesh, &coords, &orientation)?;
+            return Ok(ExitCode::from(4));
+        }
+        let moved: Vec<f64> = springs.iter().zip(&u).map(|(x, du)| x + du).collect();
+        let inverted = quality::inverted_cells(mesh, &moved, &orientation).len() as u64;
+        let inverted = world.sum(inverted);
+        if inverted > 0 {
+            if root {
+                eprintln!(
+                    "error: step {step} inverts {inverted} cells; {} holds step {}",
+                    job.output.display(),
+                    step - 1
+                );
+            }
+            write(&world, &job.output, mesh, &coords, &orientation)?;
+            return Ok(ExitCode::from(3));
+        }
+        coords = moved;
+        sweeps += info.iterations;
+        if root && !job.quiet {
+            println!("step {step}/{steps}: {} sweeps", info.iterations);
+        }
+    }
+    write(&world, &job.output, mesh, &coords, &orientation)?;
+    if root && !job.quiet {
+        println!(
+            "wrote {} ({} pieces, {sweeps} sweeps in all)",
+            job.output.display(),
+            world.size()
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Every rank writes its cells at `coords` as its piece beside `output`,
+/// rank 0 the `.pvtu` joining them.
+fn write(
+    world: &Comm,
+    output: &Path,
+    mesh: &Mesh,
+    coords: &[f64],
+    orientation: &[i8],
+) -> anyhow::Result<()> {
+    let dim = mesh.dim;
+    let dir = output_dir(output);
+    let name = file_stem(output);
+    let mut moved = mesh.clone();
+    moved.coords = coords.to_vec();
+    let mut displacement = vec![0.0; 3 * mesh.node_count()];
+    for (i, (x, x0)) in coords.chunks(dim).zip(mesh.coords.chunks(dim)).enumerate() {
+        for d in 0..dim {
+            displacement[3 * i + d] = x[d] - x0[d];
+        }
+    }
+    let quality = quality::qualities(mesh, coords, orientation);
+    let written = write_local_piece(&dir, &name, world.rank(), &moved, displacement, quality);
+    join_pieces(world, &dir, &name, written)
+}

@@ -1,0 +1,595 @@
+//! The distributed read of a partitioned MSH 4.1 file written by Gmsh
+//! (`assets/meshes/gmsh/*_part3_*.msh`, 3 partitions, made by
+//! `scripts/make_partitioned_fixtures.py`) on 1, 2 and 3 ranks: each rank
+//! reads only its partitions ([`verbss_mpi::share::read_rank_share`]), the
+//! flow-solver entry ([`verbss_mpi::coupled::LocalSolver`]) adds the ghost
+//! layer, and the solve of a translated group gives the single-process
+//! exact solution.
+//!
+//! Each rank's node and cell counts — of what it read, and of its part with
+//! ghosts — are asserted against counts made here on one process from the
+//! whole file: the shares' cells are its partitions' (Gmsh's own numbers,
+//! `partitions.json`), and the part holds every cell with a node the rank
+//! owns (the lowest rank holding a node owns it) plus its own cells.
+//!
+//! The test re-runs this test binary under `mpirun` with the ignored
+//! `worker` test, which writes each rank's counts and displacements to a
+//! file. Without MPI (in this build or `mpirun`) the tests skip with a notice.
+
+use std::collections::{BTreeSet, HashMap};
+use std::path::{Path, PathBuf};
+
+use verbss::deform::{Deformer, Preset, Reference};
+use verbss::io::gmsh::partitioned::read_share;
+use verbss::motion::{Attachment, Motion};
+use verbss::solve::{default_roles, Engine, Method, SolveParams, Solver};
+use verbss::Mesh;
+use verbss_mpi::share::partitions_of;
+
+mod common;
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/meshes/gmsh")
+        .join(name)
+}
+
+/// The prescribed displacement of the moving group: a translation.
+fn translation(dim: usize) -> Vec<f64> {
+    [0.02, 0.01, 0.005][..dim].to_vec()
+}
+
+/// Worker, one per rank (run by `mpirun` from the tests below): reads this
+/// rank's share, solves, and writes `counts SHARE_NODES SHARE_CELLS
+/// PART_NODES PART_CELLS` then `tag u…` lines in `$VERBSS_MPI_OUT.RANK`.
+#[cfg(with_mpi)]
+#[test]
+#[ignore = "run under mpirun by the other tests"]
+fn worker() {
+    use verbss_mpi::coupled::LocalSolver;
+    use verbss_mpi::share::{global_numbers, prescribe, read_rank_share};
+
+    let mpi = verbss_mpi::Mpi::init().unwrap();
+    let world = mpi.world();
+    let path = PathBuf::from(std::env::var("VERBSS_MPI_MESH").unwrap());
+    let group = std::env::var("VERBSS_MPI_GROUP").unwrap();
+    let out = std::env::var("VERBSS_MPI_OUT").unwrap();
+    let share = read_rank_share(&world, &path).unwrap();
+    let dim = share.mesh.dim;
+    let (roles, mut u) = prescribe(&share, &[group], |_| Ok(translation(dim))).unwrap();
+    let global = global_numbers(&share);
+    let mut solver = LocalSolver::new(&world, &share.mesh, &global, &roles, &[]).unwrap();
+    let mut params = SolveParams::default();
+    params.tolerance = 1e-13;
+    params.max_iterations = 100_000;
+    let info = solver.solve(&share.mesh.coords, &mut u, &params).unwrap();
+    assert!(info.converged, "{info:?}");
+    let part = solver.part();
+    let mut text = format!(
+        "counts {} {} {} {}\n",
+        share.mesh.node_count(),
+        share.mesh.cell_count(),
+        part.node_count(),
+        part.cells.len()
+    );
+    for (i, &tag) in share.mesh.node_tags.iter().enumerate() {
+        text += &tag.to_string();
+        for d in 0..dim {
+            text += &format!(" {:e}", u[dim * i + d]);
+        }
+        text += "\n";
+    }
+    std::fs::write(format!("{out}.{}", world.rank()), text).unwrap();
+}
+
+/// What one rank wrote.
+struct Rank {
+    /// Nodes and cells read; nodes and cells of the part with its ghosts.
+    counts: [usize; 4],
+    /// Node tag → displacement.
+    u: HashMap<u64, Vec<f64>>,
+}
+
+/// Runs the worker on `np` ranks.
+fn distributed(np: usize, name: &str, group: &str) -> Vec<Rank> {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("u");
+    let o = common::mpirun(np, dir.path())
+        .env("VERBSS_MPI_MESH", fixture(name))
+        .env("VERBSS_MPI_GROUP", group)
+        .env("VERBSS_MPI_OUT", &out)
+        .arg(std::env::current_exe().unwrap())
+        .args(["worker", "--exact", "--ignored", "--test-threads", "1"])
+        .output()
+        .expect("run mpirun (Debian: openmpi-bin)");
+    assert!(
+        o.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    (0..np)
+        .map(|r| {
+            let text = std::fs::read_to_string(format!("{}.{r}", out.display())).unwrap();
+            let mut lines = text.lines();
+            let counts: Vec<usize> = lines.next().unwrap()[7..]
+                .split(' ')
+                .map(|x| x.parse().unwrap())
+                .collect();
+            let u = lines
+                .map(|l| {
+                    let mut parts = l.split(' ');
+                    let tag = parts.next().unwrap().parse().unwrap();
+                    (tag, parts.map(|x| x.parse().unwrap()).collect())
+                })
+                .collect();
+            Rank {
+                counts: counts.try_into().unwrap(),
+                u,
+            }
+        })
+        .collect()
+}
+
+/// The counts each of `np` ranks must have, from the whole mesh: the
+/// nodes and cells of its partitions, and of its part with ghosts.
+fn expected_counts(whole: &Mesh, name: &str, np: usize) -> Vec<[usize; 4]> {
+    let path = fixture(name);
+    let index: HashMap<u64, usize> = whole
+        .node_tags
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| (t, i))
+        .collect();
+    let cell_index: HashMap<u64, usize> = whole
+        .cell_tags
+        .iter()
+        .enumerate()
+        .map(|(c, &t)| (t, c))
+        .collect();
+    let gmsh: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(fixture("partitions.json")).unwrap())
+            .unwrap();
+    let shares: Vec<_> = (0..np)
+        .map(|r| read_share(&path, partitions_of(3, np, r, &path).unwrap()).unwrap())
+        .collect();
+    let mut owner = vec![usize::MAX; whole.node_count()];
+    for (r, s) in shares.iter().enumerate().rev() {
+        for t in &s.mesh.node_tags {
+            owner[index[t]] = r;
+        }
+    }
+    (0..np)
+        .map(|r| {
+            let s = &shares[r];
+            let gmsh_cells: u64 = partitions_of(3, np, r, &path)
+                .unwrap()
+                .map(|p| gmsh[name][p.to_string()]["cells"].as_u64().unwrap())
+                .sum();
+            assert_eq!(s.mesh.cell_count() as u64, gmsh_cells, "rank {r}");
+            let mut cells: BTreeSet<usize> =
+                s.mesh.cell_tags.iter().map(|t| cell_index[t]).collect();
+            cells.extend(
+                (0..whole.cell_count())
+                    .filter(|&c| whole.cells.cell(c).iter().any(|&v| owner[v] == r)),
+            );
+            let nodes: BTreeSet<usize> = cells
+                .iter()
+                .flat_map(|&c| whole.cells.cell(c).to_vec())
+                .collect();
+            [
+                s.mesh.node_count(),
+                s.mesh.cell_count(),
+                nodes.len(),
+                cells.len(),
+            ]
+        })
+        .collect()
+}
+
+/// The exact solution on one process (sparse LU), by node tag.
+fn direct(whole: &Mesh, group: &str) -> HashMap<u64, Vec<f64>> {
+    let dim = whole.dim;
+    let roles = default_roles(whole);
+    let mut u = vec![0.0; dim * whole.node_count()];
+    for i in whole.group(group).unwrap().nodes() {
+        u[dim * i..dim * (i + 1)].copy_from_slice(&translation(dim));
+    }
+    let mut engine = Engine::new(whole, &roles, &[]).unwrap();
+    let mut params = SolveParams::default();
+    params.method = Method::BallVertex;
+    params.solver = Solver::Direct;
+    engine.solve(&whole.coords, &mut u, &params).unwrap();
+    (0..whole.node_count())
+        .map(|i| (whole.node_tags[i], u[dim * i..dim * (i + 1)].to_vec()))
+        .collect()
+}
+
+/// On 1, 2 and 3 ranks: the counts, and the displacements against the
+/// single-process exact solution (relative to the translation's length)
+/// and against 1 rank.
+fn reads_and_solves(name: &str, group: &str) {
+    let whole = verbss::io::read(&fixture(name)).unwrap();
+    let exact = direct(&whole, group);
+    let scale = translation(whole.dim)
+        .iter()
+        .map(|x| x * x)
+        .sum::<f64>()
+        .sqrt();
+    let mut one: HashMap<u64, Vec<f64>> = HashMap::new();
+    for np in 1..=3 {
+        let ranks = distributed(np, name, group);
+        let want = expected_counts(&whole, name, np);
+        for (r, rank) in ranks.iter().enumerate() {
+            assert_eq!(rank.counts, want[r], "{name}: rank {r} of {np}");
+            if np > 1 {
+                assert!(
+                    rank.counts[2] < whole.node_count(),
+                    "{name}: rank {r} of {np}"
+                );
+            }
+        }
+        let mut u: HashMap<u64, Vec<f64>> = HashMap::new();
+        for rank in &ranks {
+            for (tag, v) in &rank.u {
+                if let Some(w) = u.insert(*tag, v.clone()) {
+                    assert_eq!(&w, v, "{name}: node {tag} on two ranks");
+                }
+            }
+        }
+        assert_eq!(
+            u.len(),
+            whole.node_count(),
+            "{name}: every node on some rank"
+        );
+        for (tag, v) in &u {
+            for (a, b) in v.iter().zip(&exact[tag]) {
+                assert!(
+                    (a - b).abs() < 1e-10 * scale,
+                    "{name}, {np} ranks: node {tag}: {a} against {b}"
+                );
+            }
+            if np == 1 {
+                continue;
+            }
+            for (a, b) in v.iter().zip(&one[tag]) {
+                assert!(
+                    (a - b).abs() < 1e-12 * scale,
+                    "{name}, {np} ranks against 1: node {tag}"
+                );
+            }
+        }
+        if np == 1 {
+            one = u;
+        }
+    }
+}
+
+#[test]
+fn gmsh_partitioned_channel_read_on_one_to_three_ranks() {
+    if !common::mpi_ready() {
+        return;
+    }
+    reads_and_solves("channel_hole_part3_v41_ascii.msh", "wall");
+}
+
+#[test]
+fn gmsh_partitioned_box_read_on_one_to_three_ranks() {
+    if !common::mpi_ready() {
+        return;
+    }
+    reads_and_solves("box_part3_v41_binary.msh", "inlet");
+}
+
+/// `mpirun -np NP verbss-mpi ARGS…`.
+fn verbss_mpi(np: usize, args: &[&str], session: &Path) -> std::process::Output {
+    common::mpirun(np, session)
+        .arg(env!("CARGO_BIN_EXE_verbss-mpi"))
+        .args(args)
+        .output()
+        .expect("run mpirun (Debian: openmpi-bin)")
+}
+
+/// The single-process run of the paper's method (the stepper of `verbss
+/// deform --method verbss`, without escalation: the sweeps converge).
+fn single(whole: &Mesh, group: &str, motion: Motion, steps: usize, reference: Reference) -> Mesh {
+    let mut settings = Preset::Verbss.settings(steps);
+    settings.reference = reference;
+    settings.solve.tolerance = TOLERANCE;
+    settings.solve.escalate = false;
+    settings.solve.max_iterations = 100_000;
+    let attachments = [Attachment {
+        groups: vec![group.into()],
+        motion,
+    }];
+    let mut d = Deformer::new(whole, &attachments, settings).unwrap();
+    for n in 1..=steps {
+        d.step(n).unwrap();
+    }
+    d.mesh()
+}
+
+/// The eq.-8 tolerance of both runs.
+const TOLERANCE: f64 = 1e-12;
+
+/// `verbss-mpi deform` on a partitioned input with a `.pvtu` output on 1, 2
+/// and 3 ranks: the pieces hold every cell of the file once, at the
+/// single-process run's coordinates to 1e-10 of the largest displacement.
+fn deforms_like_one_process(
+    name: &str,
+    group: &str,
+    motion: &[&str],
+    reference: Reference,
+    scale: f64,
+) {
+    let whole = verbss::io::read(&fixture(name)).unwrap();
+    let motion_of = match motion[0] {
+        "--translate" => {
+            let d: Vec<f64> = motion[1].split(',').map(|x| x.parse().unwrap()).collect();
+            Motion::Translation {
+                displacement: [d[0], d[1], d.get(2).copied().unwrap_or(0.0)],
+            }
+        }
+        _ => Motion::Rotation {
+            center: [0.5, 0.5, 0.5],
+            axis: [0.0, 0.0, 1.0],
+            angle: motion[1].parse::<f64>().unwrap().to_radians(),
+        },
+    };
+    let one = single(&whole, group, motion_of, 2, reference);
+    let index: HashMap<u64, usize> = whole
+        .node_tags
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| (t, i))
+        .collect();
+    let dim = whole.dim;
+    let reference = match reference {
+        Reference::Fixed => "fixed",
+        _ => "updated",
+    };
+    for np in 1..=3 {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("moved.pvtu");
+        let mesh = fixture(name);
+        let tolerance = TOLERANCE.to_string();
+        let mut args = vec![
+            "deform",
+            mesh.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--moving",
+            group,
+            "--method",
+            "verbss",
+            "--steps",
+            "2",
+            "--reference",
+            reference,
+            "--tolerance",
+            &tolerance,
+            "--max-iterations",
+            "100000",
+            "-q",
+        ];
+        args.extend_from_slice(motion);
+        let o = verbss_mpi(np, &args, dir.path());
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let mut cells = Vec::new();
+        let mut worst = 0.0f64;
+        for r in 0..np {
+            let piece = verbss::io::read(&dir.path().join(format!("moved_{r}.vtu"))).unwrap();
+            cells.extend_from_slice(&piece.cell_tags);
+            for (i, t) in piece.node_tags.iter().enumerate() {
+                let g = index[t];
+                for d in 0..dim {
+                    worst = worst.max((piece.coords[dim * i + d] - one.coords[dim * g + d]).abs());
+                }
+            }
+        }
+        cells.sort_unstable();
+        let mut all = whole.cell_tags.clone();
+        all.sort_unstable();
+        assert_eq!(cells, all, "{name}: {np} ranks");
+        assert!(worst < 1e-10 * scale, "{name}: {np} ranks: {worst:e}");
+        let pvtu = std::fs::read_to_string(&out).unwrap();
+        assert_eq!(pvtu.matches("<Piece ").count(), np);
+    }
+}
+
+#[test]
+fn deform_a_partitioned_channel_on_one_to_three_ranks() {
+    if !common::mpi_ready() {
+        return;
+    }
+    let scale = (0.02f64 * 0.02 + 0.01 * 0.01).sqrt();
+    let motion = ["--translate", "0.02,0.01"];
+    deforms_like_one_process(
+        "channel_hole_part3_v41_ascii.msh",
+        "wall",
+        &motion,
+        Reference::Updated,
+        scale,
+    );
+}
+
+#[test]
+fn deform_a_partitioned_box_on_one_to_three_ranks() {
+    if !common::mpi_ready() {
+        return;
+    }
+    // 3 degrees about the box's axis: the inlet's corners move by
+    // 0.5·√2·sin 3° ≈ 0.037.
+    let motion = [
+        "--rotate",
+        "3",
+        "--center",
+        "0.5,0.5,0.5",
+        "--axis",
+        "0,0,1",
+    ];
+    deforms_like_one_process(
+        "box_part3_v41_binary.msh",
+        "inlet",
+        &motion,
+        Reference::Fixed,
+        0.037,
+    );
+}
+
+/// Refused with exit code 2 and one message: more ranks than partitions,
+/// an input that is not partitioned, an error only rank 1 reads, the
+/// near-wall treatments, an option that needs the whole mesh, no steps, an
+/// output folder that does not exist.
+#[test]
+fn deform_refuses_a_partitioned_input_it_cannot_run() {
+    if !common::mpi_ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("moved.pvtu");
+    let name = "channel_hole_part3_v41_ascii.msh";
+    let refused = |np: usize, mesh: &Path, extra: &[&str], message: &str| {
+        let mut args = vec![
+            "deform",
+            mesh.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--moving",
+            "wall",
+            "--translate",
+            "0.02,0.01",
+        ];
+        args.extend_from_slice(extra);
+        let o = verbss_mpi(np, &args, dir.path());
+        assert_eq!(o.status.code(), Some(2));
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(stderr.matches(message).count(), 1, "{stderr}");
+    };
+    let verbss = ["--method", "verbss"];
+    refused(
+        4,
+        &fixture(name),
+        &verbss,
+        "has 3 partitions, fewer than the 4 ranks",
+    );
+    refused(
+        2,
+        &fixture(name),
+        &[],
+        "which runs --method verbss or spring",
+    );
+    let slide = ["--method", "verbss", "--slide", "sides"];
+    refused(2, &fixture(name), &slide, "where --slide is not available");
+    // Pieces that cannot be written: every rank stops, rank 0 says why.
+    let nowhere = dir.path().join("missing/moved.pvtu");
+    let mesh = fixture(name);
+    let args = [
+        "deform",
+        mesh.to_str().unwrap(),
+        "-o",
+        nowhere.to_str().unwrap(),
+        "--moving",
+        "wall",
+        "--translate",
+        "0.02,0.01",
+        "--method",
+        "verbss",
+        "-q",
+    ];
+    let o = verbss_mpi(2, &args, dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let piece = dir.path().join("missing/moved_0.vtu");
+    assert_eq!(
+        stderr
+            .matches(&format!("error: {}", piece.display()))
+            .count(),
+        1,
+        "{stderr}"
+    );
+    let steps = ["--method", "verbss", "--steps", "0"];
+    refused(
+        2,
+        &fixture(name),
+        &steps,
+        "the number of steps must be at least 1",
+    );
+    let plain = fixture("channel_hole_v41_ascii.msh");
+    let not_partitioned = "is not partitioned: give another output format";
+    refused(2, &plain, &verbss, not_partitioned);
+    let su2 =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/meshes/su2/mesh_NACA0012_inv.su2");
+    refused(2, &su2, &verbss, not_partitioned);
+    let v22 = fixture("channel_hole_v22_ascii.msh");
+    refused(2, &v22, &verbss, "MSH 2.2 has no partitioned entities");
+    // A bad node tag in the last element block, on entity 6 of dimension 2
+    // in partition 2 (quadrangles): rank 1 of 2 reads it, rank 0 steps over it.
+    let text = std::fs::read_to_string(fixture(name)).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let block = lines.iter().position(|l| l.trim() == "2 6 3 36").unwrap();
+    lines[block + 1] = "1 2 x 4 5".into();
+    let bad = dir.path().join("bad.msh");
+    std::fs::write(&bad, lines.join("\n") + "\n").unwrap();
+    let want = format!(
+        "rank 1 could not read its share: {}:{}: ",
+        bad.display(),
+        block + 2
+    );
+    refused(2, &bad, &verbss, &want);
+}
+
+/// A step that inverts a cell (the hole pushed through the top wall) stops
+/// with exit code 3, sweeps that do not converge with exit code 4: one
+/// message each, and the pieces hold the last valid mesh, the input.
+#[test]
+fn deform_stops_at_an_inverted_cell_and_at_unconverged_sweeps() {
+    if !common::mpi_ready() {
+        return;
+    }
+    let name = "channel_hole_part3_v41_ascii.msh";
+    let whole = verbss::io::read(&fixture(name)).unwrap();
+    let mesh = fixture(name);
+    let index: HashMap<u64, usize> = whole
+        .node_tags
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| (t, i))
+        .collect();
+    for (extra, code, message) in [
+        (
+            ["--translate", "0,0.45", "--max-iterations", "100000"],
+            3,
+            "error: step 1 inverts ",
+        ),
+        (
+            ["--translate", "0.02,0.01", "--max-iterations", "2"],
+            4,
+            "the sweeps did not converge in 2 sweeps",
+        ),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("moved.pvtu");
+        let mut args = vec![
+            "deform",
+            mesh.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--moving",
+            "wall",
+            "--method",
+            "verbss",
+        ];
+        args.extend_from_slice(&extra);
+        let o = verbss_mpi(2, &args, dir.path());
+        assert_eq!(o.status.code(), Some(code));
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(stderr.matches(message).count(), 1, "{stderr}");
+        for r in 0..2 {
+            let piece = verbss::io::read(&dir.path().join(format!("moved_{r}.vtu"))).unwrap();
+            for (i, t) in piece.node_tags.iter().enumerate() {
+                assert_eq!(piece.point(i), whole.point(index[t]), "node {t}");
+            }
+        }
+    }
+}

@@ -1,0 +1,70 @@
+"""Generate the partitioned Gmsh fixtures in assets/meshes/gmsh/ with Gmsh itself.
+
+Run from the repository root (after scripts/make_gmsh_fixtures.py, whose
+models it reuses):
+
+    python3 scripts/make_partitioned_fixtures.py
+
+It partitions each model into 3 parts as `gmsh -part 3 -format msh41` does
+(METIS, with Gmsh's partition boundary entities) and writes
+
+* channel_hole_part3_v41_ascii.msh: the 2D hybrid channel, ASCII;
+* box_part3_v41_binary.msh: the 3D tetrahedral box, binary, with the
+  ghost cells of `-part_ghosts` (a $GhostElements section);
+* partitions.json: per file and partition, Gmsh's own numbers: the cells
+  of the mesh dimension and the nodes on the partition's entities.
+"""
+
+import json
+import os
+import sys
+
+import gmsh
+
+from make_gmsh_fixtures import OUT, box, channel_with_hole
+
+
+def partition_counts():
+    """Per partition: its cells of the mesh dimension and its entities' nodes."""
+    top = gmsh.model.getDimension()
+    counts = {}
+    for dim, tag in gmsh.model.getEntities():
+        # Ghost entities (-part_ghosts) copy other partitions' cells.
+        if not gmsh.model.getType(dim, tag).startswith("Partition"):
+            continue
+        parts = gmsh.model.getPartitions(dim, tag)
+        nodes, _, _ = gmsh.model.mesh.getNodes(dim, tag)
+        _, elems, _ = gmsh.model.mesh.getElements(dim, tag)
+        cells = sum(len(e) for e in elems) if dim == top else 0
+        for p in parts:
+            entry = counts.setdefault(str(p), {"cells": 0, "nodes": 0})
+            entry["nodes"] += len(nodes)
+            if len(parts) == 1:
+                entry["cells"] += cells
+    return counts
+
+
+def main():
+    gmsh.initialize(sys.argv[:1])
+    gmsh.option.setNumber("General.Terminal", 0)
+    files = {}
+    for make, name, binary, ghosts in [
+        (channel_with_hole, "channel_hole_part3_v41_ascii.msh", False, False),
+        (box, "box_part3_v41_binary.msh", True, True),
+    ]:
+        make()
+        gmsh.option.setNumber("Mesh.PartitionCreateGhostCells", 1 if ghosts else 0)
+        gmsh.model.mesh.partition(3)
+        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+        gmsh.option.setNumber("Mesh.Binary", 1 if binary else 0)
+        gmsh.write(os.path.join(OUT, name))
+        files[name] = partition_counts()
+        gmsh.clear()
+    gmsh.finalize()
+    with open(os.path.join(OUT, "partitions.json"), "w") as f:
+        json.dump(files, f, indent=2, sort_keys=True)
+        f.write("\n")
+
+
+if __name__ == "__main__":
+    main()
