@@ -571,15 +571,15 @@ fn bad_slide_planes_are_named() {
         (
             &[0, 1, 2],
             &[0.0, 0.0, 1.0],
-            "invalid setting: the slide normal of group 'slide plane 0' has 3 numbers, \
-             expected 2 (the mesh's dimension)",
+            "invalid setting: the slide normal of group 'slide plane 0' has z = 1 on a 2D \
+             mesh: give NX,NY (or NX,NY,0)",
         ),
         (
             &[0, 1, 2, 7],
             &[],
             "invalid setting: group 'slide plane 0' is not made of parallel planes (its node \
-             at (0.500000, 0.250000) lies in none of the planes of its facets, of normal \
-             (0.000000, 1.000000)): give the slide motion a `normal` \
+             at (0.500000, 0.250000) is 2.500e-1 from the nearest plane of its facets, of \
+             normal (0.000000, 1.000000), more than 5.590e-7): give the slide motion a `normal` \
              (`--slide GROUP:NX,NY[,NZ]`) or split the group into its planes",
         ),
     ];

@@ -51,12 +51,18 @@ impl Progress {
             }
             Mode::Lines => {
                 let stages: Vec<&str> = r.stages.iter().map(|s| s.name()).collect();
+                // No stage: the blended rigid motion left the springs nothing.
+                let stages = if stages.is_empty() {
+                    "blended motion only".to_string()
+                } else {
+                    stages.join(" → ")
+                };
                 eprintln!(
                     "step {}/{}: {} ({} iterations), true residual {:.2e}, error {:.1e} of the \
                      cell height, min quality {:.4}, {} inverted, {:.3} s",
                     r.step,
                     self.steps,
-                    stages.join(" → "),
+                    stages,
                     r.iterations,
                     r.true_residual,
                     r.error_ratio,

@@ -75,7 +75,7 @@ pub(super) fn plan_roles(mesh: &Mesh, attachments: &[Attachment]) -> Result<Plan
                 (_, Some(GroupRole::Moving(chain))) => GroupRole::Moving(chain),
                 (Motion::Slide { normal }, None) => {
                     normals.push(match normal {
-                        Some(n) => unit3(n),
+                        Some(n) => given_normal(mesh, g, n)?,
                         None => group_normal(mesh, g)?,
                     });
                     GroupRole::Slide(normals.len() - 1)
@@ -166,6 +166,42 @@ fn parallel(a: &[f64; 3], b: &[f64; 3]) -> bool {
     norm(&cross(a, b)) < 1e-9
 }
 
+/// Facets within this angle (radians) of a group's plane, and nodes within
+/// this fraction of its extent of one of its planes, lie in it: exact planes
+/// and the round-off of meshes exported from CAD (10⁻⁷ of the size).
+const PLANE_TOLERANCE: f64 = 1e-6;
+
+/// An angle in degrees, readable however small.
+fn degrees(radians: f64) -> String {
+    let d = radians.to_degrees();
+    if d >= 0.01 {
+        format!("{d:.2}°")
+    } else {
+        format!("{d:.1e}°")
+    }
+}
+
+/// The unit normal `n` given for group `g`'s slide, checked against the
+/// group's own plane when it has one: a normal across that plane would
+/// move the group's nodes off it.
+fn given_normal(mesh: &Mesh, g: usize, n: &[f64; 3]) -> Result<[f64; 3]> {
+    let n = unit3(n);
+    if let Ok(own) = group_normal(mesh, g) {
+        let angle = norm(&cross(&own, &n)).atan2(dot(&own, &n).abs());
+        if angle > 0.5f64.to_radians() {
+            return Err(Error::InvalidSetting(format!(
+                "the slide normal {} given for group '{}' is at {} from the group's own plane \
+                 (normal {}): its nodes would leave that plane; give its normal or none",
+                crate::error::format_point(&n[..mesh.dim]),
+                mesh.groups[g].name,
+                degrees(angle),
+                crate::error::format_point(&own[..mesh.dim])
+            )));
+        }
+    }
+    Ok(n)
+}
+
 /// The unit normal of a group of parallel planes (one plane, or several, as
 /// a channel's two walls in one group): the sum of its facets' normals, each
 /// turned to agree with the first (a line's normal in 2D, a triangle's cross
@@ -224,10 +260,10 @@ fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
         )));
     }
     let nrm = unit3(&sum);
-    // |n_f × n| ≤ 1e-9 |n_f|: the facet lies in a plane parallel to the others.
+    // |n_f × n| ≤ tolerance |n_f|: the facet lies in a plane parallel to the others.
     let bent = facet_normals
         .iter()
-        .find(|(_, n)| norm(&cross(n, &nrm)) > 1e-9 * norm(n));
+        .find(|(_, n)| norm(&cross(n, &nrm)) > PLANE_TOLERANCE * norm(n));
     if let Some((f, n)) = bent {
         let angle = norm(&cross(n, &nrm)).atan2(dot(n, &nrm).abs());
         let corners = group.facets.cell(*f);
@@ -235,12 +271,13 @@ fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
             .map(|d| corners.iter().map(|&i| mesh.point(i)[d]).sum::<f64>() / corners.len() as f64)
             .collect();
         return Err(Error::InvalidSetting(format!(
-            "group '{}' is not made of parallel planes (its facet centred at {} is at {:.3}° \
-             from the plane of normal {}): {advice}",
+            "group '{}' is not made of parallel planes (its facet centred at {} is at {} \
+             from the plane of normal {}, more than {}): {advice}",
             group.name,
             crate::error::format_point(&centre),
-            angle.to_degrees(),
-            crate::error::format_point(&nrm[..dim])
+            degrees(angle),
+            crate::error::format_point(&nrm[..dim]),
+            degrees(PLANE_TOLERANCE)
         )));
     }
     // A node of the group on none of its facets (a lone vertex) lies in one
@@ -256,7 +293,7 @@ fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
         .iter()
         .map(|&i| norm(&sub(p(i), p(nodes[0]))))
         .fold(0.0, f64::max);
-    let tolerance = 1e-9 * extent.max(f64::MIN_POSITIVE);
+    let tolerance = PLANE_TOLERANCE * extent.max(f64::MIN_POSITIVE);
     let off_plane = nodes.iter().find(|&&i| {
         let o = offset(i);
         let k = planes.partition_point(|&q| q < o);
@@ -264,9 +301,14 @@ fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
         !(near(k) || (k > 0 && near(k - 1)))
     });
     if let Some(&i) = off_plane {
+        let o = offset(i);
+        let distance = planes
+            .iter()
+            .map(|q| (q - o).abs())
+            .fold(f64::INFINITY, f64::min);
         return Err(Error::InvalidSetting(format!(
-            "group '{}' is not made of parallel planes (its node at {} lies in none of the \
-             planes of its facets, of normal {}): {advice}",
+            "group '{}' is not made of parallel planes (its node at {} is {distance:.3e} from \
+             the nearest plane of its facets, of normal {}, more than {tolerance:.3e}): {advice}",
             group.name,
             crate::error::format_point(mesh.point(i)),
             crate::error::format_point(&nrm[..dim])

@@ -85,8 +85,9 @@ named!(Predictor, "predictor", [Previous => "previous", Linear => "linear"]);
 #[serde(rename_all = "kebab-case")]
 #[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum Preset {
-    /// VerBSS with the near-wall treatments ([`Robust::recommended`]) and
-    /// the escalating solve: the product's default.
+    /// VerBSS with the near-wall treatments (rigid layer, stiffening,
+    /// sub-steps, blended rigid motion) and the escalating solve: the
+    /// product's default.
     #[default]
     Robust,
     /// The paper's method exactly: VerBSS, no near-wall treatment.
@@ -298,7 +299,15 @@ impl Attachment {
     pub fn slide(group: &str, normal: Option<&[f64]>, dim: usize) -> Result<Attachment> {
         let normal = match normal {
             None => None,
-            Some(n) if n.len() != dim => {
+            // A 2D normal may be given with a zero z, as 2D vectors may.
+            Some(n) if dim == 2 && n.len() == 3 && n[2] != 0.0 => {
+                return Err(Error::InvalidSetting(format!(
+                    "the slide normal of group '{group}' has z = {} on a 2D mesh: give NX,NY \
+                     (or NX,NY,0)",
+                    n[2]
+                )))
+            }
+            Some(n) if n.len() != dim && !(dim == 2 && n.len() == 3) => {
                 return Err(Error::InvalidSetting(format!(
                     "the slide normal of group '{group}' has {} numbers, expected {dim} \
                      (the mesh's dimension)",
@@ -470,7 +479,20 @@ mod tests {
         let e = Attachment::slide("sym", Some(&[0.0, 0.0, 1.0]), 2).unwrap_err();
         assert_eq!(
             e.to_string(),
-            "invalid setting: the slide normal of group 'sym' has 3 numbers, expected 2 \
+            "invalid setting: the slide normal of group 'sym' has z = 1 on a 2D mesh: give \
+             NX,NY (or NX,NY,0)"
+        );
+        let flat = Attachment::slide("sym", Some(&[0.0, 1.0, 0.0]), 2).unwrap();
+        assert_eq!(
+            flat.motion,
+            Motion::Slide {
+                normal: Some([0.0, 1.0, 0.0])
+            }
+        );
+        let e = Attachment::slide("sym", Some(&[1.0, 0.0, 1.0, 0.0]), 3).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "invalid setting: the slide normal of group 'sym' has 4 numbers, expected 3 \
              (the mesh's dimension)"
         );
         let e = Attachment::slide("sym", Some(&[0.0, 0.0]), 2).unwrap_err();

@@ -518,7 +518,8 @@ fn a_group_that_is_not_planar_asks_for_a_normal_or_a_split() {
     assert_eq!(
         e.to_string(),
         "invalid setting: group 'walls' is not made of parallel planes (its facet centred at \
-         (0.250000, 0.000000) is at 45.000° from the plane of normal (-0.707107, 0.707107)): \
+         (0.250000, 0.000000) is at 45.00° from the plane of normal (-0.707107, 0.707107), \
+         more than 5.7e-5°): \
          give the slide motion a `normal` (`--slide GROUP:NX,NY[,NZ]`) or split the group \
          into its planes"
     );
@@ -533,6 +534,38 @@ fn a_group_that_is_not_planar_asks_for_a_normal_or_a_split() {
         ),
     ];
     assert!(Deformer::new(&mesh, &attachments, Settings::new(1)).is_ok());
+}
+
+#[test]
+fn a_slide_normal_across_the_groups_plane_is_refused_and_cad_noise_is_a_plane() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/meshes/symmetry-slice.msh");
+    let mut mesh = crate::io::read(&path).unwrap();
+    let slide = |mesh: &Mesh, normal: Option<[f64; 3]>| {
+        let attachments = [
+            attach(
+                &["body"],
+                Motion::Translation {
+                    displacement: [1.0, 0.0, 0.0],
+                },
+            ),
+            attach(&["symmetry_y"], Motion::Slide { normal }),
+        ];
+        Deformer::new(mesh, &attachments, Settings::new(1)).map(|d| d.normals()[0])
+    };
+    assert_eq!(
+        slide(&mesh, Some([0.0, 0.0, 1.0])).unwrap_err().to_string(),
+        "invalid setting: the slide normal (0.000000, 0.000000, 1.000000) given for group \
+         'symmetry_y' is at 90.00° from the group's own plane (normal (0.000000, -1.000000, \
+         0.000000)): its nodes would leave that plane; give its normal or none"
+    );
+    assert!(slide(&mesh, Some([0.0, 1.0, 1e-4])).is_ok());
+    // The plane y = 0 written with ±10⁻⁷ of noise, as CAD exports do.
+    let plane = mesh.group("symmetry_y").unwrap().nodes();
+    for (k, &i) in plane.iter().enumerate() {
+        mesh.coords[3 * i + 1] = if k % 2 == 0 { 1e-7 } else { -1e-7 };
+    }
+    let n = slide(&mesh, None).unwrap();
+    assert!((n[1].abs() - 1.0).abs() < 1e-6, "{n:?}");
 }
 
 #[test]

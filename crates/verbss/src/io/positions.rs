@@ -84,14 +84,30 @@ impl Positions {
             .position(|&id| !on.get(id).copied().unwrap_or(false))
         {
             None => Ok(()),
-            Some(k) => Err(Error::Parse {
-                path: path.to_path_buf(),
-                line: self.lines[k],
-                message: format!(
-                    "node id {} is not on a moving group ({groups}): its position would be ignored",
-                    self.ids[k]
-                ),
-            }),
+            Some(k) => {
+                // Every id minus 1 on the moving groups: Gmsh's node tags,
+                // or another 1-based numbering.
+                let one_based = self
+                    .ids
+                    .iter()
+                    .all(|&id| id > 0 && on.get(id - 1).copied().unwrap_or(false));
+                Err(Error::Parse {
+                    path: path.to_path_buf(),
+                    line: self.lines[k],
+                    message: format!(
+                        "node id {} is not on a moving group ({groups}): its position would be \
+                         ignored{}",
+                        self.ids[k],
+                        if one_based {
+                            "; the ids look 1-based (each id minus 1 is a node of the moving \
+                             groups): ids are 0-based node indices in the mesh file's order, \
+                             so subtract 1 from each"
+                        } else {
+                            ""
+                        }
+                    ),
+                })
+            }
         }
     }
 }
@@ -331,6 +347,23 @@ mod tests {
         );
         let past = parse(b"6 0 0\n1 1 1\n", Path::new("p.dat"), 2).unwrap();
         let e = past.check_against(5, Path::new("p.dat")).unwrap_err();
+        assert!(!e.to_string().contains("1-based"), "{e}");
+    }
+
+    #[test]
+    fn surface_ids_that_look_one_based_get_the_hint() {
+        // Nodes 2 and 3 move; the file names them 3 and 4, as Gmsh's tags.
+        let on = [false, false, true, true, false, false];
+        let p = parse(b"3 0 0\n4 1 1\n", Path::new("p.dat"), 2).unwrap();
+        let e = p.check_on(&on, "wall", Path::new("p.dat")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "p.dat:2: node id 4 is not on a moving group (wall): its position would be \
+             ignored; the ids look 1-based (each id minus 1 is a node of the moving groups): \
+             ids are 0-based node indices in the mesh file's order, so subtract 1 from each"
+        );
+        let stray = parse(b"2 0 0\n5 1 1\n", Path::new("p.dat"), 2).unwrap();
+        let e = stray.check_on(&on, "wall", Path::new("p.dat")).unwrap_err();
         assert!(!e.to_string().contains("1-based"), "{e}");
     }
 
