@@ -72,6 +72,10 @@ pub struct StepReport {
     pub form_seconds: f64,
     /// Seconds solving it (paper's Part II).
     pub solve_seconds: f64,
+    /// Seconds assembling the springs (part of `form_seconds`).
+    pub springs_seconds: f64,
+    /// Seconds of the quality and inversion check of the new coordinates.
+    pub check_seconds: f64,
     /// The smallest element quality.
     pub min_quality: f64,
     /// The number of inverted elements.
@@ -103,6 +107,7 @@ impl StepReport {
         self.error_ratio = info.error_ratio;
         self.form_seconds += info.form_seconds;
         self.solve_seconds += info.solve_seconds;
+        self.springs_seconds += info.springs_seconds;
         self.history.clone_from(&info.history);
         for stage in &info.stages {
             if !self.stages.contains(stage) {
@@ -379,6 +384,7 @@ impl<S: SpringSolver> Deformer<S> {
                 .collect();
             let start_at = self.blended(&coords, &at);
             let mut attempt = self.attempt(&start_at, &at, end - done, false)?;
+            report.check_seconds += attempt.check_seconds;
             let escalate = self.settings.solve.escalate;
             if escalate
                 && attempt.info.converged
@@ -390,6 +396,7 @@ impl<S: SpringSolver> Deformer<S> {
                 // converges, the accepted solve (error below the bound)
                 // stays the one judged.
                 let exact = self.attempt(&start_at, &at, end - done, true)?;
+                report.check_seconds += exact.check_seconds;
                 if exact.info.converged {
                     report.add(&attempt.info);
                     attempt = exact;
@@ -403,6 +410,7 @@ impl<S: SpringSolver> Deformer<S> {
                 info,
                 quality,
                 inversions,
+                ..
             } = attempt;
             report.add(&info);
             if !info.converged || !inversions.is_empty() {
@@ -589,6 +597,7 @@ impl<S: SpringSolver> Deformer<S> {
         for (node, p) in targets {
             next[dim * node..dim * (node + 1)].copy_from_slice(p);
         }
+        let checking = Instant::now();
         let (quality, inversions) = check(&self.mesh, &next, &self.orientation);
         Ok(Attempt {
             coords: next,
@@ -596,6 +605,7 @@ impl<S: SpringSolver> Deformer<S> {
             info,
             quality,
             inversions,
+            check_seconds: checking.elapsed().as_secs_f64(),
         })
     }
 
@@ -668,6 +678,8 @@ struct Attempt {
     quality: Vec<f64>,
     /// The inverted cells.
     inversions: Vec<Inversion>,
+    /// Seconds of the quality and inversion check.
+    check_seconds: f64,
 }
 
 /// `x − X`.

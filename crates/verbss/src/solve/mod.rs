@@ -140,6 +140,8 @@ struct Built {
     scratch: Scratch,
     /// Each unknown position's local size ([`verify::heights`]).
     heights: Vec<f64>,
+    /// Seconds the springs took to assemble.
+    springs_seconds: f64,
 }
 
 /// The system swept or factored.
@@ -409,22 +411,27 @@ impl Engine {
         Ok(())
     }
 
-    /// Orders the unknowns, assembles the springs and prepares the diagonal.
+    /// Orders the unknowns, assembles the springs and prepares the diagonal;
+    /// the springs are written over `kept`, the blocks of the last build of
+    /// the same method, when the order is the same
+    /// ([`springs::assemble_reusing`]).
     fn build<const D: usize>(
         &mut self,
         coords: &[f64],
         displacement: &[f64],
         method: Method,
+        kept: Option<NodeBlocks>,
     ) -> Result<Built> {
         let seeds = self.moving::<D>(displacement);
-        let layout = match &self.layout {
-            Some((kept, layout)) if *kept == seeds => layout.clone(),
+        let (layout, kept) = match &self.layout {
+            Some((same, layout)) if *same == seeds => (layout.clone(), kept),
             _ => {
                 let layout = self.layout::<D>(&seeds);
                 self.layout = Some((seeds, layout.clone()));
-                layout
+                (layout, None)
             }
         };
+        let mut springs_seconds = 0.0;
         let system = match method {
             Method::Laplacian => {
                 System::Laplacian(laplacian::Weights::new::<D>(&self.conn, coords, &layout)?)
@@ -435,8 +442,16 @@ impl Engine {
                 } else {
                     Springs::BallVertex
                 };
-                let mut blocks =
-                    springs::assemble(&self.conn, coords, &layout.order, &layout.position, kind)?;
+                let started = std::time::Instant::now();
+                let mut blocks = springs::assemble_reusing(
+                    &self.conn,
+                    coords,
+                    &layout.order,
+                    &layout.position,
+                    kind,
+                    kept,
+                )?;
+                springs_seconds = started.elapsed().as_secs_f64();
                 let factored = method != Method::BallVertex;
                 let kn = self.prepare_diag::<D>(&mut blocks, &layout, factored)?;
                 System::Blocks {
@@ -451,6 +466,7 @@ impl Engine {
         let heights = verify::heights::<D>(&self.conn, coords, &layout);
         Ok(Built {
             heights,
+            springs_seconds,
             coords: coords.to_vec(),
             method,
             layout,
