@@ -240,7 +240,8 @@ impl<S: SpringSolver> Deformer<S> {
         })?;
         let orientation = quality::orientation(mesh);
         let start = Instant::now();
-        let (quality, inversions) = check(mesh, &mesh.coords, &orientation);
+        let (quality, inversions) =
+            quality::qualities_and_inversions(mesh, &mesh.coords, &orientation);
         if let Some(first) = inversions.first() {
             return Err(Error::InvalidMesh(format!(
                 "element {} is inverted or degenerate (tangled, or of zero area or volume) at {}",
@@ -598,7 +599,8 @@ impl<S: SpringSolver> Deformer<S> {
             next[dim * node..dim * (node + 1)].copy_from_slice(p);
         }
         let checking = Instant::now();
-        let (quality, inversions) = check(&self.mesh, &next, &self.orientation);
+        let (quality, inversions) =
+            quality::qualities_and_inversions(&self.mesh, &next, &self.orientation);
         Ok(Attempt {
             coords: next,
             u,
@@ -685,11 +687,6 @@ struct Attempt {
 /// `x − X`.
 fn displacement(x: &[f64], reference: &[f64]) -> Vec<f64> {
     x.iter().zip(reference).map(|(a, b)| a - b).collect()
-}
-
-/// Per-cell quality and the inverted cells of `coords`, relative to `orientation`.
-fn check(mesh: &Mesh, coords: &[f64], orientation: &[i8]) -> (Vec<f64>, Vec<Inversion>) {
-    quality::qualities_and_inversions(mesh, coords, orientation)
 }
 
 /// Minimum quality, inverted count and the paper's bins.
