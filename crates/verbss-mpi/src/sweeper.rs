@@ -65,7 +65,7 @@ struct Built {
     frames: Frames,
     blocks: NodeBlocks,
     /// The unprojected `K_ii` per sliding node ([`Frames::project_diagonal`]).
-    kept: Vec<f64>,
+    unprojected: Vec<f64>,
     /// Unknown components of all ranks.
     dofs: u64,
 }
@@ -294,7 +294,7 @@ impl<'c> Sweeper<'c> {
             Springs::BallVertex
         };
         let mut blocks = springs::assemble(&self.conn, coords, &order[..owned], &position, kind)?;
-        let kept = frames.project_diagonal::<D>(&mut blocks.diag);
+        let unprojected = frames.project_diagonal::<D>(&mut blocks.diag);
         self.factor_diag::<D>(&mut blocks, &order)?;
         Ok(Built {
             coords: coords.to_vec(),
@@ -305,7 +305,7 @@ impl<'c> Sweeper<'c> {
             exchanges,
             frames,
             blocks,
-            kept,
+            unprojected,
             dofs: total,
         })
     }
@@ -409,7 +409,7 @@ impl<'c> Sweeper<'c> {
         for p in 0..owned {
             let mut c = b.blocks.prescribed_pull::<D>(p, displacement);
             let u = point::<D>(displacement, b.order[p]);
-            if let Some(kf) = b.frames.given_pull::<D>(&b.kept, p, &u) {
+            if let Some(kf) = b.frames.given_pull::<D>(&b.unprojected, p, &u) {
                 for k in 0..D {
                     c[k] -= kf[k];
                 }

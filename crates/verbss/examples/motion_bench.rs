@@ -18,7 +18,11 @@
 //! it (all threads; a loaded machine shows as wall > CPU with one thread),
 //! the seconds forming the system (springs, factors, multigrid setup), the
 //! solve's seconds and sweeps (GMRES iterations with `--accel amg`); the
-//! peak resident memory of the run (`VmHWM`, read before anything else is
+//! seconds assembling the springs (part of forming) and checking the new
+//! mesh's quality and inversions; `shares`, each phase's part of the steps'
+//! wall seconds summed over steps 2 on (all steps in a run of one): springs,
+//! the rest of forming, solve, check and the rest of the step (motion,
+//! blended rigid motion, update); the peak resident memory of the run (`VmHWM`, read before anything else is
 //! computed); the sweep's bytes per unknown node;
 //! the final minimum quality and inverted count; and, for each step of
 //! `--error-steps`, the true error of that step's increment
@@ -134,6 +138,27 @@ fn cpu_seconds() -> f64 {
         .map_or(0.0, |(u, s)| (u + s) / 100.0)
 }
 
+/// Each phase's part of the wall seconds of steps 2 on (all steps when
+/// there is one), as a JSON object.
+fn shares(steps: &[verbss::deform::StepReport]) -> String {
+    let later = if steps.len() > 1 { &steps[1..] } else { steps };
+    let sum = |f: &dyn Fn(&verbss::deform::StepReport) -> f64| later.iter().map(f).sum::<f64>();
+    let total = sum(&|r| r.seconds).max(f64::MIN_POSITIVE);
+    let springs = sum(&|r| r.springs_seconds);
+    let form = sum(&|r| r.form_seconds);
+    let solve = sum(&|r| r.solve_seconds);
+    let check = sum(&|r| r.check_seconds);
+    format!(
+        "{{\"springs\": {:.3}, \"form_other\": {:.3}, \"solve\": {:.3}, \"check\": {:.3}, \
+         \"rest\": {:.3}}}",
+        springs / total,
+        (form - springs) / total,
+        solve / total,
+        check / total,
+        (total - form - solve - check) / total,
+    )
+}
+
 fn main() {
     let o = options();
     rayon::ThreadPoolBuilder::new()
@@ -236,7 +261,8 @@ fn main() {
     println!(
         "{{\"mesh\": {:?}, \"nodes\": {}, \"cells\": {}, \"unknown_nodes\": {unknown}, \
          \"threads\": {}, \"accel\": {:?}, \"robust\": {}, \"reference\": {:?}, \"predictor\": {:?}, \"tolerance\": {:e}, \"steps_done\": {}, \
-         \"failure\": {}, \"seconds\": [{}], \"cpu_seconds\": [{}], \"solve_seconds\": [{}], \"form_seconds\": [{}], \"iterations\": [{}], \
+         \"failure\": {}, \"seconds\": [{}], \"cpu_seconds\": [{}], \"solve_seconds\": [{}], \"form_seconds\": [{}], \
+         \"springs_seconds\": [{}], \"check_seconds\": [{}], \"shares\": {}, \"iterations\": [{}], \
          \"peak_rss_bytes\": {peak}, \"bytes_per_node\": {:.1}, \"min_quality\": {}, \
          \"inverted\": {}, \"true_error\": [{}]}}",
         o.mesh.display().to_string(),
@@ -258,6 +284,9 @@ fn main() {
             .join(", "),
         list(&|r| format!("{:.6}", r.solve_seconds)),
         list(&|r| format!("{:.6}", r.form_seconds)),
+        list(&|r| format!("{:.6}", r.springs_seconds)),
+        list(&|r| format!("{:.6}", r.check_seconds)),
+        shares(&steps),
         list(&|r| r.iterations.to_string()),
         plain.bytes_per_node(),
         last.map_or(0.0, |r| r.min_quality),

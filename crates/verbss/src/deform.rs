@@ -71,6 +71,10 @@ pub struct StepReport {
     pub form_seconds: f64,
     /// Seconds solving it (paper's Part II).
     pub solve_seconds: f64,
+    /// Seconds assembling the springs (part of `form_seconds`).
+    pub springs_seconds: f64,
+    /// Seconds of the quality and inversion check of the new coordinates.
+    pub check_seconds: f64,
     /// The smallest element quality.
     pub min_quality: f64,
     /// The number of inverted elements.
@@ -102,6 +106,7 @@ impl StepReport {
         self.error_ratio = info.error_ratio;
         self.form_seconds += info.form_seconds;
         self.solve_seconds += info.solve_seconds;
+        self.springs_seconds += info.springs_seconds;
         self.history.clone_from(&info.history);
         for stage in &info.stages {
             if !self.stages.contains(stage) {
@@ -233,7 +238,8 @@ impl<S: SpringSolver> Deformer<S> {
         })?;
         let orientation = quality::orientation(mesh);
         let start = Instant::now();
-        let (quality, inversions) = check(mesh, &mesh.coords, &orientation);
+        let (quality, inversions) =
+            quality::qualities_and_inversions(mesh, &mesh.coords, &orientation);
         if let Some(first) = inversions.first() {
             return Err(Error::InvalidMesh(format!(
                 "element {} is inverted or degenerate (tangled, or of zero area or volume) at {}",
@@ -389,6 +395,7 @@ impl<S: SpringSolver> Deformer<S> {
                 info,
                 quality,
                 inversions,
+                ..
             } = attempt;
             report.add(&info);
             if !info.converged || !inversions.is_empty() {
@@ -547,11 +554,6 @@ impl<S: SpringSolver> Deformer<S> {
 /// `x − X`.
 fn displacement(x: &[f64], reference: &[f64]) -> Vec<f64> {
     x.iter().zip(reference).map(|(a, b)| a - b).collect()
-}
-
-/// Per-cell quality and the inverted cells of `coords`, relative to `orientation`.
-fn check(mesh: &Mesh, coords: &[f64], orientation: &[i8]) -> (Vec<f64>, Vec<Inversion>) {
-    quality::qualities_and_inversions(mesh, coords, orientation)
 }
 
 /// Minimum quality, inverted count and the paper's bins.

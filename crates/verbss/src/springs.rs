@@ -31,6 +31,10 @@ use crate::geometry::{
 use crate::mesh::{Cells, Mesh};
 use crate::topology::{self, Csr};
 
+mod refill;
+
+pub use self::refill::{assemble_reusing, reassemble};
+
 /// Which springs a system is made of.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Springs {
@@ -197,10 +201,7 @@ fn assemble_d<const D: usize>(
     position: &[u32],
     springs: Springs,
 ) -> Result<NodeBlocks> {
-    let mut visit: Vec<usize> = order.to_vec();
-    if !conn.locality.is_empty() {
-        visit.sort_by_key(|&i| (conn.locality[i], i));
-    }
+    let visit = visit_order(conn, order);
     let pieces = visit
         .par_chunks(ROWS)
         .map(|rows| assemble_rows::<D>(conn, coords, rows, position, springs))
@@ -239,6 +240,17 @@ fn assemble_d<const D: usize>(
     Ok(out)
 }
 
+/// The nodes `order` in the order their rows are assembled: along the
+/// Z-order curve ([`Connectivity::locality`]), so that the cells and
+/// coordinates that nearby rows read stay in cache.
+fn visit_order(conn: &Connectivity, order: &[usize]) -> Vec<usize> {
+    let mut visit: Vec<usize> = order.to_vec();
+    if !conn.locality.is_empty() {
+        visit.sort_by_key(|&i| (conn.locality[i], i));
+    }
+    visit
+}
+
 /// Assembles the rows of the nodes `rows` (see [`assemble`]).
 fn assemble_rows<const D: usize>(
     conn: &Connectivity,
@@ -254,75 +266,11 @@ fn assemble_rows<const D: usize>(
         ..NodeBlocks::default()
     };
     out.diag.reserve(s * rows.len());
-    let widest = rows
-        .iter()
-        .map(|&i| conn.graph.row(i).len())
-        .max()
-        .unwrap_or(0);
-    let mut acc = vec![0.0; s * widest];
-    let phi = |j: usize| conn.stiffness.get(j).copied().unwrap_or(1.0);
+    let mut acc = vec![0.0; s * widest(conn, rows.iter().copied())];
     for &i in rows {
-        let row = conn.graph.row(i);
-        let acc = &mut acc[..s * row.len()];
-        acc.fill(0.0);
-        let slot = |j: usize| s * row.binary_search(&j).expect("coupled nodes share a cell");
-        let mut kii = [0.0; 6];
-        let xi = point::<D>(coords, i);
-        for &j in conn.edge_graph.row(i) {
-            let d = sub(&point::<D>(coords, j), &xi);
-            let len = norm(&d);
-            if !(len > 0.0 && len.is_finite()) {
-                return Err(Error::InvalidMesh(format!(
-                    "nodes {} and {} coincide (an edge of zero length)",
-                    conn.node_tags[i], conn.node_tags[j]
-                )));
-            }
-            let n = d.map(|v| v / len);
-            let k = 0.5 * (phi(i) + phi(j)) / len;
-            add_outer(&mut kii, k, &n);
-            let at = slot(j);
-            add_outer(&mut acc[at..at + s], k, &n);
-        }
-        if springs == Springs::BallVertex {
-            for &c in conn.node_cells.row(i) {
-                let nodes = conn.cells.cell(c);
-                let local = nodes.iter().position(|&v| v == i).expect("incidence");
-                let scale = if conn.stiffness.is_empty() {
-                    1.0
-                } else {
-                    nodes.iter().map(|&v| phi(v)).sum::<f64>() / nodes.len() as f64
-                };
-                for facet in conn.cells.kinds[c].table().facets {
-                    if facet.contains(&local) {
-                        continue;
-                    }
-                    let (p, w, m) = nearest::<D>(coords, &xi, nodes, facet).ok_or_else(|| {
-                        Error::InvalidMesh(format!(
-                            "cell {} has a degenerate quadrilateral face",
-                            conn.cell_tags[c]
-                        ))
-                    })?;
-                    let d = sub(&p, &xi);
-                    let h = norm(&d);
-                    if !(h > 0.0 && h.is_finite() && w[..m].iter().all(|v| v.is_finite())) {
-                        return Err(Error::InvalidMesh(format!(
-                            "node {} lies on a facet of cell {} (a collapsed cell: \
-                             zero ball-vertex spring length)",
-                            conn.node_tags[i], conn.cell_tags[c]
-                        )));
-                    }
-                    let n = d.map(|v| v / h);
-                    add_outer(&mut kii, scale / h, &n);
-                    for (&f, &wf) in facet.iter().zip(&w[..m]) {
-                        let at = slot(nodes[f]);
-                        add_outer(&mut acc[at..at + s], scale * wf / h, &n);
-                    }
-                }
-            }
-        }
+        let kii = row::<D>(conn, coords, i, springs, &mut acc)?;
         out.diag.extend_from_slice(&kii[..s]);
-        for (k, &j) in row.iter().enumerate() {
-            let block = &acc[s * k..s * (k + 1)];
+        for (block, &j) in acc.chunks_exact(s).zip(conn.graph.row(i)) {
             if block.iter().all(|&v| v == 0.0) {
                 continue;
             }
@@ -338,6 +286,88 @@ fn assemble_rows<const D: usize>(
         out.fixed_offsets.push(out.fixed_nodes.len());
     }
     Ok(out)
+}
+
+/// The most nodes any of `nodes` is coupled to.
+fn widest(conn: &Connectivity, nodes: impl Iterator<Item = usize>) -> usize {
+    nodes.map(|i| conn.graph.row(i).len()).max().unwrap_or(0)
+}
+
+/// Sums node `i`'s springs at `coords`: returns `K_ii` (packed) and leaves
+/// `B_ij` in `acc`, `D(D+1)/2` numbers per node `j` of `conn.graph.row(i)`
+/// in that order, the rest of `acc` untouched. The edge springs are added
+/// first, in the order of `conn.edge_graph.row(i)`, then the ball-vertex
+/// springs by incident cell and facet: the sums do not depend on which rows
+/// are assembled together.
+fn row<const D: usize>(
+    conn: &Connectivity,
+    coords: &[f64],
+    i: usize,
+    springs: Springs,
+    acc: &mut [f64],
+) -> Result<[f64; 6]> {
+    let s = packed_len(D);
+    let phi = |j: usize| conn.stiffness.get(j).copied().unwrap_or(1.0);
+    let row = conn.graph.row(i);
+    let acc = &mut acc[..s * row.len()];
+    acc.fill(0.0);
+    let slot = |j: usize| s * row.binary_search(&j).expect("coupled nodes share a cell");
+    let mut kii = [0.0; 6];
+    let xi = point::<D>(coords, i);
+    for &j in conn.edge_graph.row(i) {
+        let d = sub(&point::<D>(coords, j), &xi);
+        let len = norm(&d);
+        if !(len > 0.0 && len.is_finite()) {
+            return Err(Error::InvalidMesh(format!(
+                "nodes {} and {} coincide (an edge of zero length)",
+                conn.node_tags[i], conn.node_tags[j]
+            )));
+        }
+        let n = d.map(|v| v / len);
+        let k = 0.5 * (phi(i) + phi(j)) / len;
+        add_outer(&mut kii, k, &n);
+        let at = slot(j);
+        add_outer(&mut acc[at..at + s], k, &n);
+    }
+    if springs == Springs::Edge {
+        return Ok(kii);
+    }
+    for &c in conn.node_cells.row(i) {
+        let nodes = conn.cells.cell(c);
+        let local = nodes.iter().position(|&v| v == i).expect("incidence");
+        let scale = if conn.stiffness.is_empty() {
+            1.0
+        } else {
+            nodes.iter().map(|&v| phi(v)).sum::<f64>() / nodes.len() as f64
+        };
+        for facet in conn.cells.kinds[c].table().facets {
+            if facet.contains(&local) {
+                continue;
+            }
+            let (p, w, m) = nearest::<D>(coords, &xi, nodes, facet).ok_or_else(|| {
+                Error::InvalidMesh(format!(
+                    "cell {} has a degenerate quadrilateral face",
+                    conn.cell_tags[c]
+                ))
+            })?;
+            let d = sub(&p, &xi);
+            let h = norm(&d);
+            if !(h > 0.0 && h.is_finite() && w[..m].iter().all(|v| v.is_finite())) {
+                return Err(Error::InvalidMesh(format!(
+                    "node {} lies on a facet of cell {} (a collapsed cell: \
+                     zero ball-vertex spring length)",
+                    conn.node_tags[i], conn.cell_tags[c]
+                )));
+            }
+            let n = d.map(|v| v / h);
+            add_outer(&mut kii, scale / h, &n);
+            for (&f, &wf) in facet.iter().zip(&w[..m]) {
+                let at = slot(nodes[f]);
+                add_outer(&mut acc[at..at + s], scale * wf / h, &n);
+            }
+        }
+    }
+    Ok(kii)
 }
 
 /// The nearest point of facet `facet` (local indices into `nodes`) to `x`,
@@ -368,62 +398,4 @@ fn nearest<const D: usize>(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::mesh::CellKind;
-
-    /// One equilateral-ish triangle with node 2 unknown:
-    /// edges to 0 and 1, and the ball-vertex spring to edge (0, 1).
-    #[test]
-    fn triangle_row_by_hand() {
-        let mut cells = Cells::new();
-        cells.push(CellKind::Triangle, &[0, 1, 2]);
-        let coords = vec![0.0, 0.0, 2.0, 0.0, 0.5, 1.0];
-        let mesh = Mesh::new(2, coords.clone(), cells, vec![]).unwrap();
-        let conn = Connectivity::new(&mesh);
-        let position = [u32::MAX, u32::MAX, 0];
-        let b = assemble(&conn, &coords, &[2], &position, Springs::BallVertex).unwrap();
-        // Edge to node 0: L = √1.25, n = −(0.5, 1)/L. Edge to node 1: L = √3.25,
-        // n = (1.5, −1)/L. Ball-vertex: p = (0.5, 0), h = 1, n = (0, −1),
-        // weights (0.75, 0.25).
-        let outer = |k: f64, n: [f64; 2]| [k * n[0] * n[0], k * n[1] * n[0], k * n[1] * n[1]];
-        let l0 = 1.25f64.sqrt();
-        let l1 = 3.25f64.sqrt();
-        let e0 = outer(1.0 / l0, [0.5 / l0, 1.0 / l0]);
-        let e1 = outer(1.0 / l1, [1.5 / l1, -1.0 / l1]);
-        let bv = outer(1.0, [0.0, -1.0]);
-        let expect_k: Vec<f64> = (0..3).map(|k| e0[k] + e1[k] + bv[k]).collect();
-        let expect_b0: Vec<f64> = (0..3).map(|k| e0[k] + 0.75 * bv[k]).collect();
-        let expect_b1: Vec<f64> = (0..3).map(|k| e1[k] + 0.25 * bv[k]).collect();
-        let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-15);
-        assert!(close(&b.diag, &expect_k), "{:?}", b.diag);
-        assert_eq!(b.fixed_nodes, [0, 1]);
-        assert!(close(&b.fixed_blocks[..3], &expect_b0));
-        assert!(close(&b.fixed_blocks[3..], &expect_b1));
-        assert!(b.neighbours.is_empty());
-        let spring = assemble(&conn, &coords, &[2], &position, Springs::Edge).unwrap();
-        assert!(close(&spring.fixed_blocks, &[e0, e1].concat()));
-    }
-
-    #[test]
-    fn collapsed_cells_are_reported() {
-        let mut cells = Cells::new();
-        cells.push(CellKind::Triangle, &[0, 1, 2]);
-        let coords = vec![0.0, 0.0, 2.0, 0.0, 0.5, 0.0];
-        let mesh = Mesh::new(2, coords.clone(), cells, vec![]).unwrap();
-        let conn = Connectivity::new(&mesh);
-        let position = [u32::MAX, u32::MAX, 0];
-        let e = assemble(&conn, &coords, &[2], &position, Springs::BallVertex).unwrap_err();
-        assert_eq!(
-            e.to_string(),
-            "invalid mesh: node 3 lies on a facet of cell 1 (a collapsed cell: zero ball-vertex \
-             spring length)"
-        );
-        let coords = vec![0.0, 0.0, 2.0, 0.0, 0.0, 0.0];
-        let e = assemble(&conn, &coords, &[2], &position, Springs::Edge).unwrap_err();
-        assert_eq!(
-            e.to_string(),
-            "invalid mesh: nodes 3 and 1 coincide (an edge of zero length)"
-        );
-    }
-}
+mod tests;

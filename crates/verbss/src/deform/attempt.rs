@@ -12,9 +12,11 @@
 //! again from the reference itself and the better of the two is kept (no
 //! inversion first, then the higher minimum quality).
 
-use super::{blend, check, Deformer, Reference};
+use std::time::Instant;
+
+use super::{blend, Deformer, Reference};
 use crate::error::Result;
-use crate::quality::Inversion;
+use crate::quality::{self, Inversion};
 use crate::solve::{clear_prescribed, SolveInfo, SpringSolver, Stage};
 
 /// A blended solve whose minimum quality falls below this fraction of the
@@ -69,6 +71,7 @@ impl<S: SpringSolver> Deformer<S> {
         report: &mut super::StepReport,
     ) -> Result<Attempt> {
         let attempt = self.attempt(start, targets, fraction, false)?;
+        report.check_seconds += attempt.check_seconds;
         let exact_wanted = self.settings.solve.escalate
             && attempt.info.converged
             && !attempt.inversions.is_empty()
@@ -77,6 +80,7 @@ impl<S: SpringSolver> Deformer<S> {
             return Ok(attempt);
         }
         let exact = self.attempt(start, targets, fraction, true)?;
+        report.check_seconds += exact.check_seconds;
         if exact.info.converged {
             report.add(&attempt.info);
             Ok(exact)
@@ -172,13 +176,16 @@ impl<S: SpringSolver> Deformer<S> {
         for (node, p) in targets {
             next[dim * node..dim * (node + 1)].copy_from_slice(p);
         }
-        let (quality, inversions) = check(&self.mesh, &next, &self.orientation);
+        let checking = Instant::now();
+        let (quality, inversions) =
+            quality::qualities_and_inversions(&self.mesh, &next, &self.orientation);
         Ok(Attempt {
             coords: next,
             u,
             info,
             quality,
             inversions,
+            check_seconds: checking.elapsed().as_secs_f64(),
         })
     }
 }
@@ -195,6 +202,8 @@ pub(super) struct Attempt {
     pub(super) quality: Vec<f64>,
     /// The inverted cells.
     pub(super) inversions: Vec<Inversion>,
+    /// Seconds of the quality and inversion check.
+    pub(super) check_seconds: f64,
 }
 
 /// The reference configuration of a (sub-)step from `coords`: `coords`, or

@@ -619,3 +619,24 @@ fn nodes_where_two_slide_planes_meet_slide_along_the_line_and_where_three_meet_s
     };
     assert!((d.normals()[k][2].abs() - 1.0).abs() < 1e-12);
 }
+
+#[test]
+fn a_step_reports_the_seconds_of_its_springs_and_of_its_check() {
+    let mesh = crate::io::read(Path::new(NACA)).unwrap();
+    let rotation = Motion::Rotation {
+        center: [0.25, 0.0, 0.0],
+        axis: [0.0, 0.0, 1.0],
+        angle: 2f64.to_radians(),
+    };
+    let mut d = Deformer::new(&mesh, &[attach(&["airfoil"], rotation)], Settings::new(2)).unwrap();
+    for n in 1..=2 {
+        let r = d.step(n).unwrap();
+        assert!(
+            r.springs_seconds > 0.0 && r.springs_seconds <= r.form_seconds,
+            "{r:?}"
+        );
+        assert!(r.check_seconds > 0.0, "{r:?}");
+        let parts = r.form_seconds + r.solve_seconds + r.check_seconds;
+        assert!(parts <= r.seconds, "{r:?}");
+    }
+}

@@ -88,7 +88,7 @@ pub use histogram::{bin_index, Bin, Report, Summary, BIN_EDGES};
 
 use rayon::prelude::*;
 
-use crate::geometry::point;
+use crate::geometry::{det, norm, point, sub};
 use crate::mesh::{CellKind, KindTable, Mesh};
 
 /// Rounding tolerance ε on scaled corner Jacobians: a corner with
@@ -97,6 +97,9 @@ pub const ZERO: f64 = 1e-12;
 
 /// Most nodes of any kind (the hexahedron's 8).
 const MAX_NODES: usize = 8;
+
+/// [`qualities_and_inversions`] measures the cells in parallel pieces of this many.
+const CELLS: usize = 4096;
 
 /// The worst corner of a cell relative to a reference orientation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -181,14 +184,33 @@ pub fn worst_corner<const D: usize>(
     worst(kind.table(), &gather::<D>(coords, nodes), f64::from(sign))
 }
 
+/// The worst corner of the cell with points `p` (see [`worst_corner`]).
+/// A simplex's corners share its edges: each edge length is computed once
+/// (`|x_b − x_a|` is the same number either way), so the numbers are those of
+/// [`measures::corner`].
 fn worst<const D: usize>(table: &KindTable, p: &[[f64; D]], s: f64) -> Corner {
     let mut worst = Corner {
         corner: 0,
         scaled: f64::INFINITY,
         volume: 0.0,
     };
+    let simplex = table.nodes == D + 1;
+    let mut edge = [[0.0; 4]; 4];
+    if simplex {
+        for a in 0..D {
+            for b in a + 1..=D {
+                edge[a][b] = norm(&sub(&p[b], &p[a]));
+                edge[b][a] = edge[a][b];
+            }
+        }
+    }
     for (k, c) in table.corners.iter().enumerate() {
-        let (j, lengths) = measures::corner(p, c);
+        let (j, lengths) = if simplex {
+            let e: [[f64; D]; D] = std::array::from_fn(|k| sub(&p[c[k + 1]], &p[c[0]]));
+            (det::<D>(&e), (1..=D).map(|k| edge[c[0]][c[k]]).product())
+        } else {
+            measures::corner(p, c)
+        };
         let scaled = measures::scaled(s * j, lengths);
         if scaled < worst.scaled || k == 0 {
             worst = Corner {
@@ -359,15 +381,34 @@ pub fn qualities_and_inversions(
     reference: &[i8],
 ) -> (Vec<f64>, Vec<Inversion>) {
     check(mesh, coords, Some(reference));
-    let cells: Vec<(f64, Corner)> = by_dim!(mesh.dim, D => per_cell(mesh, |c, kind, nodes| {
-        let p = gather::<D>(coords, nodes);
-        let s = f64::from(reference[c]);
-        let w = worst(kind.table(), &p, s);
-        (measure(kind, &p, s, &w), w)
-    }));
-    let (quality, worst): (Vec<f64>, Vec<Corner>) = cells.into_iter().unzip();
-    let inverted = inverted_of(mesh, coords, &worst);
-    (quality, inverted)
+    let mut quality = vec![0.0; mesh.cells.len()];
+    let inverted: Vec<(usize, f64)> = by_dim!(mesh.dim, D => quality
+        .par_chunks_mut(CELLS)
+        .enumerate()
+        .flat_map_iter(|(k, chunk)| {
+            let mut inverted = Vec::new();
+            for (q, c) in chunk.iter_mut().zip(k * CELLS..) {
+                let kind = mesh.cells.kinds[c];
+                let p = gather::<D>(coords, mesh.cells.cell(c));
+                let s = f64::from(reference[c]);
+                let w = worst(kind.table(), &p, s);
+                *q = measure(kind, &p, s, &w);
+                if w.inverted() {
+                    inverted.push((c, w.volume));
+                }
+            }
+            inverted
+        })
+        .collect());
+    let inversions = inverted
+        .into_iter()
+        .map(|(cell, volume)| Inversion {
+            cell,
+            centroid: centroid(mesh, coords, cell),
+            volume,
+        })
+        .collect();
+    (quality, inversions)
 }
 
 /// The mean of cell `cell`'s nodes on `coords` (`mesh.dim` numbers).
@@ -384,17 +425,10 @@ pub fn centroid(mesh: &Mesh, coords: &[f64], cell: usize) -> Vec<f64> {
 /// # Panics
 /// As [`qualities`].
 pub fn report(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Report {
-    check(mesh, coords, Some(reference));
-    let cells: Vec<(f64, bool)> = by_dim!(mesh.dim, D => per_cell(mesh, |c, kind, nodes| {
-        let p = gather::<D>(coords, nodes);
-        let s = f64::from(reference[c]);
-        let w = worst(kind.table(), &p, s);
-        (measure(kind, &p, s, &w), w.inverted())
-    }));
-    let q: Vec<f64> = cells.iter().map(|&(q, _)| q).collect();
+    let (quality, inversions) = qualities_and_inversions(mesh, coords, reference);
     Report {
-        quality: Summary::new(&q),
-        inverted: cells.iter().filter(|&&(_, inv)| inv).count(),
+        quality: Summary::new(&quality),
+        inverted: inversions.len(),
     }
 }
 

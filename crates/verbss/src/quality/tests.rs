@@ -415,3 +415,90 @@ fn results_do_not_depend_on_the_number_of_threads() {
         .install(run);
     assert_eq!(one, four);
 }
+
+/// Numbers in `[-1, 1)` from a fixed sequence.
+fn numbers(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        2.0 * (state >> 11) as f64 / (1u64 << 53) as f64 - 1.0
+    }
+}
+
+/// [`worst`] as every kind computes it: each corner with its own edge lengths.
+fn worst_by_corner<const D: usize>(table: &KindTable, p: &[[f64; D]], s: f64) -> Corner {
+    let mut out = Corner {
+        corner: 0,
+        scaled: f64::INFINITY,
+        volume: 0.0,
+    };
+    for (k, c) in table.corners.iter().enumerate() {
+        let (j, lengths) = measures::corner(p, c);
+        let scaled = measures::scaled(s * j, lengths);
+        if scaled < out.scaled || k == 0 {
+            out = Corner {
+                corner: k,
+                scaled,
+                volume: s * j / factorial(D),
+            };
+        }
+    }
+    out
+}
+
+#[test]
+fn simplex_corners_sharing_edge_lengths_are_the_corner_formula_bit_for_bit() {
+    let mut next = numbers(7);
+    let bits = |c: Corner| (c.corner, c.scaled.to_bits(), c.volume.to_bits());
+    for k in 0..4000 {
+        let s = if k % 2 == 0 { 1.0 } else { -1.0 };
+        let mut tet: [[f64; 3]; 4] = std::array::from_fn(|_| [next(), next(), next()]);
+        let mut tri: [[f64; 2]; 3] = std::array::from_fn(|_| [next(), next()]);
+        if k % 7 == 0 {
+            // A collapsed edge: a corner of zero length product.
+            tet[3] = tet[1];
+            tri[2] = tri[0];
+        }
+        let table = CellKind::Tetra.table();
+        assert_eq!(
+            bits(worst(table, &tet, s)),
+            bits(worst_by_corner(table, &tet, s))
+        );
+        let table = CellKind::Triangle.table();
+        assert_eq!(
+            bits(worst(table, &tri, s)),
+            bits(worst_by_corner(table, &tri, s))
+        );
+    }
+}
+
+#[test]
+fn the_one_pass_check_equals_the_separate_measures_for_any_threads() {
+    // 12³ cubes of 6 tetrahedra: more cells than two parallel pieces.
+    let n = 13;
+    let reference_mesh = crate::mesh::samples::jittered_grid(3, n, 2, || 0.0).unwrap();
+    let reference = orientation(&reference_mesh);
+    let mut shift = numbers(3);
+    let mesh = crate::mesh::samples::jittered_grid(3, n, 2, || 0.0).unwrap();
+    let h = 1.0 / (n - 1) as f64;
+    let coords: Vec<f64> = mesh.coords.iter().map(|x| x + 0.45 * h * shift()).collect();
+    assert!(mesh.cells.len() > 2 * CELLS);
+    let run = || qualities_and_inversions(&mesh, &coords, &reference);
+    let pool = |threads| rayon::ThreadPoolBuilder::new().num_threads(threads).build();
+    let one = pool(1).unwrap().install(run);
+    let four = pool(4).unwrap().install(run);
+    assert_eq!(one, four);
+    let separate = (
+        qualities(&mesh, &coords, &reference),
+        inversions(&mesh, &coords, &reference),
+    );
+    assert_eq!(one, separate);
+    assert!(!one.1.is_empty(), "the jitter inverts some cells");
+    assert_eq!(
+        report(&mesh, &coords, &reference).inverted,
+        one.1.len(),
+        "report counts the same cells"
+    );
+}

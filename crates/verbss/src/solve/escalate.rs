@@ -190,6 +190,9 @@ impl Engine {
         total.solve_seconds = total.seconds - total.form_seconds;
         total.rebuilt = rebuilt;
         total.hierarchy_seconds = hierarchy_seconds;
+        if rebuilt {
+            total.springs_seconds = self.built.as_ref().map_or(0.0, |b| b.springs_seconds);
+        }
         Ok(total)
     }
 
@@ -216,11 +219,14 @@ impl Engine {
             .as_ref()
             .is_some_and(|b| b.method == params.method && b.coords == coords);
         if !reuse {
-            self.built = None;
+            let kept = self.built.take().and_then(|b| match b.system {
+                System::Blocks { blocks, .. } if b.method == params.method => Some(blocks),
+                _ => None,
+            });
             let (_, pool) = self.pool.take().expect("started above");
             let built = pool.install(|| match self.conn.dim {
-                2 => self.build::<2>(coords, displacement, params.method),
-                _ => self.build::<3>(coords, displacement, params.method),
+                2 => self.build::<2>(coords, displacement, params.method, kept),
+                _ => self.build::<3>(coords, displacement, params.method, kept),
             });
             self.pool = Some((threads, pool));
             self.built = Some(built?);

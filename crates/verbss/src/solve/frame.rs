@@ -201,24 +201,24 @@ impl Frames {
     /// [`Frames::given_pull`]).
     pub fn project_diagonal<const D: usize>(&self, diag: &mut [f64]) -> Vec<f64> {
         let s = packed_len(D);
-        let mut kept = vec![0.0; s * self.free.len()];
+        let mut unprojected = vec![0.0; s * self.free.len()];
         for p in 0..self.slot.len() {
             if let (Some(f), Some(slot)) = (self.get::<D>(p), self.slot(p)) {
-                let k = &mut kept[s * slot..s * (slot + 1)];
+                let k = &mut unprojected[s * slot..s * (slot + 1)];
                 k.copy_from_slice(&diag[s * p..s * (p + 1)]);
                 f.project(k, &mut diag[s * p..s * (p + 1)]);
             }
         }
-        kept
+        unprojected
     }
 
     /// `K_pp f` for position `p` with displacement `u`, `f` its given part,
-    /// from the blocks `kept` that [`Frames::project_diagonal`] returned;
+    /// from the blocks `unprojected` that [`Frames::project_diagonal`] returned;
     /// `None` for a free node.
     #[inline]
     pub fn given_pull<const D: usize>(
         &self,
-        kept: &[f64],
+        unprojected: &[f64],
         p: usize,
         u: &[f64; D],
     ) -> Option<[f64; D]> {
@@ -226,7 +226,7 @@ impl Frames {
         let slot = self.slot(p)?;
         let f = self.get::<D>(p)?;
         Some(packed_mul::<D>(
-            &kept[s * slot..s * (slot + 1)],
+            &unprojected[s * slot..s * (slot + 1)],
             &f.given_part(u),
         ))
     }

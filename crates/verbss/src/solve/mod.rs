@@ -143,16 +143,18 @@ struct Built {
     scratch: Scratch,
     /// Each unknown position's local size ([`verify::heights`]).
     heights: Vec<f64>,
+    /// Seconds the springs took to assemble.
+    springs_seconds: f64,
 }
 
 /// The system swept or factored.
 enum System {
     /// Spring blocks. `diag` holds per position the (projected, for sliding
-    /// nodes) `K_ii`, as its LDLᵀ factor when `factored`; `kept` holds the
+    /// nodes) `K_ii`, as its LDLᵀ factor when `factored`; `unprojected` holds the
     /// unprojected `K_ii` per sliding node ([`Frames::project_diagonal`]).
     Blocks {
         blocks: NodeBlocks,
-        kept: Vec<f64>,
+        unprojected: Vec<f64>,
         factored: bool,
     },
     /// Scalar Laplacian weights.
@@ -299,8 +301,12 @@ impl Engine {
         let common = (b.scratch.constant.len() + b.scratch.work.len() + b.scratch.next.len()) * f
             + l.frames.bytes();
         let system = match &b.system {
-            System::Blocks { blocks, kept, .. } => {
-                (blocks.diag.len() + blocks.blocks.len() + kept.len()) * f
+            System::Blocks {
+                blocks,
+                unprojected,
+                ..
+            } => {
+                (blocks.diag.len() + blocks.blocks.len() + unprojected.len()) * f
                     + blocks.neighbours.len() * u
                     + blocks.offsets.len() * z
             }
@@ -369,22 +375,27 @@ impl Engine {
         Ok(())
     }
 
-    /// Orders the unknowns, assembles the springs and prepares the diagonal.
+    /// Orders the unknowns, assembles the springs and prepares the diagonal;
+    /// the springs are written over `kept`, the blocks of the last build of
+    /// the same method, when the order is the same
+    /// ([`springs::assemble_reusing`]).
     fn build<const D: usize>(
         &mut self,
         coords: &[f64],
         displacement: &[f64],
         method: Method,
+        kept: Option<NodeBlocks>,
     ) -> Result<Built> {
         let seeds = self.moving::<D>(displacement);
-        let layout = match &self.layout {
-            Some((kept, layout)) if *kept == seeds => layout.clone(),
+        let (layout, kept) = match &self.layout {
+            Some((same, layout)) if *same == seeds => (layout.clone(), kept),
             _ => {
                 let layout = self.layout::<D>(&seeds);
                 self.layout = Some((seeds, layout.clone()));
-                layout
+                (layout, None)
             }
         };
+        let mut springs_seconds = 0.0;
         let system = match method {
             Method::Laplacian => {
                 System::Laplacian(laplacian::Weights::new::<D>(&self.conn, coords, &layout)?)
@@ -395,13 +406,21 @@ impl Engine {
                 } else {
                     Springs::BallVertex
                 };
-                let mut blocks =
-                    springs::assemble(&self.conn, coords, &layout.order, &layout.position, kind)?;
+                let started = std::time::Instant::now();
+                let mut blocks = springs::assemble_reusing(
+                    &self.conn,
+                    coords,
+                    &layout.order,
+                    &layout.position,
+                    kind,
+                    kept,
+                )?;
+                springs_seconds = started.elapsed().as_secs_f64();
                 let factored = method != Method::BallVertex;
-                let kept = self.prepare_diag::<D>(&mut blocks, &layout, factored)?;
+                let unprojected = self.prepare_diag::<D>(&mut blocks, &layout, factored)?;
                 System::Blocks {
                     blocks,
-                    kept,
+                    unprojected,
                     factored,
                 }
             }
@@ -411,6 +430,7 @@ impl Engine {
         let heights = verify::heights::<D>(&self.conn, coords, &layout);
         Ok(Built {
             heights,
+            springs_seconds,
             coords: coords.to_vec(),
             method,
             layout,
@@ -436,7 +456,7 @@ impl Engine {
         factored: bool,
     ) -> Result<Vec<f64>> {
         let s = packed_len(D);
-        let kept = layout.frames.project_diagonal::<D>(&mut blocks.diag);
+        let unprojected = layout.frames.project_diagonal::<D>(&mut blocks.diag);
         if factored {
             for p in 0..layout.len() {
                 let diag = &mut blocks.diag[s * p..s * (p + 1)];
@@ -450,7 +470,7 @@ impl Engine {
                 }
             }
         }
-        Ok(kept)
+        Ok(unprojected)
     }
 
     /// The seeds of the breadth-first order: the prescribed nodes with a

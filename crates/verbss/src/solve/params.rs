@@ -270,6 +270,9 @@ pub struct SolveInfo {
     pub hierarchy_built: bool,
     /// Seconds building the multigrid hierarchy (part of `form_seconds`).
     pub hierarchy_seconds: f64,
+    /// Seconds assembling the springs (part of `form_seconds`; 0 when the
+    /// system was kept).
+    pub springs_seconds: f64,
     /// Whether the configured solver's iterates grew (ω too large for the mesh).
     pub diverged: bool,
     /// The solvers tried, in order (the last one gave the result).

@@ -53,9 +53,11 @@ pub(super) fn run<const D: usize>(
     } = scratch;
     gather::<D>(layout, displacement, work);
     match system {
-        System::Blocks { blocks, kept, .. } => {
-            block_constants::<D>(blocks, kept, layout, displacement, constant)
-        }
+        System::Blocks {
+            blocks,
+            unprojected,
+            ..
+        } => block_constants::<D>(blocks, unprojected, layout, displacement, constant),
         System::Laplacian(w) => w.constants::<D>(layout, displacement, constant),
     }
     let omega = params.omega;
@@ -171,10 +173,10 @@ pub(super) fn gather<const D: usize>(layout: &Layout, displacement: &[f64], work
 }
 
 /// `c_p = Σ_{j prescribed} B_pj u_j`, minus `K_pp f` for a sliding node
-/// with given part `f` (`kept`: [`super::Frames::project_diagonal`]).
+/// with given part `f` (`unprojected`: [`super::Frames::project_diagonal`]).
 pub(super) fn block_constants<const D: usize>(
     blocks: &NodeBlocks,
-    kept: &[f64],
+    unprojected: &[f64],
     layout: &Layout,
     displacement: &[f64],
     constant: &mut [f64],
@@ -182,7 +184,7 @@ pub(super) fn block_constants<const D: usize>(
     for p in 0..layout.len() {
         let mut c = blocks.prescribed_pull::<D>(p, displacement);
         let u = point::<D>(displacement, layout.order[p]);
-        if let Some(kf) = layout.frames.given_pull::<D>(kept, p, &u) {
+        if let Some(kf) = layout.frames.given_pull::<D>(unprojected, p, &u) {
             for k in 0..D {
                 c[k] -= kf[k];
             }

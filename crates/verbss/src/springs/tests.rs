@@ -1,0 +1,215 @@
+//! The springs against hand computations, and re-assembly into a kept
+//! pattern against a fresh assembly.
+
+use super::*;
+use crate::mesh::{samples, CellKind};
+
+/// One equilateral-ish triangle with node 2 unknown:
+/// edges to 0 and 1, and the ball-vertex spring to edge (0, 1).
+#[test]
+fn triangle_row_by_hand() {
+    let mut cells = Cells::new();
+    cells.push(CellKind::Triangle, &[0, 1, 2]);
+    let coords = vec![0.0, 0.0, 2.0, 0.0, 0.5, 1.0];
+    let mesh = Mesh::new(2, coords.clone(), cells, vec![]).unwrap();
+    let conn = Connectivity::new(&mesh);
+    let position = [u32::MAX, u32::MAX, 0];
+    let b = assemble(&conn, &coords, &[2], &position, Springs::BallVertex).unwrap();
+    // Edge to node 0: L = √1.25, n = −(0.5, 1)/L. Edge to node 1: L = √3.25,
+    // n = (1.5, −1)/L. Ball-vertex: p = (0.5, 0), h = 1, n = (0, −1),
+    // weights (0.75, 0.25).
+    let outer = |k: f64, n: [f64; 2]| [k * n[0] * n[0], k * n[1] * n[0], k * n[1] * n[1]];
+    let l0 = 1.25f64.sqrt();
+    let l1 = 3.25f64.sqrt();
+    let e0 = outer(1.0 / l0, [0.5 / l0, 1.0 / l0]);
+    let e1 = outer(1.0 / l1, [1.5 / l1, -1.0 / l1]);
+    let bv = outer(1.0, [0.0, -1.0]);
+    let expect_k: Vec<f64> = (0..3).map(|k| e0[k] + e1[k] + bv[k]).collect();
+    let expect_b0: Vec<f64> = (0..3).map(|k| e0[k] + 0.75 * bv[k]).collect();
+    let expect_b1: Vec<f64> = (0..3).map(|k| e1[k] + 0.25 * bv[k]).collect();
+    let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-15);
+    assert!(close(&b.diag, &expect_k), "{:?}", b.diag);
+    assert_eq!(b.fixed_nodes, [0, 1]);
+    assert!(close(&b.fixed_blocks[..3], &expect_b0));
+    assert!(close(&b.fixed_blocks[3..], &expect_b1));
+    assert!(b.neighbours.is_empty());
+    let spring = assemble(&conn, &coords, &[2], &position, Springs::Edge).unwrap();
+    assert!(close(&spring.fixed_blocks, &[e0, e1].concat()));
+}
+
+#[test]
+fn collapsed_cells_are_reported() {
+    let mut cells = Cells::new();
+    cells.push(CellKind::Triangle, &[0, 1, 2]);
+    let coords = vec![0.0, 0.0, 2.0, 0.0, 0.5, 0.0];
+    let mesh = Mesh::new(2, coords.clone(), cells, vec![]).unwrap();
+    let conn = Connectivity::new(&mesh);
+    let position = [u32::MAX, u32::MAX, 0];
+    let e = assemble(&conn, &coords, &[2], &position, Springs::BallVertex).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "invalid mesh: node 3 lies on a facet of cell 1 (a collapsed cell: zero ball-vertex \
+         spring length)"
+    );
+    let coords = vec![0.0, 0.0, 2.0, 0.0, 0.0, 0.0];
+    let e = assemble(&conn, &coords, &[2], &position, Springs::Edge).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "invalid mesh: nodes 3 and 1 coincide (an edge of zero length)"
+    );
+}
+
+/// A deterministic jitter in `[-amount, amount)`.
+fn jitter(seed: u64, amount: f64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        amount * (2.0 * (state >> 11) as f64 / (1u64 << 53) as f64 - 1.0)
+    }
+}
+
+/// The interior nodes of `mesh` as unknowns: their order and each node's position.
+fn interior(mesh: &Mesh) -> (Vec<usize>, Vec<u32>) {
+    let boundary = topology::boundary_nodes(mesh);
+    let order: Vec<usize> = (0..mesh.node_count()).filter(|&i| !boundary[i]).collect();
+    let mut position = vec![u32::MAX; mesh.node_count()];
+    for (p, &i) in order.iter().enumerate() {
+        position[i] = p as u32;
+    }
+    (order, position)
+}
+
+/// `mesh`'s coordinates moved by a further jitter of `amount` of the spacing `h`.
+fn moved(mesh: &Mesh, seed: u64, amount: f64, h: f64) -> Vec<f64> {
+    let mut shift = jitter(seed, amount * h);
+    mesh.coords.iter().map(|x| x + shift()).collect()
+}
+
+/// Grids of every kind `samples::jittered_grid` makes, with and without
+/// stiffness factors; the 2D triangles with more rows than one batch of
+/// chunks of re-assembly.
+fn cases() -> Vec<(Mesh, Vec<f64>, f64)> {
+    let mut out = Vec::new();
+    let kinds = [
+        (2, 0),
+        (2, 1),
+        (2, 2),
+        (3, 0),
+        (3, 1),
+        (3, 2),
+        (3, 3),
+        (3, 4),
+    ];
+    for (k, &(dim, kind)) in kinds.iter().enumerate() {
+        let n = 5;
+        let h = 1.0 / (n - 1) as f64;
+        let mesh = samples::jittered_grid(dim, n, kind, jitter(k as u64, 0.15 * h)).unwrap();
+        let phi = (0..mesh.node_count())
+            .map(|i| 1.0 + (i % 3) as f64)
+            .collect();
+        out.push((mesh, phi, h));
+    }
+    let n = 150;
+    let h = 1.0 / (n - 1) as f64;
+    let big = samples::jittered_grid(2, n, 0, jitter(99, 0.15 * h)).unwrap();
+    out.push((big, Vec::new(), h));
+    out
+}
+
+#[test]
+fn reassembly_into_the_kept_pattern_equals_a_fresh_assembly() {
+    let mut reassembled = 0;
+    for (seed, (mesh, phi, h)) in cases().into_iter().enumerate() {
+        for stiffness in [Vec::new(), phi] {
+            let mut conn = Connectivity::new(&mesh);
+            conn.stiffness = stiffness;
+            let (order, position) = interior(&mesh);
+            let later = moved(&mesh, seed as u64 + 10, 0.1, h);
+            for springs in [Springs::Edge, Springs::BallVertex] {
+                let before = assemble(&conn, &mesh.coords, &order, &position, springs).unwrap();
+                let fresh = assemble(&conn, &later, &order, &position, springs).unwrap();
+                let mut kept = before.clone();
+                if reassemble(&conn, &later, &order, &position, springs, &mut kept).unwrap() {
+                    assert_eq!(kept, fresh);
+                    reassembled += 1;
+                } else {
+                    let pattern = |b: &NodeBlocks| {
+                        (
+                            b.offsets.clone(),
+                            b.neighbours.clone(),
+                            b.fixed_nodes.clone(),
+                        )
+                    };
+                    assert_ne!(pattern(&before), pattern(&fresh));
+                }
+                let reused =
+                    assemble_reusing(&conn, &later, &order, &position, springs, Some(before));
+                assert_eq!(reused.unwrap(), fresh);
+            }
+        }
+    }
+    assert!(reassembled >= 20, "only {reassembled} re-assemblies fitted");
+}
+
+#[test]
+fn a_system_of_other_unknowns_is_not_reassembled_into() {
+    let (mesh, _, h) = cases().swap_remove(5);
+    let conn = Connectivity::new(&mesh);
+    let (order, position) = interior(&mesh);
+    let later = moved(&mesh, 3, 0.1, h);
+    let fewer = &order[1..];
+    let mut shifted = vec![u32::MAX; mesh.node_count()];
+    for (p, &i) in fewer.iter().enumerate() {
+        shifted[i] = p as u32;
+    }
+    let springs = Springs::BallVertex;
+    let mut other = assemble(&conn, &mesh.coords, fewer, &shifted, springs).unwrap();
+    assert!(!reassemble(&conn, &later, &order, &position, springs, &mut other).unwrap());
+    let mut reordered = assemble(&conn, &mesh.coords, &order, &position, springs).unwrap();
+    let mut swapped = position.clone();
+    swapped.swap(order[0], order[1]);
+    let mut swapped_order = order.clone();
+    swapped_order.swap(0, 1);
+    let fits = reassemble(
+        &conn,
+        &later,
+        &swapped_order,
+        &swapped,
+        springs,
+        &mut reordered,
+    );
+    assert!(!fits.unwrap());
+    let fresh = assemble(&conn, &later, &order, &position, springs).unwrap();
+    let reused = assemble_reusing(&conn, &later, &order, &position, springs, Some(other));
+    assert_eq!(reused.unwrap(), fresh);
+}
+
+#[test]
+fn assembly_does_not_depend_on_the_number_of_threads() {
+    for (seed, (mesh, phi, h)) in cases().into_iter().enumerate() {
+        let mut conn = Connectivity::new(&mesh);
+        conn.stiffness = phi;
+        let (order, position) = interior(&mesh);
+        let later = moved(&mesh, seed as u64 + 20, 0.1, h);
+        let run = || {
+            let fresh =
+                assemble(&conn, &mesh.coords, &order, &position, Springs::BallVertex).unwrap();
+            let mut kept = fresh.clone();
+            let fits = reassemble(
+                &conn,
+                &later,
+                &order,
+                &position,
+                Springs::BallVertex,
+                &mut kept,
+            );
+            (fresh, fits.unwrap(), kept)
+        };
+        let pool = |threads| rayon::ThreadPoolBuilder::new().num_threads(threads).build();
+        let one = pool(1).unwrap().install(run);
+        let three = pool(3).unwrap().install(run);
+        assert!(one == three, "mesh {seed}");
+    }
+}
