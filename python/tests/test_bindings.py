@@ -340,8 +340,8 @@ def test_bad_settings_and_arrays_are_named():
         (lambda: verbss.Deformer(mesh, slide=["wing"]),
          "unknown group 'wing' (the mesh has: airfoil, farfield)"),
         (lambda: verbss.Deformer(mesh, slide={"farfield": [0.0, 0.0, 1.0]}),
-         "invalid setting: the slide normal of group 'farfield' has 3 numbers, expected 2 "
-         "(the mesh's dimension)"),
+         "invalid setting: the slide normal of group 'farfield' has z = 1 on a 2D mesh: "
+         "give NX,NY (or NX,NY,0)"),
         (lambda: verbss.Deformer(mesh, slide={"farfield": [[0.0, 1.0]]}),
          "invalid setting: the slide normal of group 'farfield' has shape (1, 2), expected (2,)"),
         (lambda: verbss.Deformer(mesh, slide="farfield"),

@@ -5,6 +5,25 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 
+/// An error of file `path` at `at`: its byte offset in a binary file, its
+/// line in an ASCII one.
+pub(super) fn located(path: &Path, binary: bool, at: Mark, message: String) -> Error {
+    let path = path.to_path_buf();
+    if binary {
+        Error::Binary {
+            path,
+            offset: at.offset as u64,
+            message,
+        }
+    } else {
+        Error::Parse {
+            path,
+            line: at.line,
+            message,
+        }
+    }
+}
+
 /// A place in the file: 0-based byte offset and 1-based line.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Mark {
@@ -103,21 +122,11 @@ impl<'a> Cursor<'a> {
 
     /// An error at `mark`.
     pub fn error_at(&self, mark: Mark, message: impl Into<String>) -> Error {
-        let path = self.path.to_path_buf();
-        let message = message.into();
-        if self.binary {
-            Error::Binary {
-                path,
-                offset: (self.base + mark.offset) as u64,
-                message,
-            }
-        } else {
-            Error::Parse {
-                path,
-                line: mark.line,
-                message,
-            }
-        }
+        let at = Mark {
+            offset: self.base + mark.offset,
+            line: mark.line,
+        };
+        located(self.path, self.binary, at, message.into())
     }
 
     /// An error at byte `offset` of a binary block.

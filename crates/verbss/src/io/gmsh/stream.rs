@@ -57,21 +57,7 @@ impl<'p> Stream<'p> {
 
     /// An error at `mark`: its line in an ASCII file, its offset in a binary one.
     pub fn error_at(&self, mark: Mark, message: impl Into<String>) -> Error {
-        let path = self.path.to_path_buf();
-        let message = message.into();
-        if self.binary {
-            Error::Binary {
-                path,
-                offset: mark.offset as u64,
-                message,
-            }
-        } else {
-            Error::Parse {
-                path,
-                line: mark.line,
-                message,
-            }
-        }
+        super::cursor::located(self.path, self.binary, mark, message.into())
     }
 
     fn io(&self, source: std::io::Error) -> Error {
