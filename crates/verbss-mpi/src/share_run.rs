@@ -82,7 +82,7 @@ pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
             displacement(&job.motion, p, step, steps)
         })
     };
-    let (roles, _) = at(0)?;
+    let (roles, mut before) = at(0)?;
     let mut solver = LocalSolver::new(&world, mesh, &global_numbers(&share), &roles, &[])?;
     if !job.quiet {
         let part = solver.part();
@@ -107,13 +107,13 @@ pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
     for step in 1..=steps {
         let (_, target) = at(step)?;
         let (springs, mut u) = match job.settings.reference {
-            Reference::Fixed => (mesh.coords.clone(), target),
+            Reference::Fixed => (mesh.coords.clone(), target.clone()),
             _ => {
-                let (_, before) = at(step - 1)?;
                 let increment = target.iter().zip(&before).map(|(a, b)| a - b).collect();
                 (coords.clone(), increment)
             }
         };
+        before = target;
         let info = solver.solve(&springs, &mut u, &job.settings.solve)?;
         if !info.converged {
             if root {

@@ -389,6 +389,7 @@ impl<S: SpringSolver> Deformer<S> {
                 })
                 .collect();
             let attempt = self.chosen(&coords, &at, end - done, reference_quality, &mut report)?;
+            let attempt_quality = attempt.min_quality();
             let Attempt {
                 coords: trial,
                 u,
@@ -439,7 +440,7 @@ impl<S: SpringSolver> Deformer<S> {
             }
             self.guess_is_solution = true;
             if self.settings.reference == Reference::Updated {
-                reference_quality = quality.iter().copied().fold(f64::INFINITY, f64::min);
+                reference_quality = attempt_quality;
             }
             coords = trial;
             done = end;

@@ -39,16 +39,16 @@ impl<S: SpringSolver> Deformer<S> {
     ) -> Result<Attempt> {
         let start = self.blended(coords, targets);
         let blended = self.judged(&start, targets, fraction, report)?;
-        let min = |a: &Attempt| a.quality.iter().copied().fold(f64::INFINITY, f64::min);
-        let weak =
-            !blended.inversions.is_empty() || min(&blended) < QUALITY_DROP * reference_quality;
+        let weak = !blended.inversions.is_empty()
+            || blended.min_quality() < QUALITY_DROP * reference_quality;
         if self.blend.is_none() || !weak {
             return Ok(blended);
         }
         let plain_start = reference_of(self.settings.reference, coords, &self.mesh.coords).to_vec();
         let plain = self.judged(&plain_start, targets, fraction, report)?;
         let valid = |a: &Attempt| a.info.converged && a.inversions.is_empty();
-        let better = valid(&plain) && (!valid(&blended) || min(&plain) > min(&blended));
+        let better =
+            valid(&plain) && (!valid(&blended) || plain.min_quality() > blended.min_quality());
         let (kept, dropped) = if better {
             (plain, blended)
         } else {
@@ -204,6 +204,13 @@ pub(super) struct Attempt {
     pub(super) inversions: Vec<Inversion>,
     /// Seconds of the quality and inversion check.
     pub(super) check_seconds: f64,
+}
+
+impl Attempt {
+    /// The smallest quality of its cells.
+    pub(super) fn min_quality(&self) -> f64 {
+        self.quality.iter().copied().fold(f64::INFINITY, f64::min)
+    }
 }
 
 /// The reference configuration of a (sub-)step from `coords`: `coords`, or

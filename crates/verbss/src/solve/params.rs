@@ -37,13 +37,14 @@ impl NodeRole {
         }
     }
 
-    /// [`NodeRole::prescribed`] for `u` of `u.len()` (2 or 3) components.
-    pub fn prescribed_dyn(self, directions: &[[f64; 3]], u: &[f64]) -> Vec<f64> {
+    /// [`NodeRole::prescribed`] for `u` of `u.len()` (2 or 3) components;
+    /// the first `u.len()` numbers of the result are used.
+    pub fn prescribed_dyn(self, directions: &[[f64; 3]], u: &[f64]) -> [f64; 3] {
         if u.len() == 2 {
-            self.prescribed::<2>(directions, &[u[0], u[1]]).to_vec()
+            let [a, b] = self.prescribed::<2>(directions, &[u[0], u[1]]);
+            [a, b, 0.0]
         } else {
             self.prescribed::<3>(directions, &[u[0], u[1], u[2]])
-                .to_vec()
         }
     }
 
@@ -52,8 +53,12 @@ impl NodeRole {
     /// `x` alone.
     pub fn keep_on(self, directions: &[[f64; 3]], x: &mut [f64], base: &[f64]) {
         if let NodeRole::Slide(_) | NodeRole::Line(_) = self {
-            let off: Vec<f64> = x.iter().zip(base).map(|(a, b)| a - b).collect();
-            for (xd, g) in x.iter_mut().zip(self.prescribed_dyn(directions, &off)) {
+            let mut off = [0.0; 3];
+            for ((o, a), b) in off.iter_mut().zip(&*x).zip(base) {
+                *o = a - b;
+            }
+            let given = self.prescribed_dyn(directions, &off[..x.len()]);
+            for (xd, g) in x.iter_mut().zip(given) {
                 *xd -= g;
             }
         }
