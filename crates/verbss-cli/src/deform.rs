@@ -9,6 +9,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Arc;
 
 use anyhow::bail;
 use clap::{ArgGroup, Args};
@@ -230,7 +231,7 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
         name: file_stem(&output),
         source: args.mesh.display().to_string(),
         write_options: args.msh.options(&mesh),
-        mesh,
+        mesh: Arc::new(mesh),
         attachments: slides
             .into_iter()
             .chain([Attachment {

@@ -6,6 +6,7 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::Arc;
 
 use clap::Args;
 use verbss::deform::Settings;
@@ -61,7 +62,7 @@ pub fn job(out: PathBuf, every: usize) -> anyhow::Result<Job> {
         name: "naca0012".into(),
         source: "built-in NACA0012 O-grid".into(),
         write_options: WriteOptions::default(),
-        mesh,
+        mesh: Arc::new(mesh),
         attachments: vec![Attachment {
             groups: vec!["airfoil".into()],
             motion,

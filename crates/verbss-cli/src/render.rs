@@ -4,6 +4,7 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::Arc;
 
 use anyhow::Context;
 use clap::Args;
@@ -174,7 +175,7 @@ const GIF_WIDTH: u32 = 640;
 /// picture that cannot be made is a warning: it never stops the run.
 pub struct Recorder {
     args: PictureArgs,
-    mesh: Mesh,
+    mesh: Arc<Mesh>,
     steps: usize,
     before: Option<Image>,
     worst: Option<Snapshot>,
@@ -186,13 +187,18 @@ pub struct Recorder {
 impl Recorder {
     /// A recorder for `args` on `mesh` over `steps` steps; `view` is the
     /// window when `args` gives none.
-    pub fn new(args: &PictureArgs, mesh: &Mesh, steps: usize, view: Option<[f64; 4]>) -> Recorder {
+    pub fn new(
+        args: &PictureArgs,
+        mesh: &Arc<Mesh>,
+        steps: usize,
+        view: Option<[f64; 4]>,
+    ) -> Recorder {
         let mut args = args.clone();
         args.view = args.view.or(view);
         args.gif_every = args.gif_every.max(1);
         Recorder {
             args,
-            mesh: mesh.clone(),
+            mesh: Arc::clone(mesh),
             steps,
             before: None,
             worst: None,

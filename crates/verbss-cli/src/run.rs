@@ -15,6 +15,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Arc;
 use std::time::Instant;
 
 use anyhow::Context;
@@ -89,7 +90,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         name,
         source: case.mesh.display().to_string(),
         write_options,
-        mesh,
+        mesh: Arc::new(mesh),
         attachments,
         settings: case.settings.clone(),
         every: args.every.unwrap_or(case.output.every),
@@ -121,8 +122,8 @@ pub struct Prepared {
 /// Runs a prepared job in this process and prints its summary.
 pub fn run_here(mut prepared: Prepared) -> anyhow::Result<ExitCode> {
     let job = &prepared.job;
-    let mut deformer = Deformer::new(
-        &job.mesh,
+    let mut deformer = Deformer::shared(
+        Arc::clone(&job.mesh),
         &job.attachments,
         job.deformer_settings(&prepared.recorder),
     )?;
@@ -157,8 +158,8 @@ pub struct Job {
     pub name: String,
     /// Where the mesh came from (for the report).
     pub source: String,
-    /// The input mesh.
-    pub mesh: Mesh,
+    /// The input mesh (shared with the deformer and the pictures).
+    pub mesh: Arc<Mesh>,
     /// The motions.
     pub attachments: Vec<Attachment>,
     /// Steps, reference and solver settings.
@@ -343,9 +344,8 @@ pub fn execute<S: SpringSolver>(
                 let failed_path = job.dir.join(format!("{}.failed.vtu", job.name));
                 let last = job.final_path();
                 if writer {
-                    let mut mesh = job.mesh.clone();
-                    mesh.coords.clone_from(&failed.coords);
-                    vtu::write(&failed_path, &mesh, &fields(&job.mesh, failed))?;
+                    let mesh = &job.mesh;
+                    vtu::write_moved(&failed_path, mesh, &failed.coords, &fields(mesh, failed))?;
                     io::write(&last, &deformer.mesh(), &job.write_options_after(n - 1))?;
                     report.outcome = e.to_string();
                     if let Some(path) = &job.report {
@@ -401,9 +401,8 @@ fn fields(mesh: &Mesh, s: &Snapshot) -> vtu::Fields {
 /// (time `n·dt`).
 fn write_step(job: &Job, s: &Snapshot, series: &mut Vec<(f64, String)>) -> anyhow::Result<()> {
     let file = format!("{}_{:04}.vtu", job.name, s.report.step);
-    let mut mesh = job.mesh.clone();
-    mesh.coords.clone_from(&s.coords);
-    vtu::write(&job.dir.join(&file), &mesh, &fields(&job.mesh, s))?;
+    let path = job.dir.join(&file);
+    vtu::write_moved(&path, &job.mesh, &s.coords, &fields(&job.mesh, s))?;
     series.push((s.report.step as f64 * job.settings.dt, file));
     io::pvd::write(&job.dir.join(format!("{}.pvd", job.name)), series)?;
     Ok(())

@@ -5,6 +5,7 @@
 
 use std::path::Path;
 use std::process::ExitCode;
+use std::sync::Arc;
 
 use anyhow::bail;
 use verbss_cli::run::{execute, Prepared};
@@ -26,7 +27,7 @@ pub fn run_distributed(mut prepared: Prepared) -> anyhow::Result<ExitCode> {
     let job = &prepared.job;
     let mut stepper = stepper(
         &world,
-        &job.mesh,
+        Arc::clone(&job.mesh),
         &job.attachments,
         job.deformer_settings(&prepared.recorder),
     )?;

@@ -14,6 +14,8 @@
 //! rejects a step, and where the sweeps do not converge) is rank 0's
 //! [`Engine`], its solution broadcast.
 
+use std::sync::Arc;
+
 use verbss::deform::{Deformer, Settings};
 use verbss::motion::Attachment;
 use verbss::solve::{Engine, NodeRole, SolveInfo, SolveParams, SolverSetup, SpringSolver, Stage};
@@ -34,7 +36,7 @@ pub type Stepper<'c> = Deformer<Distributed<'c>>;
 /// cannot do are refused here, before any step.
 pub fn stepper<'c>(
     comm: &'c Comm,
-    mesh: &Mesh,
+    mesh: Arc<Mesh>,
     attachments: &[Attachment],
     settings: Settings,
 ) -> Result<Stepper<'c>> {

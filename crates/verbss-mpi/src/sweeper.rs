@@ -91,12 +91,12 @@ impl<'c> Sweeper<'c> {
         }
         let unit = unit_directions(dim, &roles, normals, |i| part.node_tags[i])?;
         let n = part.node_count();
-        let edges = topology::edges(&part.cells);
+        let node_cells = topology::node_cells(&part.cells, n);
         let conn = Connectivity {
             dim,
-            node_cells: topology::node_cells(&part.cells, n),
-            graph: topology::node_graph(&part.cells, n),
-            edge_graph: topology::edge_graph(n, &edges),
+            graph: topology::node_graph_from(&part.cells, &node_cells),
+            edge_graph: topology::edge_graph_from(&part.cells, &node_cells),
+            node_cells,
             cells: part.cells.clone(),
             node_tags: part.node_tags.clone(),
             cell_tags: part.cell_tags.clone(),

@@ -178,7 +178,7 @@ impl Scene {
             let colour = colour::cell(state.quality[c], state.inverted[c], 1.0);
             self.push(nodes.iter().map(|&i| at(i)), colour);
         }
-        self.edges = topology::edges(&mesh.cells)
+        self.edges = topology::edges(&mesh.cells, mesh.node_count())
             .iter()
             .map(|&[a, b]| [at(a), at(b)])
             .collect();

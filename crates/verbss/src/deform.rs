@@ -27,6 +27,7 @@
 //! [`Settings::robust`] adds the near-wall treatments of [`crate::robust`]:
 //! a rigid layer of nodes that move with their wall, and adaptive sub-steps.
 
+use std::sync::Arc;
 use std::time::Instant;
 
 use serde::Serialize;
@@ -139,7 +140,7 @@ pub struct Snapshot {
 /// by `S`: the [`Engine`] in one process, another [`SpringSolver`] (over
 /// MPI ranks) through [`Deformer::with_solver`].
 pub struct Deformer<S = Engine> {
-    mesh: Mesh,
+    mesh: Arc<Mesh>,
     settings: Settings,
     solver: S,
     /// Per-node spring stiffness factors of the wall-distance stiffening (empty: none).
@@ -183,6 +184,15 @@ impl Deformer {
     /// role, builds the solver's topology and checks the input mesh (which
     /// must have no degenerate element and no two nodes at the same position).
     pub fn new(mesh: &Mesh, attachments: &[Attachment], settings: Settings) -> Result<Deformer> {
+        Deformer::shared(Arc::new(mesh.clone()), attachments, settings)
+    }
+
+    /// [`Deformer::new`] on a mesh the caller shares rather than copies.
+    pub fn shared(
+        mesh: Arc<Mesh>,
+        attachments: &[Attachment],
+        settings: Settings,
+    ) -> Result<Deformer> {
         Deformer::with_solver(mesh, attachments, settings, Engine::from_setup)
     }
 }
@@ -191,11 +201,12 @@ impl<S: SpringSolver> Deformer<S> {
     /// [`Deformer::new`] with the springs solved by the solver `make`
     /// builds once the node roles are decided.
     pub fn with_solver(
-        mesh: &Mesh,
+        shared: Arc<Mesh>,
         attachments: &[Attachment],
         settings: Settings,
         make: impl FnOnce(&SolverSetup) -> Result<S>,
     ) -> Result<Deformer<S>> {
+        let mesh: &Mesh = &shared;
         settings.validate()?;
         let motions: Vec<Motion> = attachments.iter().map(|a| a.motion.clone()).collect();
         for m in &motions {
@@ -250,20 +261,22 @@ impl<S: SpringSolver> Deformer<S> {
         let mut report = summarize(&quality, &inversions);
         report.converged = true;
         report.seconds = start.elapsed().as_secs_f64();
+        let round_off =
+            blend::ROUND_OFF * robust::size(mesh, &(0..mesh.node_count()).collect::<Vec<_>>());
+        let current = Snapshot {
+            coords: mesh.coords.clone(),
+            inverted: vec![false; quality.len()],
+            quality,
+            report,
+        };
         Ok(Deformer {
-            input_quality: report.min_quality,
+            input_quality: current.report.min_quality,
             guess: vec![0.0; mesh.coords.len()],
             earlier: None,
             guess_is_solution: settings.reference != Reference::Updated,
-            round_off: blend::ROUND_OFF
-                * robust::size(mesh, &(0..mesh.node_count()).collect::<Vec<_>>()),
-            current: Snapshot {
-                coords: mesh.coords.clone(),
-                inverted: vec![false; quality.len()],
-                quality,
-                report,
-            },
-            mesh: mesh.clone(),
+            round_off,
+            current,
+            mesh: shared,
             settings,
             solver,
             stiffness: rigid.stiffness,
@@ -341,7 +354,7 @@ impl<S: SpringSolver> Deformer<S> {
 
     /// The input mesh with the current coordinates.
     pub fn mesh(&self) -> Mesh {
-        let mut mesh = self.mesh.clone();
+        let mut mesh = Mesh::clone(&self.mesh);
         mesh.coords.clone_from(&self.current.coords);
         mesh
     }

@@ -189,8 +189,7 @@ pub fn prepare(
         Layer::Thickness(t) => Some(t),
     };
     let n = mesh.node_count();
-    let edges = topology::edges(&mesh.cells);
-    let graph = topology::edge_graph(n, &edges);
+    let graph = topology::edge_graph_from(&mesh.cells, &topology::node_cells(&mesh.cells, n));
     // Bodies: moving nodes sharing a chain of motions.
     let mut body_of_chain: HashMap<&[usize], usize> = HashMap::new();
     let mut body_seeds: Vec<Vec<usize>> = Vec::new();

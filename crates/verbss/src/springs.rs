@@ -80,8 +80,9 @@ impl Connectivity {
     /// file's order, so sums over them are the same as in the file's order.
     pub fn new(mesh: &Mesh) -> Connectivity {
         let n = mesh.node_count();
-        let edges = topology::edges(&mesh.cells);
-        let edge_graph = topology::edge_graph(n, &edges);
+        let mut node_cells = topology::node_cells(&mesh.cells, n);
+        let graph = topology::node_graph_from(&mesh.cells, &node_cells);
+        let edge_graph = topology::edge_graph_from(&mesh.cells, &node_cells);
         let by_curve = curve_order(mesh);
         let mut rank = vec![0; by_curve.len()];
         let mut cells = Cells::new();
@@ -89,14 +90,13 @@ impl Connectivity {
             rank[c] = r;
             cells.push(mesh.cells.kinds[c], mesh.cells.cell(c));
         }
-        let mut node_cells = topology::node_cells(&mesh.cells, n);
         for c in &mut node_cells.targets {
             *c = rank[*c];
         }
         Connectivity {
             dim: mesh.dim,
             node_cells,
-            graph: topology::node_graph(&mesh.cells, n),
+            graph,
             edge_graph,
             cells,
             node_tags: mesh.node_tags.clone(),

@@ -2,8 +2,6 @@
 //! boundary facets and nodes, the node-coupling graph, its colouring and
 //! breadth-first layers.
 
-use std::collections::HashMap;
-
 use crate::mesh::{CellKind, Cells, Mesh};
 
 /// A compressed adjacency list: the neighbours of `i` are
@@ -27,40 +25,67 @@ impl Csr {
         self.offsets.len() - 1
     }
 
-    /// Builds rows from `(row, target)` pairs; each row sorted and deduplicated.
+    /// Builds rows from `(row, target)` pairs; each row sorted and
+    /// deduplicated in place (the pairs are held once, never copied).
     pub fn from_pairs(rows: usize, pairs: impl Iterator<Item = (usize, usize)> + Clone) -> Csr {
-        let mut count = vec![0usize; rows + 1];
+        let mut start = vec![0usize; rows + 1];
         for (r, _) in pairs.clone() {
-            count[r + 1] += 1;
+            start[r + 1] += 1;
         }
         for r in 0..rows {
-            count[r + 1] += count[r];
+            start[r + 1] += start[r];
         }
-        let mut fill = count.clone();
-        let mut targets = vec![0; count[rows]];
+        let mut fill = start[..rows].to_vec();
+        let mut targets = vec![0; start[rows]];
         for (r, t) in pairs {
             targets[fill[r]] = t;
             fill[r] += 1;
         }
-        let mut offsets = Vec::with_capacity(rows + 1);
-        offsets.push(0);
-        let mut out = Vec::with_capacity(targets.len());
+        drop(fill);
+        let mut end = 0;
         for r in 0..rows {
-            let row = &mut targets[count[r]..count[r + 1]];
-            row.sort_unstable();
-            let mut last = usize::MAX;
-            for &t in row.iter() {
-                if t != last {
-                    out.push(t);
-                    last = t;
+            let (from, to) = (start[r], start[r + 1]);
+            targets[from..to].sort_unstable();
+            start[r] = end;
+            for k in from..to {
+                if k == from || targets[k] != targets[k - 1] {
+                    targets[end] = targets[k];
+                    end += 1;
                 }
             }
-            offsets.push(out.len());
         }
+        start[rows] = end;
+        targets.truncate(end);
+        targets.shrink_to_fit();
         Csr {
-            offsets,
-            targets: out,
+            offsets: start,
+            targets,
         }
+    }
+
+    /// Builds row `i` by `fill(i, buffer)` (any order, repeats allowed),
+    /// each row sorted and deduplicated: twice over the rows, the first to
+    /// count, so that the rows are stored once at their exact size.
+    pub fn from_rows(rows: usize, fill: impl Fn(usize, &mut Vec<usize>)) -> Csr {
+        let mut buffer = Vec::new();
+        let row = |i: usize, buffer: &mut Vec<usize>| {
+            buffer.clear();
+            fill(i, buffer);
+            buffer.sort_unstable();
+            buffer.dedup();
+        };
+        let mut offsets = Vec::with_capacity(rows + 1);
+        offsets.push(0);
+        for i in 0..rows {
+            row(i, &mut buffer);
+            offsets.push(offsets[i] + buffer.len());
+        }
+        let mut targets = Vec::with_capacity(offsets[rows]);
+        for i in 0..rows {
+            row(i, &mut buffer);
+            targets.extend_from_slice(&buffer);
+        }
+        Csr { offsets, targets }
     }
 }
 
@@ -74,14 +99,35 @@ pub fn node_cells(cells: &Cells, nodes: usize) -> Csr {
 
 /// The node-coupling graph: `j` is a neighbour of `i` when they share a cell (`i ≠ j`).
 pub fn node_graph(cells: &Cells, nodes: usize) -> Csr {
-    Csr::from_pairs(
-        nodes,
-        (0..cells.len()).flat_map(move |c| {
-            let cell = cells.cell(c);
-            cell.iter()
-                .flat_map(move |&a| cell.iter().filter(move |&&b| b != a).map(move |&b| (a, b)))
-        }),
-    )
+    node_graph_from(cells, &node_cells(cells, nodes))
+}
+
+/// [`node_graph`] from the node → cells incidence `node_cells` ([`node_cells`]).
+pub fn node_graph_from(cells: &Cells, node_cells: &Csr) -> Csr {
+    Csr::from_rows(node_cells.rows(), |i, row| {
+        for &c in node_cells.row(i) {
+            row.extend(cells.cell(c).iter().filter(|&&j| j != i));
+        }
+    })
+}
+
+/// The element-edge graph: `j` is a neighbour of `i` when an edge of a cell
+/// joins them (never face or cell diagonals), from the node → cells
+/// incidence `node_cells` ([`node_cells`]).
+pub fn edge_graph_from(cells: &Cells, node_cells: &Csr) -> Csr {
+    Csr::from_rows(node_cells.rows(), |i, row| {
+        for &c in node_cells.row(i) {
+            let nodes = cells.cell(c);
+            for e in cells.kinds[c].table().edges {
+                let (a, b) = (nodes[e[0]], nodes[e[1]]);
+                if a == i {
+                    row.push(b);
+                } else if b == i {
+                    row.push(a);
+                }
+            }
+        }
+    })
 }
 
 /// The graph of `edges` ([`edges`]) in both directions over `nodes` nodes.
@@ -94,56 +140,63 @@ pub fn edge_graph(nodes: usize, edges: &[[usize; 2]]) -> Csr {
     )
 }
 
+/// The edges `(i, j)`, `i < j`, of an edge graph ([`edge_graph_from`]),
+/// sorted.
+pub fn upper_edges(graph: &Csr) -> impl Iterator<Item = [usize; 2]> + '_ {
+    (0..graph.rows()).flat_map(move |i| {
+        graph
+            .row(i)
+            .iter()
+            .filter(move |&&j| j > i)
+            .map(move |&j| [i, j])
+    })
+}
+
 /// The unique element edges `(i, j)` with `i < j`, sorted (never face or cell diagonals).
-pub fn edges(cells: &Cells) -> Vec<[usize; 2]> {
-    let mut edges: Vec<[usize; 2]> = cells
-        .iter()
-        .flat_map(|(kind, nodes)| {
-            kind.table().edges.iter().map(move |e| {
-                let (a, b) = (nodes[e[0]], nodes[e[1]]);
-                [a.min(b), a.max(b)]
-            })
-        })
-        .collect();
-    edges.sort_unstable();
-    edges.dedup();
+pub fn edges(cells: &Cells, nodes: usize) -> Vec<[usize; 2]> {
+    let graph = edge_graph_from(cells, &node_cells(cells, nodes));
+    let mut edges = Vec::with_capacity(graph.targets.len() / 2);
+    edges.extend(upper_edges(&graph));
     edges
 }
 
-/// Sorted node key of a facet (at most four nodes), padded with `usize::MAX`.
-fn facet_key(nodes: &[usize]) -> [usize; 4] {
+/// Sorted node key of the facet of `cell` whose local nodes are `facet`
+/// (at most four), padded with `usize::MAX`.
+fn facet_key_in(cell: &[usize], facet: &[usize]) -> [usize; 4] {
     let mut key = [usize::MAX; 4];
-    key[..nodes.len()].copy_from_slice(nodes);
+    for (k, &local) in key.iter_mut().zip(facet) {
+        *k = cell[local];
+    }
     key.sort_unstable();
     key
 }
 
 /// The boundary facets: facets that belong to exactly one cell, in the order
 /// of their cells, numbered as in their cell (outward for a positive cell).
+/// A facet is shared when another cell around its lowest node has a facet
+/// on the same nodes (found through the node → cells incidence, without a
+/// table of every facet).
 pub fn boundary_facets(cells: &Cells) -> Cells {
-    let mut seen: HashMap<[usize; 4], (usize, u32)> = HashMap::new();
-    let mut order = 0usize;
-    for (kind, nodes) in cells.iter() {
-        for f in kind.table().facets {
-            let local: Vec<usize> = f.iter().map(|&k| nodes[k]).collect();
-            let entry = seen.entry(facet_key(&local)).or_insert((order, 0));
-            entry.1 += 1;
-            order += 1;
-        }
-    }
-    let mut single: Vec<usize> = seen.values().filter(|v| v.1 == 1).map(|v| v.0).collect();
-    single.sort_unstable();
+    let nodes = cells.nodes.iter().max().map_or(0, |&m| m + 1);
+    let around = node_cells(cells, nodes);
     let mut out = Cells::new();
-    let mut next = single.iter().peekable();
-    let mut order = 0usize;
-    for (kind, nodes) in cells.iter() {
+    let mut local = Vec::with_capacity(4);
+    for (c, (kind, cell)) in cells.iter().enumerate() {
         for f in kind.table().facets {
-            if next.peek() == Some(&&order) {
-                let local: Vec<usize> = f.iter().map(|&k| nodes[k]).collect();
+            let key = facet_key_in(cell, f);
+            let shared = around.row(key[0]).iter().any(|&d| {
+                d != c
+                    && cells.kinds[d]
+                        .table()
+                        .facets
+                        .iter()
+                        .any(|g| facet_key_in(cells.cell(d), g) == key)
+            });
+            if !shared {
+                local.clear();
+                local.extend(f.iter().map(|&k| cell[k]));
                 out.push(CellKind::facet_kind(local.len()), &local);
-                next.next();
             }
-            order += 1;
         }
     }
     out
@@ -226,6 +279,10 @@ mod tests {
     use super::*;
     use crate::mesh::Mesh;
 
+    fn facet_key(nodes: &[usize]) -> [usize; 4] {
+        facet_key_in(nodes, &(0..nodes.len()).collect::<Vec<_>>())
+    }
+
     /// Two triangles forming the unit square plus a quad beside it.
     fn hybrid() -> Mesh {
         let mut cells = Cells::new();
@@ -238,7 +295,8 @@ mod tests {
 
     #[test]
     fn edges_are_unique_and_exclude_diagonals() {
-        let e = edges(&hybrid().cells);
+        let m = hybrid();
+        let e = edges(&m.cells, m.node_count());
         assert_eq!(
             e,
             vec![
@@ -251,6 +309,43 @@ mod tests {
                 [2, 5],
                 [4, 5]
             ]
+        );
+    }
+
+    /// The graphs built row by row equal those built from every pair of
+    /// every cell, on a hex, wedge, pyramid and tet.
+    #[test]
+    fn graphs_by_rows_match_the_graphs_of_all_pairs() {
+        let m = crate::mesh::samples::hex_wedge_pyramid_tet();
+        let n = m.node_count();
+        let pairs: Vec<(usize, usize)> = m
+            .cells
+            .iter()
+            .flat_map(|(_, nodes)| {
+                nodes.iter().flat_map(move |&a| {
+                    nodes.iter().filter(move |&&b| b != a).map(move |&b| (a, b))
+                })
+            })
+            .collect();
+        let all_pairs = Csr::from_pairs(n, pairs.iter().copied());
+        assert_eq!(node_graph(&m.cells, n), all_pairs);
+        let pairs: Vec<(usize, usize)> = m
+            .cells
+            .iter()
+            .flat_map(|(kind, nodes)| {
+                kind.table()
+                    .edges
+                    .iter()
+                    .flat_map(move |e| [(nodes[e[0]], nodes[e[1]]), (nodes[e[1]], nodes[e[0]])])
+            })
+            .collect();
+        let edge_pairs = Csr::from_pairs(n, pairs.iter().copied());
+        let by_rows = edge_graph_from(&m.cells, &node_cells(&m.cells, n));
+        assert_eq!(by_rows, edge_pairs);
+        assert_eq!(edge_graph(n, &edges(&m.cells, n)), edge_pairs);
+        assert!(
+            by_rows.targets.len() < all_pairs.targets.len(),
+            "diagonals excluded"
         );
     }
 

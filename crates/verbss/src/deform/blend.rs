@@ -69,7 +69,6 @@ pub(super) struct Blend {
     /// The diagonal of the input mesh's bounding box.
     extent: f64,
     laplace: Laplace,
-    graph: Csr,
     bodies: Vec<Body>,
     /// The unknowns of the translation's weight with sliding nodes held
     /// at 0, and with them free.
@@ -129,7 +128,6 @@ impl Blend {
             unknown: roles.iter().map(|r| *r == NodeRole::Free).collect(),
             unknown_slides: roles.iter().map(|r| *r != NodeRole::Fixed).collect(),
             slide_along,
-            graph: laplace.graph(),
             laplace,
             dim: mesh.dim,
             extent,
@@ -185,7 +183,7 @@ impl Blend {
                         .sqrt()
                 })
                 .fold(0.0, f64::max);
-            let rotation = angle_weights(&self.graph, dim, coords, body, reach);
+            let rotation = angle_weights(self.laplace.graph(), dim, coords, body, reach);
             let (across_on, along_on) = (moves(&across), moves(&along));
             for i in 0..coords.len() / dim {
                 let wa = if across_on { body.held_slides[i] } else { 0.0 };

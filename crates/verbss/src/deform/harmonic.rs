@@ -7,39 +7,33 @@
 //! weights.
 
 use crate::mesh::Mesh;
-use crate::topology::Csr;
+use crate::topology::{self, Csr};
 
 /// Conjugate gradients stop at this reduction of the residual…
 const REDUCTION: f64 = 1e-8;
 /// …or after this many iterations (the guard judges the mesh a weight makes).
 const MAX_ITERATIONS: usize = 4000;
 
-/// The edges of a mesh and the nodes on them.
+/// The edge graph of a mesh (both directions; an edge `[a, b]`, `a < b`,
+/// is `b` in row `a`).
 pub(super) struct Laplace {
     dim: usize,
-    edges: Vec<[usize; 2]>,
-    on_edge: Vec<bool>,
+    graph: Csr,
 }
 
 impl Laplace {
     /// The problem on the edges of `mesh`.
     pub(super) fn new(mesh: &Mesh) -> Laplace {
-        let edges = crate::topology::edges(&mesh.cells);
-        let mut on_edge = vec![false; mesh.node_count()];
-        for &[a, b] in &edges {
-            on_edge[a] = true;
-            on_edge[b] = true;
-        }
+        let node_cells = topology::node_cells(&mesh.cells, mesh.node_count());
         Laplace {
             dim: mesh.dim,
-            edges,
-            on_edge,
+            graph: topology::edge_graph_from(&mesh.cells, &node_cells),
         }
     }
 
     /// The edges as a graph (both directions).
-    pub(super) fn graph(&self) -> Csr {
-        crate::topology::edge_graph(self.on_edge.len(), &self.edges)
+    pub(super) fn graph(&self) -> &Csr {
+        &self.graph
     }
 
     /// Solves for `w` on `coords` with unknowns where `unknown` is set (and
@@ -49,13 +43,12 @@ impl Laplace {
         let dim = self.dim;
         let unknown: Vec<bool> = unknown
             .iter()
-            .zip(&self.on_edge)
-            .map(|(u, e)| *u && *e)
+            .enumerate()
+            .map(|(i, u)| *u && !self.graph.row(i).is_empty())
             .collect();
-        let k: Vec<f64> = self
-            .edges
-            .iter()
-            .map(|&[a, b]| {
+        let edges = || topology::upper_edges(&self.graph);
+        let k: Vec<f64> = edges()
+            .map(|[a, b]| {
                 let squared: f64 = (0..dim)
                     .map(|d| (coords[dim * a + d] - coords[dim * b + d]).powi(2))
                     .sum();
@@ -64,14 +57,14 @@ impl Laplace {
             .collect();
         let n = w.len();
         let mut diag = vec![0.0; n];
-        for (&[a, b], &ke) in self.edges.iter().zip(&k) {
+        for ([a, b], &ke) in edges().zip(&k) {
             diag[a] += ke;
             diag[b] += ke;
         }
         // A x over the unknowns, prescribed entries of x taken as they are.
         let apply = |x: &[f64], y: &mut [f64]| {
             y.fill(0.0);
-            for (&[a, b], &ke) in self.edges.iter().zip(&k) {
+            for ([a, b], &ke) in edges().zip(&k) {
                 let f = ke * (x[a] - x[b]);
                 y[a] += f;
                 y[b] -= f;

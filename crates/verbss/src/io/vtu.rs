@@ -70,7 +70,7 @@ mod write;
 mod xml;
 
 pub use read::parse;
-pub use write::write_to;
+pub use write::{write_moved_to, write_to};
 
 /// Name of the cell-data array that maps cells to groups.
 const GROUP_ARRAY: &str = "group";
@@ -114,5 +114,10 @@ pub fn read(path: &Path) -> Result<VtuData> {
 
 /// Writes `mesh` and `fields` to `path` atomically (see [`crate::io::write_atomic`]).
 pub fn write(path: &Path, mesh: &Mesh, fields: &Fields) -> Result<()> {
-    crate::io::write_atomic(path, |w| write_to(w, mesh, fields))
+    write_moved(path, mesh, &mesh.coords, fields)
+}
+
+/// [`write`] with the nodes at `coords` ([`write_moved_to`]).
+pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], fields: &Fields) -> Result<()> {
+    crate::io::write_atomic(path, |w| write_moved_to(w, mesh, coords, fields))
 }

@@ -198,7 +198,10 @@ fn stiffening_is_one_within_the_layer_and_falls_as_a_power_of_the_distance() {
         ..Robust::off()
     };
     let t = prepare(&mesh, d.roles(), &moving, &robust).unwrap();
-    let graph = topology::edge_graph(mesh.node_count(), &topology::edges(&mesh.cells));
+    let graph = topology::edge_graph_from(
+        &mesh.cells,
+        &topology::node_cells(&mesh.cells, mesh.node_count()),
+    );
     let seeds: Vec<usize> = moving.iter().map(|m| m.0).collect();
     let (dist, _) = nearest_seed(&graph, mesh.dim, &mesh.coords, &seeds);
     for (phi, d) in t.stiffness.iter().zip(&dist) {

@@ -18,7 +18,29 @@ use crate::mesh::{CellKind, Mesh};
 /// (point data), `group` or `cell_tag` (cell data); a node or element tag
 /// above 2^63 − 1.
 pub fn write_to(w: &mut dyn Write, mesh: &Mesh, fields: &Fields) -> std::io::Result<()> {
+    write_moved_to(w, mesh, &mesh.coords, fields)
+}
+
+/// [`write_to`] with the nodes at `coords` (`dim` numbers per node) instead
+/// of the mesh's own: a moved mesh written without a copy of its cells.
+pub fn write_moved_to(
+    w: &mut dyn Write,
+    mesh: &Mesh,
+    coords: &[f64],
+    fields: &Fields,
+) -> std::io::Result<()> {
     check_fields(mesh, fields)?;
+    if coords.len() != mesh.coords.len() {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!(
+                "{} coordinates for {} nodes of dimension {}",
+                coords.len(),
+                mesh.node_count(),
+                mesh.dim
+            ),
+        ));
+    }
     let n = mesh.node_count();
     let volume = mesh.cell_count();
     let facets: Vec<(i32, CellKind, &[usize])> = mesh
@@ -47,8 +69,9 @@ pub fn write_to(w: &mut dyn Write, mesh: &Mesh, fields: &Fields) -> std::io::Res
         r#"    <Piece NumberOfPoints="{n}" NumberOfCells="{total}">"#
     )?;
     writeln!(w, "      <Points>")?;
-    let z = |i: usize| if mesh.dim == 3 { mesh.point(i)[2] } else { 0.0 };
-    let points = (0..n).flat_map(|i| [mesh.point(i)[0], mesh.point(i)[1], z(i)]);
+    let dim = mesh.dim;
+    let z = |i: usize| if dim == 3 { coords[3 * i + 2] } else { 0.0 };
+    let points = (0..n).flat_map(|i| [coords[dim * i], coords[dim * i + 1], z(i)]);
     data_array(w, "Points", 3, 3 * n, points)?;
     writeln!(w, "      </Points>")?;
 
