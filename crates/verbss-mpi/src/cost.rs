@@ -64,7 +64,7 @@ pub fn count(graph: &Csr, owner: &[i32], colours: &[u32], parts: usize) -> Sweep
     for i in 0..n {
         let r = owner[i];
         holders.clear();
-        holders.extend(graph.row(i).iter().map(|&j| owner[j]).filter(|&s| s != r));
+        holders.extend(graph.entries(i).map(|j| owner[j]).filter(|&s| s != r));
         holders.sort_unstable();
         holders.dedup();
         for &s in &holders {

@@ -276,16 +276,16 @@ fn jones_plassmann(comm: &Comm, part: &Part, roles: &[NodeRole], halo: &Halo) ->
     loop {
         let mut chosen = Vec::new();
         for i in (0..n).filter(|&i| part.owns(i) && unknown(i) && colour[i].is_nan()) {
-            let row = graph.row(i);
-            let wins = row
-                .iter()
-                .all(|&j| !unknown(j) || !colour[j].is_nan() || priority(j) < priority(i));
+            let wins = graph
+                .entries(i)
+                .all(|j| !unknown(j) || !colour[j].is_nan() || priority(j) < priority(i));
             if wins {
                 used.clear();
                 used.extend(
-                    row.iter()
-                        .filter(|&&j| !colour[j].is_nan())
-                        .map(|&j| colour[j] as u32),
+                    graph
+                        .entries(i)
+                        .filter(|&j| !colour[j].is_nan())
+                        .map(|j| colour[j] as u32),
                 );
                 used.sort_unstable();
                 let mut c = 0;

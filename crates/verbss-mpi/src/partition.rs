@@ -24,7 +24,8 @@ pub fn partition_graph(graph: &Csr, parts: usize) -> Result<Vec<i32>> {
     if parts <= 1 || n == 0 {
         return Ok(vec![0; n]);
     }
-    part_kway(&graph.offsets, &graph.targets, parts).map_err(|e| {
+    let targets: Vec<usize> = graph.targets.iter().map(|&t| t as usize).collect();
+    part_kway(&graph.offsets, &targets, parts).map_err(|e| {
         Error::InvalidSetting(match e {
             MetisError::TooLarge(bits) => format!(
                 "the node graph ({n} nodes, {} couplings) or {parts} parts is too large \

@@ -333,7 +333,7 @@ pub(crate) fn nearest_seed(
             continue;
         }
         let s = seed[i];
-        for &j in graph.row(i) {
+        for j in graph.entries(i) {
             let d = distance(
                 &coords[dim * j..dim * (j + 1)],
                 &coords[dim * s..dim * (s + 1)],
@@ -370,7 +370,7 @@ fn auto_thickness(mesh: &Mesh, seeds: &[usize], dist: &[f64]) -> f64 {
     let mut seen_cell = vec![false; mesh.cell_count()];
     let mut layer: f64 = 0.0;
     while let Some(i) = queue.pop() {
-        for &c in node_cells.row(i) {
+        for c in node_cells.entries(i) {
             if seen_cell[c] {
                 continue;
             }

@@ -91,7 +91,7 @@ impl Connectivity {
             cells.push(mesh.cells.kinds[c], mesh.cells.cell(c));
         }
         for c in &mut node_cells.targets {
-            *c = rank[*c];
+            *c = rank[*c as usize] as u32;
         }
         Connectivity {
             dim: mesh.dim,
@@ -270,7 +270,7 @@ fn assemble_rows<const D: usize>(
     for &i in rows {
         let kii = row::<D>(conn, coords, i, springs, &mut acc)?;
         out.diag.extend_from_slice(&kii[..s]);
-        for (block, &j) in acc.chunks_exact(s).zip(conn.graph.row(i)) {
+        for (block, j) in acc.chunks_exact(s).zip(conn.graph.entries(i)) {
             if block.iter().all(|&v| v == 0.0) {
                 continue;
             }
@@ -311,10 +311,14 @@ fn row<const D: usize>(
     let row = conn.graph.row(i);
     let acc = &mut acc[..s * row.len()];
     acc.fill(0.0);
-    let slot = |j: usize| s * row.binary_search(&j).expect("coupled nodes share a cell");
+    let slot = |j: usize| {
+        s * row
+            .binary_search(&(j as u32))
+            .expect("coupled nodes share a cell")
+    };
     let mut kii = [0.0; 6];
     let xi = point::<D>(coords, i);
-    for &j in conn.edge_graph.row(i) {
+    for j in conn.edge_graph.entries(i) {
         let d = sub(&point::<D>(coords, j), &xi);
         let len = norm(&d);
         if !(len > 0.0 && len.is_finite()) {
@@ -332,7 +336,7 @@ fn row<const D: usize>(
     if springs == Springs::Edge {
         return Ok(kii);
     }
-    for &c in conn.node_cells.row(i) {
+    for c in conn.node_cells.entries(i) {
         let nodes = conn.cells.cell(c);
         let local = nodes.iter().position(|&v| v == i).expect("incidence");
         let scale = if conn.stiffness.is_empty() {

@@ -10,14 +10,20 @@ use crate::mesh::{CellKind, Cells, Mesh};
 pub struct Csr {
     /// Start of each row, plus the end.
     pub offsets: Vec<usize>,
-    /// Concatenated rows.
-    pub targets: Vec<usize>,
+    /// Concatenated rows (32-bit: the node and cell numbers of one mesh,
+    /// as the solver's neighbour lists are).
+    pub targets: Vec<u32>,
 }
 
 impl Csr {
     /// Row `i`.
-    pub fn row(&self, i: usize) -> &[usize] {
+    pub fn row(&self, i: usize) -> &[u32] {
         &self.targets[self.offsets[i]..self.offsets[i + 1]]
+    }
+
+    /// Row `i`'s entries as indices.
+    pub fn entries(&self, i: usize) -> impl ExactSizeIterator<Item = usize> + Clone + '_ {
+        self.row(i).iter().map(|&t| t as usize)
     }
 
     /// Number of rows.
@@ -38,7 +44,7 @@ impl Csr {
         let mut fill = start[..rows].to_vec();
         let mut targets = vec![0; start[rows]];
         for (r, t) in pairs {
-            targets[fill[r]] = t;
+            targets[fill[r]] = t as u32;
             fill[r] += 1;
         }
         drop(fill);
@@ -83,7 +89,7 @@ impl Csr {
         let mut targets = Vec::with_capacity(offsets[rows]);
         for i in 0..rows {
             row(i, &mut buffer);
-            targets.extend_from_slice(&buffer);
+            targets.extend(buffer.iter().map(|&t| t as u32));
         }
         Csr { offsets, targets }
     }
@@ -105,7 +111,7 @@ pub fn node_graph(cells: &Cells, nodes: usize) -> Csr {
 /// [`node_graph`] from the node → cells incidence `node_cells` ([`node_cells`]).
 pub fn node_graph_from(cells: &Cells, node_cells: &Csr) -> Csr {
     Csr::from_rows(node_cells.rows(), |i, row| {
-        for &c in node_cells.row(i) {
+        for c in node_cells.entries(i) {
             row.extend(cells.cell(c).iter().filter(|&&j| j != i));
         }
     })
@@ -116,7 +122,7 @@ pub fn node_graph_from(cells: &Cells, node_cells: &Csr) -> Csr {
 /// incidence `node_cells` ([`node_cells`]).
 pub fn edge_graph_from(cells: &Cells, node_cells: &Csr) -> Csr {
     Csr::from_rows(node_cells.rows(), |i, row| {
-        for &c in node_cells.row(i) {
+        for c in node_cells.entries(i) {
             let nodes = cells.cell(c);
             for e in cells.kinds[c].table().edges {
                 let (a, b) = (nodes[e[0]], nodes[e[1]]);
@@ -145,10 +151,9 @@ pub fn edge_graph(nodes: usize, edges: &[[usize; 2]]) -> Csr {
 pub fn upper_edges(graph: &Csr) -> impl Iterator<Item = [usize; 2]> + '_ {
     (0..graph.rows()).flat_map(move |i| {
         graph
-            .row(i)
-            .iter()
-            .filter(move |&&j| j > i)
-            .map(move |&j| [i, j])
+            .entries(i)
+            .filter(move |&j| j > i)
+            .map(move |j| [i, j])
     })
 }
 
@@ -184,7 +189,7 @@ pub fn boundary_facets(cells: &Cells) -> Cells {
     for (c, (kind, cell)) in cells.iter().enumerate() {
         for f in kind.table().facets {
             let key = facet_key_in(cell, f);
-            let shared = around.row(key[0]).iter().any(|&d| {
+            let shared = around.entries(key[0]).any(|d| {
                 d != c
                     && cells.kinds[d]
                         .table()
@@ -227,9 +232,8 @@ pub fn colour(graph: &Csr, order: &[usize]) -> (Vec<u32>, u32) {
         used.clear();
         used.extend(
             graph
-                .row(i)
-                .iter()
-                .map(|&j| colour[j])
+                .entries(i)
+                .map(|j| colour[j])
                 .filter(|&c| c != u32::MAX),
         );
         used.sort_unstable();
@@ -262,7 +266,7 @@ pub fn bfs_layers(graph: &Csr, seeds: &[usize]) -> Vec<u32> {
         depth += 1;
         let mut next = Vec::new();
         for &i in &front {
-            for &j in graph.row(i) {
+            for j in graph.entries(i) {
                 if layer[j] == u32::MAX {
                     layer[j] = depth;
                     next.push(j);
@@ -367,7 +371,7 @@ mod tests {
         let order: Vec<usize> = (0..6).collect();
         let (col, n) = colour(&g, &order);
         for i in 0..6 {
-            for &j in g.row(i) {
+            for j in g.entries(i) {
                 assert_ne!(col[i], col[j]);
             }
         }

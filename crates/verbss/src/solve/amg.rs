@@ -507,10 +507,11 @@ fn aggregate(strong: &Csr) -> (Vec<u32>, usize) {
     let mut count = 0u32;
     for i in 0..n {
         let row = strong.row(i);
-        if agg[i] == u32::MAX && !row.is_empty() && row.iter().all(|&j| agg[j] == u32::MAX) {
+        if agg[i] == u32::MAX && !row.is_empty() && row.iter().all(|&j| agg[j as usize] == u32::MAX)
+        {
             agg[i] = count;
             for &j in row {
-                agg[j] = count;
+                agg[j as usize] = count;
             }
             count += 1;
         }
@@ -518,7 +519,7 @@ fn aggregate(strong: &Csr) -> (Vec<u32>, usize) {
     let first = agg.clone();
     for (i, a) in agg.iter_mut().enumerate() {
         if *a == u32::MAX {
-            if let Some(&j) = strong.row(i).iter().find(|&&j| first[j] != u32::MAX) {
+            if let Some(j) = strong.entries(i).find(|&j| first[j] != u32::MAX) {
                 *a = first[j];
             }
         }
@@ -526,7 +527,7 @@ fn aggregate(strong: &Csr) -> (Vec<u32>, usize) {
     for i in 0..n {
         if agg[i] == u32::MAX {
             agg[i] = count;
-            for &j in strong.row(i) {
+            for j in strong.entries(i) {
                 if agg[j] == u32::MAX {
                     agg[j] = count;
                 }
@@ -558,7 +559,7 @@ fn tentative(
         let mut cols: Vec<Vec<f64>> = (0..m)
             .map(|c| {
                 (0..rows)
-                    .map(|k| modes[b * m * nodes[k / b] + (k % b) * m + c])
+                    .map(|k| modes[b * m * nodes[k / b] as usize + (k % b) * m + c])
                     .collect()
             })
             .collect();
@@ -582,7 +583,7 @@ fn tentative(
                 dropped.push((a, c));
             }
         }
-        for (k, &node) in nodes.iter().enumerate() {
+        for (k, node) in members.entries(a).enumerate() {
             for x in 0..b {
                 for c in 0..m {
                     q[b * m * node + x * m + c] = cols[c][k * b + x];

@@ -49,7 +49,7 @@ impl Weights {
         for &i in &layout.order {
             let xi = point::<D>(coords, i);
             let mut sum = 0.0;
-            for &j in conn.edge_graph.row(i) {
+            for j in conn.edge_graph.entries(i) {
                 let len = norm(&sub(&point::<D>(coords, j), &xi));
                 if !(len > 0.0 && len.is_finite()) {
                     return Err(Error::InvalidMesh(format!(

@@ -71,9 +71,8 @@ pub(crate) fn heights<const D: usize>(
         .par_iter()
         .map(|&i| {
             conn.node_cells
-                .row(i)
-                .iter()
-                .map(|&c| cells[c])
+                .entries(i)
+                .map(|c| cells[c])
                 .fold(f64::INFINITY, f64::min)
         })
         .collect()

@@ -173,7 +173,7 @@ fn fill<const D: usize>(
         let kii = row::<D>(conn, coords, i, springs, acc)?;
         values.extend_from_slice(&kii[..s]);
         let (mut e, mut fe) = (pattern.offsets[p], pattern.fixed_offsets[p]);
-        for (block, &j) in acc.chunks_exact(s).zip(conn.graph.row(i)) {
+        for (block, j) in acc.chunks_exact(s).zip(conn.graph.entries(i)) {
             if block.iter().all(|&v| v == 0.0) {
                 continue;
             }
