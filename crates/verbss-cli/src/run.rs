@@ -346,7 +346,8 @@ pub fn execute<S: SpringSolver>(
                 if writer {
                     let mesh = &job.mesh;
                     vtu::write_moved(&failed_path, mesh, &failed.coords, &fields(mesh, failed))?;
-                    io::write(&last, &deformer.mesh(), &job.write_options_after(n - 1))?;
+                    let options = job.write_options_after(n - 1);
+                    io::write_moved(&last, mesh, &deformer.current().coords, &options)?;
                     report.outcome = e.to_string();
                     if let Some(path) = &job.report {
                         report.write(path)?;
@@ -365,7 +366,8 @@ pub fn execute<S: SpringSolver>(
     if writer {
         if job.final_mesh {
             let path = job.final_path();
-            io::write(&path, &deformer.mesh(), &job.write_options_after(steps))?;
+            let options = job.write_options_after(steps);
+            io::write_moved(&path, &job.mesh, &deformer.current().coords, &options)?;
         }
         report.outcome = "completed".into();
         if let Some(path) = &job.report {

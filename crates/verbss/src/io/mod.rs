@@ -210,14 +210,30 @@ fn read_bytes(path: &Path) -> Result<Vec<u8>> {
 /// [`write_atomic`]; a CGNS mesh read from a CGNS file is a copy of that
 /// file with new coordinates, see [`cgns::write`]).
 pub fn write(path: &Path, mesh: &Mesh, options: &WriteOptions) -> Result<()> {
+    write_moved(path, mesh, &mesh.coords, options)
+}
+
+/// [`write`] with the nodes at `coords` (`dim` numbers per node) instead of
+/// the mesh's own: a moved mesh written without a copy of its cells.
+pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], options: &WriteOptions) -> Result<()> {
+    if coords.len() != mesh.coords.len() {
+        return Err(Error::InvalidSetting(format!(
+            "{} coordinates for the {} nodes of a {}D mesh",
+            coords.len(),
+            mesh.node_count(),
+            mesh.dim
+        )));
+    }
     match Format::from_path(path)? {
         Format::Msh => write_atomic(path, |w| {
-            gmsh::write_to(w, mesh, options.msh_version, options.binary)
+            gmsh::write_moved_to(w, mesh, coords, options.msh_version, options.binary)
         }),
-        Format::Su2 => write_atomic(path, |w| su2::write_to(w, mesh)),
-        Format::Vtu => write_atomic(path, |w| vtu::write_to(w, mesh, &vtu::Fields::default())),
-        Format::Cgns => cgns::write(path, mesh),
-        Format::Foam => foam::write(path, mesh, options.foam_time.as_deref()),
+        Format::Su2 => write_atomic(path, |w| su2::write_moved_to(w, mesh, coords)),
+        Format::Vtu => write_atomic(path, |w| {
+            vtu::write_moved_to(w, mesh, coords, &vtu::Fields::default())
+        }),
+        Format::Cgns => cgns::write_moved(path, mesh, coords),
+        Format::Foam => foam::write_moved(path, mesh, coords, options.foam_time.as_deref()),
     }
 }
 
@@ -296,3 +312,6 @@ pub fn link_target(path: &Path) -> PathBuf {
     }
     p
 }
+
+#[cfg(test)]
+mod moved_tests;

@@ -98,11 +98,17 @@ fn unavailable(path: &Path) -> Error {
 /// `FaceCenter` (3D) or `EdgeCenter` (2D), its name and family the group's;
 /// a group of single nodes is a condition over a `PointList` of vertices.
 pub fn write(path: &Path, mesh: &Mesh) -> Result<()> {
+    write_moved(path, mesh, &mesh.coords)
+}
+
+/// [`write`] with the nodes at `coords` (`dim` numbers per node) instead of
+/// the mesh's own.
+pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64]) -> Result<()> {
     #[cfg(with_cgns)]
-    return write::write(path, mesh);
+    return write::write(path, mesh, coords);
     #[cfg(not(with_cgns))]
     {
-        let _ = mesh;
+        let _ = (mesh, coords);
         Err(unavailable(path))
     }
 }

@@ -15,12 +15,12 @@ const AXES: [&str; 3] = ["CoordinateX", "CoordinateY", "CoordinateZ"];
 
 /// Writes `mesh` to a temporary file beside `path` and renames it over
 /// `path` (its final target when a link) once complete.
-pub fn write(path: &Path, mesh: &Mesh) -> Result<()> {
+pub fn write(path: &Path, mesh: &Mesh, coords: &[f64]) -> Result<()> {
     let target = crate::io::link_target(path);
     let tmp = crate::io::temp_path(&target);
     let written = match &mesh.origin.cgns {
-        Some(source) => copy_with_coordinates(source, &tmp, mesh),
-        None => fresh(&tmp, mesh),
+        Some(source) => copy_with_coordinates(source, &tmp, mesh, coords),
+        None => fresh(&tmp, mesh, coords),
     }
     .map_err(|m| error(path, m))
     .and_then(|()| {
@@ -41,6 +41,7 @@ fn copy_with_coordinates(
     source: &Source,
     tmp: &Path,
     mesh: &Mesh,
+    coords: &[f64],
 ) -> std::result::Result<(), String> {
     let from = source.path.display();
     std::fs::copy(&source.path, tmp).map_err(|e| format!("cannot copy {from}: {e}"))?;
@@ -71,7 +72,7 @@ fn copy_with_coordinates(
                 "{name} of {from} has data type {kind}, not RealSingle or RealDouble"
             ));
         }
-        let values: Vec<f64> = (0..n).map(|i| mesh.coords[i * mesh.dim + axis]).collect();
+        let values: Vec<f64> = (0..n).map(|i| coords[i * mesh.dim + axis]).collect();
         file.overwrite_coordinate(1, 1, name, kind, &values)?;
     }
     file.close()
@@ -79,7 +80,7 @@ fn copy_with_coordinates(
 
 /// Writes `mesh` as a fresh file: base `Base`, zone `Zone`, the cells, then
 /// each group as a section with its boundary condition and family.
-fn fresh(tmp: &Path, mesh: &Mesh) -> std::result::Result<(), String> {
+fn fresh(tmp: &Path, mesh: &Mesh, coords: &[f64]) -> std::result::Result<(), String> {
     for g in &mesh.groups {
         if g.name.is_empty() || g.name.len() > 32 || g.name.contains('/') {
             return Err(format!(
@@ -101,7 +102,7 @@ fn fresh(tmp: &Path, mesh: &Mesh) -> std::result::Result<(), String> {
     let size = [to_size(n)?, to_size(mesh.cell_count())?, 0];
     let z = file.write_zone(b, "Zone", ffi::UNSTRUCTURED, &size)?;
     for (axis, name) in AXES[..mesh.dim].iter().enumerate() {
-        let values: Vec<f64> = (0..n).map(|i| mesh.coords[i * mesh.dim + axis]).collect();
+        let values: Vec<f64> = (0..n).map(|i| coords[i * mesh.dim + axis]).collect();
         file.write_coordinate(b, z, name, &values)?;
     }
     let taken = |name: &str| mesh.groups.iter().any(|g| g.name == name);

@@ -37,7 +37,7 @@ mod plane;
 mod read;
 mod write;
 
-pub use write::write;
+pub use write::{write, write_moved};
 
 use std::path::{Path, PathBuf};
 

@@ -22,6 +22,12 @@ const TOPOLOGY: [&str; 4] = ["faces", "owner", "neighbour", "boundary"];
 ///
 /// A 2D mesh's nodes carry their front and back points (see [`super::Plane`]).
 pub fn write(path: &Path, mesh: &Mesh, time: Option<&str>) -> Result<()> {
+    write_moved(path, mesh, &mesh.coords, time)
+}
+
+/// [`write`] with the nodes at `coords` (`dim` numbers per node) instead of
+/// the mesh's own.
+pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], time: Option<&str>) -> Result<()> {
     let refuse = |message: String| Error::Io {
         path: path.to_path_buf(),
         source: std::io::Error::new(std::io::ErrorKind::InvalidInput, message),
@@ -46,7 +52,7 @@ pub fn write(path: &Path, mesh: &Mesh, time: Option<&str>) -> Result<()> {
             origin.dir.display()
         )));
     }
-    let xyz = points(mesh, origin);
+    let xyz = points(mesh.dim, coords, origin);
     if same_polymesh(path, &origin.dir) {
         let target = match time {
             Some(t) => case_root(&origin.dir).join(t).join("polyMesh"),
@@ -80,17 +86,14 @@ fn case_root(dir: &Path) -> PathBuf {
 
 /// `x y z` of every point of the case: the mesh's coordinates, or for a 2D
 /// case each point at its node's `x y` and its own `z`.
-fn points(mesh: &Mesh, origin: &Origin) -> Vec<f64> {
+fn points(dim: usize, coords: &[f64], origin: &Origin) -> Vec<f64> {
     match &origin.plane {
-        None => mesh.coords.clone(),
+        None => coords.to_vec(),
         Some(plane) => plane
             .node_of_point
             .iter()
             .zip(&plane.z)
-            .flat_map(|(&i, &z)| {
-                let p = mesh.point(i);
-                [p[0], p[1], z]
-            })
+            .flat_map(|(&i, &z)| [coords[dim * i], coords[dim * i + 1], z])
             .collect(),
     }
 }

@@ -167,15 +167,27 @@ pub fn write_to(
     version: MshVersion,
     binary: bool,
 ) -> std::io::Result<()> {
+    write_moved_to(w, mesh, &mesh.coords, version, binary)
+}
+
+/// [`write_to`] with the nodes at `coords` (`dim` numbers per node) instead
+/// of the mesh's own.
+pub fn write_moved_to(
+    w: &mut dyn Write,
+    mesh: &Mesh,
+    coords: &[f64],
+    version: MshVersion,
+    binary: bool,
+) -> std::io::Result<()> {
     if let Some(source) = mesh
         .origin
         .gmsh
         .as_ref()
         .filter(|s| s.fits(mesh, version, binary))
     {
-        return source.write(w, mesh);
+        return source.write(w, mesh.dim, coords);
     }
-    let plan = write::Plan::new(mesh)?;
+    let plan = write::Plan::new(mesh, coords)?;
     let mut out = write::Out::new(w, binary);
     match version {
         MshVersion::V22 => v22::write(&mut out, &plan)?,

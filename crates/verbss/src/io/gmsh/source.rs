@@ -96,16 +96,16 @@ impl Source {
             && self.fingerprint == fingerprint(mesh)
     }
 
-    /// Writes the file with the coordinates of `mesh` in place of its own
-    /// (`z = 0` in 2D): ASCII in shortest round-trip form (a node that did
-    /// not move keeps its text), binary as little-endian doubles.
-    pub(super) fn write(&self, w: &mut dyn Write, mesh: &Mesh) -> io::Result<()> {
+    /// Writes the file with `coords` (`dim` numbers per node) in place of
+    /// its own (`z = 0` in 2D): ASCII in shortest round-trip form (a node
+    /// that did not move keeps its text), binary as little-endian doubles.
+    pub(super) fn write(&self, w: &mut dyn Write, dim: usize, coords: &[f64]) -> io::Result<()> {
         const CHUNK: usize = 1 << 16;
         let mut buf = Vec::with_capacity(CHUNK + 256);
         let mut copied = 0;
         for (i, span) in self.coords.iter().enumerate() {
             buf.extend_from_slice(&self.bytes[copied..span.start]);
-            let p = mesh.point(i);
+            let p = &coords[dim * i..dim * (i + 1)];
             let xyz = [p[0], p[1], p.get(2).copied().unwrap_or(0.0)];
             let text = &self.bytes[span.clone()];
             if self.binary {

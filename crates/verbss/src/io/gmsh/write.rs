@@ -23,6 +23,8 @@ pub(super) struct PlannedGroup<'a> {
 pub(super) struct Plan<'a> {
     /// The mesh.
     pub mesh: &'a Mesh,
+    /// Its nodes' coordinates as written (`dim` numbers per node).
+    pub coords: &'a [f64],
     /// Its groups, in order.
     pub groups: Vec<PlannedGroup<'a>>,
     /// The element tag of each facet of each group: the file's, when the
@@ -48,8 +50,9 @@ pub(super) fn invalid(message: String) -> io::Error {
 }
 
 impl<'a> Plan<'a> {
-    /// Checks the mesh and assigns physical tags and entities.
-    pub fn new(mesh: &'a Mesh) -> io::Result<Plan<'a>> {
+    /// Checks the mesh and assigns physical tags and entities; the nodes are
+    /// written at `coords`.
+    pub fn new(mesh: &'a Mesh, coords: &'a [f64]) -> io::Result<Plan<'a>> {
         mesh.validate().map_err(|e| invalid(e.to_string()))?;
         // Fresh physical tags: after the groups' own, from 1 when those reach
         // i32::MAX, never one a group has.
@@ -112,6 +115,7 @@ impl<'a> Plan<'a> {
         };
         Ok(Plan {
             mesh,
+            coords,
             groups,
             facet_tags,
             domain,
@@ -125,7 +129,8 @@ impl<'a> Plan<'a> {
 
     /// `x y z` of node `i` (`z = 0` in 2D).
     pub fn xyz(&self, i: usize) -> [f64; 3] {
-        let p = self.mesh.point(i);
+        let d = self.mesh.dim;
+        let p = &self.coords[d * i..d * (i + 1)];
         [p[0], p[1], p.get(2).copied().unwrap_or(0.0)]
     }
 }

@@ -56,7 +56,7 @@
 mod read;
 mod write;
 
-pub use write::{write_to, write_zones_to};
+pub use write::{write_moved_to, write_to, write_zones_to};
 
 use std::path::Path;
 

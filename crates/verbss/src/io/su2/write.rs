@@ -16,7 +16,13 @@ use crate::mesh::{CellKind, Mesh};
 /// Fails with [`std::io::ErrorKind::InvalidInput`] for a group name an SU2 file
 /// cannot hold (empty, with surrounding spaces, a `%` or a control character).
 pub fn write_to(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
-    write_sections(w, mesh, true)
+    write_moved_to(w, mesh, &mesh.coords)
+}
+
+/// [`write_to`] with the nodes at `coords` (`dim` numbers per node) instead
+/// of the mesh's own.
+pub fn write_moved_to(w: &mut dyn Write, mesh: &Mesh, coords: &[f64]) -> std::io::Result<()> {
+    write_sections(w, mesh, coords, true)
 }
 
 /// Writes `zones` as one multi-zone SU2 file, as SU2 writes it: `NZONE= n`,
@@ -26,13 +32,19 @@ pub fn write_zones_to(w: &mut dyn Write, zones: &[Mesh]) -> std::io::Result<()> 
     writeln!(w, "NZONE= {}", zones.len())?;
     for (k, mesh) in zones.iter().enumerate() {
         writeln!(w, "IZONE= {}", k + 1)?;
-        write_sections(w, mesh, false)?;
+        write_sections(w, mesh, &mesh.coords, false)?;
     }
     Ok(())
 }
 
-/// Writes the sections of `mesh`, and the other zones of its file when `zones`.
-fn write_sections(w: &mut dyn Write, mesh: &Mesh, zones: bool) -> std::io::Result<()> {
+/// Writes the sections of `mesh` with its nodes at `coords`, and the other
+/// zones of its file when `zones`.
+fn write_sections(
+    w: &mut dyn Write,
+    mesh: &Mesh,
+    coords: &[f64],
+    zones: bool,
+) -> std::io::Result<()> {
     for g in &mesh.groups {
         let name = g.name.as_str();
         if name.is_empty()
@@ -81,7 +93,7 @@ fn write_sections(w: &mut dyn Write, mesh: &Mesh, zones: bool) -> std::io::Resul
     put_back(w, Anchor::Elements)?;
     writeln!(w, "NPOIN= {}", mesh.node_count())?;
     for i in 0..mesh.node_count() {
-        for x in mesh.point(i) {
+        for x in &coords[mesh.dim * i..mesh.dim * (i + 1)] {
             write!(w, "{x:?}\t")?;
         }
         writeln!(w, "{i}")?;
