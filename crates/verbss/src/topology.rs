@@ -189,8 +189,10 @@ pub fn boundary_facets(cells: &Cells) -> Cells {
     for (c, (kind, cell)) in cells.iter().enumerate() {
         for f in kind.table().facets {
             let key = facet_key_in(cell, f);
+            let nodes = &key[..f.len()];
             let shared = around.entries(key[0]).any(|d| {
                 d != c
+                    && nodes.iter().all(|v| cells.cell(d).contains(v))
                     && cells.kinds[d]
                         .table()
                         .facets
@@ -351,6 +353,40 @@ mod tests {
             by_rows.targets.len() < all_pairs.targets.len(),
             "diagonals excluded"
         );
+    }
+
+    /// The facets found through the incidence are those that one cell
+    /// alone has, counted over every facet of every cell, in cell order.
+    #[test]
+    fn boundary_facets_are_the_facets_counted_once() {
+        for m in [
+            crate::mesh::samples::hex_wedge_pyramid_tet(),
+            crate::mesh::samples::fluid_around_an_airfoil(),
+        ] {
+            let mut count = std::collections::BTreeMap::new();
+            for (kind, nodes) in m.cells.iter() {
+                for f in kind.table().facets {
+                    *count.entry(facet_key_in(nodes, f)).or_insert(0) += 1;
+                }
+            }
+            let once: Vec<[usize; 4]> = m
+                .cells
+                .iter()
+                .flat_map(|(kind, nodes)| {
+                    kind.table()
+                        .facets
+                        .iter()
+                        .map(move |f| facet_key_in(nodes, f))
+                })
+                .filter(|k| count[k] == 1)
+                .collect();
+            let found: Vec<[usize; 4]> = boundary_facets(&m.cells)
+                .iter()
+                .map(|(_, n)| facet_key(n))
+                .collect();
+            assert_eq!(found, once);
+            assert!(!found.is_empty() && found.len() < count.len());
+        }
     }
 
     #[test]
