@@ -14,10 +14,11 @@ const REDUCTION: f64 = 1e-8;
 /// …or after this many iterations (the guard judges the mesh a weight makes).
 const MAX_ITERATIONS: usize = 4000;
 
-/// The edge graph of a mesh (both directions; an edge `[a, b]`, `a < b`,
-/// is `b` in row `a`).
+/// The edges of a mesh: as a list for the products (each edge once,
+/// `[a, b]` with `a < b`, sorted) and as a graph for the distances.
 pub(super) struct Laplace {
     dim: usize,
+    edges: Vec<[u32; 2]>,
     graph: Csr,
 }
 
@@ -25,9 +26,13 @@ impl Laplace {
     /// The problem on the edges of `mesh`.
     pub(super) fn new(mesh: &Mesh) -> Laplace {
         let node_cells = topology::node_cells(&mesh.cells, mesh.node_count());
+        let graph = topology::edge_graph_from(&mesh.cells, &node_cells);
+        let mut edges = Vec::with_capacity(graph.targets.len() / 2);
+        edges.extend(topology::upper_edges(&graph).map(|[a, b]| [a as u32, b as u32]));
         Laplace {
             dim: mesh.dim,
-            graph: topology::edge_graph_from(&mesh.cells, &node_cells),
+            edges,
+            graph,
         }
     }
 
@@ -46,7 +51,7 @@ impl Laplace {
             .enumerate()
             .map(|(i, u)| *u && !self.graph.row(i).is_empty())
             .collect();
-        let edges = || topology::upper_edges(&self.graph);
+        let edges = || self.edges.iter().map(|&[a, b]| [a as usize, b as usize]);
         let k: Vec<f64> = edges()
             .map(|[a, b]| {
                 let squared: f64 = (0..dim)
