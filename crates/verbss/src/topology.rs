@@ -69,26 +69,31 @@ impl Csr {
         }
     }
 
-    /// Builds row `i` by `fill(i, buffer)` (any order, repeats allowed),
-    /// each row sorted and deduplicated: twice over the rows, the first to
-    /// count, so that the rows are stored once at their exact size.
+    /// Builds the square graph whose row `i` is what `fill(i, buffer)`
+    /// pushes (targets below `rows`, any order, repeats allowed), each row
+    /// deduplicated and sorted. Twice over the rows, the first to count, so
+    /// that the rows are stored once at their exact size; the repeats are
+    /// dropped by marking each target with the row that last saw it, so only
+    /// the distinct targets are sorted.
     pub fn from_rows(rows: usize, fill: impl Fn(usize, &mut Vec<usize>)) -> Csr {
         let mut buffer = Vec::new();
-        let row = |i: usize, buffer: &mut Vec<usize>| {
+        let distinct = |i: usize, buffer: &mut Vec<usize>, seen_in: &mut [usize]| {
             buffer.clear();
             fill(i, buffer);
-            buffer.sort_unstable();
-            buffer.dedup();
+            buffer.retain(|&j| std::mem::replace(&mut seen_in[j], i) != i);
         };
+        let mut seen_in = vec![usize::MAX; rows];
         let mut offsets = Vec::with_capacity(rows + 1);
         offsets.push(0);
         for i in 0..rows {
-            row(i, &mut buffer);
+            distinct(i, &mut buffer, &mut seen_in);
             offsets.push(offsets[i] + buffer.len());
         }
+        seen_in.fill(usize::MAX);
         let mut targets = Vec::with_capacity(offsets[rows]);
         for i in 0..rows {
-            row(i, &mut buffer);
+            distinct(i, &mut buffer, &mut seen_in);
+            buffer.sort_unstable();
             targets.extend(buffer.iter().map(|&t| t as u32));
         }
         Csr { offsets, targets }
@@ -178,33 +183,39 @@ fn facet_key_in(cell: &[usize], facet: &[usize]) -> [usize; 4] {
 
 /// The boundary facets: facets that belong to exactly one cell, in the order
 /// of their cells, numbered as in their cell (outward for a positive cell).
-/// A facet is shared when another cell around its lowest node has a facet
-/// on the same nodes (found through the node → cells incidence, without a
-/// table of every facet).
+/// Each facet is counted at its lowest node, among the facets of the cells
+/// around that node (through the node → cells incidence, without a table
+/// of every facet of the mesh).
 pub fn boundary_facets(cells: &Cells) -> Cells {
     let nodes = cells.nodes.iter().max().map_or(0, |&m| m + 1);
     let around = node_cells(cells, nodes);
-    let mut out = Cells::new();
-    let mut local = Vec::with_capacity(4);
-    for (c, (kind, cell)) in cells.iter().enumerate() {
-        for f in kind.table().facets {
-            let key = facet_key_in(cell, f);
-            let nodes = &key[..f.len()];
-            let shared = around.entries(key[0]).any(|d| {
-                d != c
-                    && nodes.iter().all(|v| cells.cell(d).contains(v))
-                    && cells.kinds[d]
-                        .table()
-                        .facets
-                        .iter()
-                        .any(|g| facet_key_in(cells.cell(d), g) == key)
-            });
-            if !shared {
-                local.clear();
-                local.extend(f.iter().map(|&k| cell[k]));
-                out.push(CellKind::facet_kind(local.len()), &local);
+    let mut single: Vec<(usize, usize)> = Vec::new();
+    let mut here: Vec<([usize; 4], usize, usize)> = Vec::new();
+    for v in 0..nodes {
+        here.clear();
+        for c in around.entries(v) {
+            let cell = cells.cell(c);
+            for (k, f) in cells.kinds[c].table().facets.iter().enumerate() {
+                if f.iter().map(|&l| cell[l]).min() == Some(v) {
+                    here.push((facet_key_in(cell, f), c, k));
+                }
             }
         }
+        here.sort_unstable();
+        for run in here.chunk_by(|a, b| a.0 == b.0) {
+            if let [(_, c, k)] = run {
+                single.push((*c, *k));
+            }
+        }
+    }
+    single.sort_unstable();
+    let mut out = Cells::new();
+    let mut local = Vec::with_capacity(4);
+    for (c, k) in single {
+        let cell = cells.cell(c);
+        local.clear();
+        local.extend(cells.kinds[c].table().facets[k].iter().map(|&l| cell[l]));
+        out.push(CellKind::facet_kind(local.len()), &local);
     }
     out
 }
