@@ -14,6 +14,12 @@
 //! positions (the solver's order, in which nodes of one colour lie far
 //! apart: computed in that order, the rows would read the cells once per
 //! colour instead of once).
+//!
+//! The first assembly of a run goes the same way, into the pattern of every
+//! coupling of the node graph ([`full_pattern`]), which is the pattern
+//! [`assemble`] finds when no block is exactly zero: the system is then
+//! held once, never as chunks beside their copy. Where a block is exactly
+//! zero it falls back to [`assemble`].
 
 use rayon::prelude::*;
 
@@ -51,8 +57,8 @@ pub fn reassemble(
     }
 }
 
-/// [`reassemble`] into `kept` when it is given and the couplings fit its
-/// pattern, [`assemble`] afresh otherwise.
+/// [`reassemble`] into `kept` (without one, into [`full_pattern`]) when
+/// the couplings fit its pattern, [`assemble`] afresh otherwise.
 pub fn assemble_reusing(
     conn: &Connectivity,
     coords: &[f64],
@@ -61,12 +67,42 @@ pub fn assemble_reusing(
     springs: Springs,
     kept: Option<NodeBlocks>,
 ) -> Result<NodeBlocks> {
-    if let Some(mut blocks) = kept {
-        if reassemble(conn, coords, order, position, springs, &mut blocks)? {
-            return Ok(blocks);
-        }
+    let mut blocks = kept.unwrap_or_else(|| full_pattern(conn, order, position));
+    if reassemble(conn, coords, order, position, springs, &mut blocks)? {
+        return Ok(blocks);
     }
+    drop(blocks);
     assemble(conn, coords, order, position, springs)
+}
+
+/// The system of `order` with a block for every coupling of the node graph
+/// (`conn.graph`), in the graph's order: to unknowns by their `position`,
+/// to prescribed nodes (`position` `u32::MAX`) by index; every number zero.
+pub(super) fn full_pattern(conn: &Connectivity, order: &[usize], position: &[u32]) -> NodeBlocks {
+    let s = packed_len(conn.dim);
+    let mut out = NodeBlocks {
+        diag: vec![0.0; s * order.len()],
+        offsets: Vec::with_capacity(order.len() + 1),
+        fixed_offsets: Vec::with_capacity(order.len() + 1),
+        ..NodeBlocks::default()
+    };
+    out.offsets.push(0);
+    out.fixed_offsets.push(0);
+    for &i in order {
+        for j in conn.graph.entries(i) {
+            match position[j] {
+                u32::MAX => out.fixed_nodes.push(j),
+                p => out.neighbours.push(p),
+            }
+        }
+        out.offsets.push(out.neighbours.len());
+        out.fixed_offsets.push(out.fixed_nodes.len());
+    }
+    out.neighbours.shrink_to_fit();
+    out.fixed_nodes.shrink_to_fit();
+    out.blocks = vec![0.0; s * out.neighbours.len()];
+    out.fixed_blocks = vec![0.0; s * out.fixed_nodes.len()];
+    out
 }
 
 /// The couplings of a system: which blocks each row has.

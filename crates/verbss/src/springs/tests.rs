@@ -120,7 +120,7 @@ fn cases() -> Vec<(Mesh, Vec<f64>, f64)> {
 
 #[test]
 fn reassembly_into_the_kept_pattern_equals_a_fresh_assembly() {
-    let mut reassembled = 0;
+    let (mut reassembled, mut first_in_place) = (0, 0);
     for (seed, (mesh, phi, h)) in cases().into_iter().enumerate() {
         for stiffness in [Vec::new(), phi] {
             let mut conn = Connectivity::new(&mesh);
@@ -147,10 +147,21 @@ fn reassembly_into_the_kept_pattern_equals_a_fresh_assembly() {
                 let reused =
                     assemble_reusing(&conn, &later, &order, &position, springs, Some(before));
                 assert_eq!(reused.unwrap(), fresh);
+                let first = assemble_reusing(&conn, &later, &order, &position, springs, None);
+                assert_eq!(first.unwrap(), fresh);
+                let mut full = refill::full_pattern(&conn, &order, &position);
+                if reassemble(&conn, &later, &order, &position, springs, &mut full).unwrap() {
+                    assert_eq!(full, fresh);
+                    first_in_place += 1;
+                }
             }
         }
     }
     assert!(reassembled >= 20, "only {reassembled} re-assemblies fitted");
+    assert!(
+        first_in_place >= 10,
+        "only {first_in_place} first assemblies in place"
+    );
 }
 
 #[test]
