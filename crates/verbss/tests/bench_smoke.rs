@@ -1,6 +1,7 @@
 //! The benchmark scripts still work: `bench/compare.py --smoke` (a tiny
 //! sphere-in-a-cube mesh and the smallest of the paper's 2D rectangles, two
-//! steps of every verbss variant on 1 and 2 threads, without OpenFOAM).
+//! steps of every verbss variant, the command line's defaults included, on 1
+//! and 2 threads, without OpenFOAM, and the defaults' table).
 //! It runs the binaries this `cargo test` built (`--bin-dir`: the
 //! `motion_bench` example of this crate and the `verbss` binary, which
 //! `cargo test --workspace` builds for the CLI's tests), so it compiles
@@ -53,6 +54,8 @@ fn compare_script_runs_in_smoke_mode() {
             String::from_utf8_lossy(&out.stderr)
         );
         for variant in [
+            "| verbss defaults | 1 |",
+            "| verbss defaults | 2 |",
             "| verbss updated none previous | 1 |",
             "| verbss updated none linear | 2 |",
             "| verbss updated amg linear | 1 |",
@@ -60,6 +63,10 @@ fn compare_script_runs_in_smoke_mode() {
         ] {
             assert!(stdout.contains(variant), "{variant} missing:\n{stdout}");
         }
+        assert!(
+            stdout.contains("| defaults s/step | moveDynamicMesh s/step | ratio"),
+            "the defaults' table is missing:\n{stdout}"
+        );
     }
     std::fs::remove_dir_all(&work).ok();
 }
