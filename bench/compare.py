@@ -382,13 +382,13 @@ def defaults_table(results):
     node (the defaults: the steps' VmHWM; OpenFOAM: the process's peak,
     /usr/bin/time -v; bracketed: the whole motion_bench process's), the
     defaults' true error at step 1 and the last step, and both final
-    meshes' minimum quality."""
+    meshes' minimum quality. One row per mesh: where several --report
+    files hold a one-thread defaults run of it, the last one given counts."""
     rows = []
     for m in results:
         foam = m.get("openfoam", {}).get("moveDynamicMesh")
-        for r in m["verbss"]:
-            if not r.get("defaults") or r["threads"] != 1:
-                continue
+        runs = [r for r in m["verbss"] if r.get("defaults") and r["threads"] == 1]
+        for r in runs[-1:]:
             ok = len(r["seconds"]) == r["steps_total"]
             per = mean(r["seconds"])
             cpu = later(r["cpu_seconds"])
@@ -407,8 +407,8 @@ def defaults_table(results):
                 f"{foam['peak_rss_time_v'] / n:,.0f}" if foam else "",
                 f"{err.get(1, float('nan')):.1e}" if err else r["true_error"],
                 f"{err.get(r['steps_total'], float('nan')):.1e}" if err else "",
-                f"{r['final_min_quality']:.4f}" if "final_min_quality" in r else "",
-                f"{foam['final_min_quality']:.4f}" if foam and "final_min_quality" in foam
+                f"{r['final_min_quality']:.3g}" if "final_min_quality" in r else "",
+                f"{foam['final_min_quality']:.3g}" if foam and "final_min_quality" in foam
                 else ""])
     if rows:
         print("\n| tets | nodes | defaults s/step | moveDynamicMesh s/step | ratio "
