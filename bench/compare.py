@@ -572,6 +572,9 @@ def main():
         for m in results:
             for r in m["verbss"]:
                 assert r["failure"] is None and len(r["seconds"]) == steps, r
+                if r["threads"] == 1:
+                    assert sorted(errors(r)) == [1, steps], r
+                    assert not r.get("defaults") or len(r["paper_distance"]) == 2, r
             if have_foam:
                 for f in m["openfoam"].values():
                     assert len(f["seconds"]) == steps, f
