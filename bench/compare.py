@@ -2,8 +2,9 @@
 """verbss against OpenFOAM's moveDynamicMesh on the sphere-in-a-cube series.
 
     python3 bench/compare.py [--sizes 1.4,0.7,0.45,0.32,0.22] [--work DIR]
-                             [--threads 1,2] [--variants REF:ACCEL:PREDICTOR,…]
-                             [--json OUT]
+                             [--threads 1,2] [--variants defaults,REF:ACCEL:PREDICTOR,…]
+                             [--json OUT] [--no-openfoam] [--foam-apps moveDynamicMesh,…]
+    python3 bench/compare.py --report A.json B.json  # the tables of earlier runs, merged by mesh
     python3 bench/compare.py --series-2d  # the paper's 2D rectangles instead
     python3 bench/compare.py --smoke      # seconds: a tiny mesh, 2 steps
 
@@ -13,16 +14,22 @@ Per mesh (bench/sphere_cube.py: a sphere of radius 5 in the cube
 16 steps:
 
 * verbss (crates/verbss/examples/motion_bench.rs, the stepper of
-  `verbss deform`, the paper's method, eq.-8 tolerance 1e-6 relative), per
-  variant — reference `updated` (paper option 1, the default) or `fixed`
+  `verbss deform`), per variant: `defaults`, the command line's defaults
+  (`verbss deform MESH --moving sphere --translate 16,0,0 --steps 16` and
+  nothing else: VerBSS with the near-wall treatments, the blended rigid
+  motion and the escalating solve; `motion_bench --defaults`), or the
+  paper's method (eq.-8 tolerance 1e-6 relative) as a triple — reference `updated` (paper option 1, the default) or `fixed`
   (option 2, `--reference initial`), acceleration `none` or `amg`, and the
   initial guess `previous` (the previous step's solution, the default) or
   `linear` (extrapolated from the two previous steps, `--predictor linear`)
   — and thread count: wall and CPU seconds per step, sweeps (or
-  GMRES iterations) per step, seconds per sweep, bytes per node, peak memory
-  (/usr/bin/time -v), the true error of steps 1 and 16 against a reference
-  solved to 1e-13 (one-thread runs; results do not depend on the threads),
-  and the final mesh's minimum quality and inverted count (`verbss quality`);
+  GMRES iterations) per step, seconds per sweep, bytes per node, the peak
+  memory of the steps (`VmHWM` read after them, `peak_rss_bytes`) and of
+  the whole process (/usr/bin/time -v, `peak_rss_time_v`), the true error
+  of steps 1 and 16 (one-thread runs; results do not depend on the
+  threads; its definitions, one for the paper's method and one for the
+  defaults, in motion_bench.rs) and the final mesh's minimum quality and
+  inverted count (`verbss quality`);
 * OpenFOAM (when `moveDynamicMesh` is installed; Debian package `openfoam`):
   the mesh imported with gmshToFoam from MSH 2.2, displacementLaplacian with
   inverseDistance diffusivity on the sphere, GAMG to 1e-6, the sphere's
@@ -32,7 +39,12 @@ Per mesh (bench/sphere_cube.py: a sphere of radius 5 in the cube
   line appears; CPU: the ExecutionTime values), peak memory, and the final
   mesh exported by foamToVTK and measured by `verbss quality`.
 
-Prints a Markdown table and writes every number to --json. The 16 units
+Prints a Markdown table (and, when `defaults` ran, a second one: the
+defaults against moveDynamicMesh per mesh) and writes every number to
+--json (rewritten after each mesh, so an interrupted run keeps the meshes
+it finished). --no-openfoam runs the verbss rows alone; --report merges the
+--json files of several runs by mesh (node and cell counts), so verbss rows
+of one run and OpenFOAM rows of another make one table. The 16 units
 are the VerBSS paper's §5.1 motion; in the paper's cube of half width 25
 the finer meshes' elements between the sphere and the wall (compressed
 from 20 to 4 units) invert, and in a cube of half width 50 (45 → 29 units)
@@ -100,11 +112,18 @@ def quality(verbss, path):
     return q["quality"]["min"], q["inverted"], q["elements"]
 
 
+DEFAULTS = "defaults"
+
+
 def variants(spec):
-    """`REFERENCE:ACCEL:PREDICTOR,…` (reference updated|fixed, accel
-    none|amg, predictor previous|linear) as a list of triples."""
+    """`defaults` or `REFERENCE:ACCEL:PREDICTOR` (reference updated|fixed,
+    accel none|amg, predictor previous|linear), comma-separated, as a list
+    of DEFAULTS and triples."""
     out = []
     for v in spec.split(","):
+        if v == DEFAULTS:
+            out.append(DEFAULTS)
+            continue
         reference, accel, predictor = v.split(":")
         assert reference in ("updated", "fixed") and accel in ("none", "amg") \
             and predictor in ("previous", "linear"), v
@@ -113,6 +132,8 @@ def variants(spec):
 
 
 def label(r):
+    if r.get("defaults"):
+        return "verbss defaults"
     return (f"verbss {r.get('reference', 'updated')} {r['accel']} "
             f"{r.get('predictor', 'previous')}")
 
@@ -121,14 +142,19 @@ def verbss_runs(bins, mesh, work, threads, runs, steps, motion=None):
     """motion: (group, displacement) — default the sphere's 16 units along x."""
     group, move = motion or ("sphere", f"{TRAVEL * steps / STEPS},0,0")
     out = []
-    for reference, accel, predictor in runs:
+    for variant in runs:
+        name = variant if variant == DEFAULTS else "_".join(variant)
         for t in threads:
-            final = work / f"{mesh.stem}_{reference}_{accel}_{predictor}_final.vtu"
+            final = work / f"{mesh.stem}_{name}_final.vtu"
             cmd = [bins["motion_bench"], str(mesh), "--moving", group,
-                   "--translate", move, "--steps", str(steps),
-                   "--threads", str(t), "--accel", accel, "--predictor", predictor]
-            if reference == "fixed":
-                cmd.append("--fixed-reference")
+                   "--translate", move, "--steps", str(steps), "--threads", str(t)]
+            if variant == DEFAULTS:
+                cmd.append("--defaults")
+            else:
+                reference, accel, predictor = variant
+                cmd += ["--accel", accel, "--predictor", predictor]
+                if reference == "fixed":
+                    cmd.append("--fixed-reference")
             if t == threads[0]:
                 cmd += ["--error-steps", f"1,{steps}", "--output", str(final)]
             stdout, peak = timed(cmd)
@@ -253,7 +279,8 @@ def foam_timed(app, case):
 
 def openfoam_run(bins, mesh, work, steps, apps):
     msh22 = work / f"{mesh.stem}_22.msh"
-    run([bins["verbss"], "convert", str(mesh), str(msh22), "--msh-version", "2.2"])
+    run([bins["verbss"], "convert", str(mesh), str(msh22), "--msh-version", "2.2",
+         "--ascii"])
     out = {}
     for app in apps:
         case = work / f"{mesh.stem}_{app}"
@@ -281,7 +308,8 @@ def build(debug, bin_dir=None):
     if bin_dir is None:
         profile = [] if debug else ["--release"]
         subprocess.run([os.environ.get("CARGO", "cargo"), "build", "-q"] + profile
-                       + ["-p", "verbss", "--example", "motion_bench", "-p", "verbss-cli"],
+                       + ["-p", "verbss", "--example", "motion_bench", "-p", "verbss-cli",
+                          "--bin", "verbss"],
                        check=True, cwd=ROOT)
         bin_dir = ROOT / "target" / ("debug" if debug else "release")
     bins = {"motion_bench": Path(bin_dir) / "examples" / "motion_bench",
@@ -315,7 +343,7 @@ def table(results):
             per = mean(r["seconds"])
             cpu = later(r["cpu_seconds"])
             sweeps = mean(r["iterations"])
-            err = dict((s, e) for s, e in r["true_error"])
+            err = errors(r)
             rows.append([label(r), r["threads"], f"{per:.3f}" if ok else
                          f"failed at step {len(r['seconds']) + 1}",
                          f"{cpu:.3f}",
@@ -338,6 +366,77 @@ def table(results):
                          f.get("final_inverted", ""), "", ""])
         for row in rows:
             print(f"| {m['cells']:,} | {m['nodes']:,} | " + " | ".join(map(str, row)) + " |")
+
+
+def errors(r):
+    """The run's true error by step (none when its tight run failed: then
+    `true_error` is the failure's message)."""
+    e = r["true_error"]
+    return {} if isinstance(e, str) else dict((s, x) for s, x in e)
+
+
+def defaults_table(results):
+    """Per mesh, the defaults (one thread) against moveDynamicMesh: wall
+    seconds per step (mean of all steps) and their ratio, CPU seconds per
+    step (mean of steps 2 on) and their ratio, the peak memory per
+    node (the defaults: the steps' VmHWM; OpenFOAM: the process's peak,
+    /usr/bin/time -v; bracketed: the whole motion_bench process's), the
+    defaults' true error at step 1 and the last step, and both final
+    meshes' minimum quality. One row per mesh: where several --report
+    files hold a one-thread defaults run of it, the last one given counts."""
+    rows = []
+    for m in results:
+        foam = m.get("openfoam", {}).get("moveDynamicMesh")
+        runs = [r for r in m["verbss"] if r.get("defaults") and r["threads"] == 1]
+        for r in runs[-1:]:
+            ok = len(r["seconds"]) == r["steps_total"]
+            per = mean(r["seconds"])
+            cpu = later(r["cpu_seconds"])
+            foam_cpu = later(foam["cpu_seconds"]) if foam else float("nan")
+            err = errors(r)
+            n = m["nodes"]
+            whole = r.get("peak_rss_time_v")
+            rows.append([
+                f"{m['cells']:,}", f"{n:,}",
+                f"{per:.3f}" if ok else f"failed at step {len(r['seconds']) + 1}",
+                f"{mean(foam['seconds']):.3f}" if foam else "",
+                f"{mean(foam['seconds']) / per:.1f}x" if foam and ok else "",
+                f"{cpu:.3f}", f"{foam_cpu:.3f}" if foam else "",
+                f"{foam_cpu / cpu:.1f}x" if foam and ok and cpu > 0 else "",
+                f"{r['peak_rss_bytes'] / n:,.0f}" + (f" ({whole / n:,.0f})" if whole else ""),
+                f"{foam['peak_rss_time_v'] / n:,.0f}" if foam else "",
+                f"{err.get(1, float('nan')):.1e}" if err else r["true_error"],
+                f"{err.get(r['steps_total'], float('nan')):.1e}" if err else "",
+                f"{r['final_min_quality']:.3g}" if "final_min_quality" in r else "",
+                f"{foam['final_min_quality']:.3g}" if foam and "final_min_quality" in foam
+                else ""])
+    if rows:
+        print("\n| tets | nodes | defaults s/step | moveDynamicMesh s/step | ratio "
+              "| defaults CPU s/step (2–) | moveDynamicMesh CPU s/step (2–) | ratio (CPU) "
+              "| defaults bytes/node (whole process) | moveDynamicMesh bytes/node "
+              "| true error step 1 | true error last step | min quality defaults "
+              "| min quality moveDynamicMesh |")
+        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+        for row in rows:
+            print("| " + " | ".join(row) + " |")
+
+
+def merged(files):
+    """The meshes of several --json files, one entry per mesh (same node and
+    cell counts): their verbss runs together, their OpenFOAM runs merged
+    (a later file's run of the same application counts)."""
+    by_mesh = {}
+    for f in files:
+        for m in json.loads(Path(f).read_text()):
+            key = (m["nodes"], m["cells"])
+            if key not in by_mesh:
+                by_mesh[key] = dict(m, verbss=list(m["verbss"]),
+                                    openfoam=dict(m.get("openfoam", {})))
+                continue
+            into = by_mesh[key]
+            into["verbss"] += m["verbss"]
+            into["openfoam"].update(m.get("openfoam", {}))
+    return sorted(by_mesh.values(), key=lambda m: m["nodes"])
 
 
 def fits(results):
@@ -408,10 +507,11 @@ def main():
                          "profile folder (e.g. target/debug) instead of building them")
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--variants",
-                    default="updated:none:previous,updated:none:linear,updated:amg:linear,"
-                            "fixed:none:linear",
-                    help="verbss runs REFERENCE:ACCEL:PREDICTOR,… (updated|fixed, "
-                         "none|amg, previous|linear)")
+                    default="defaults,updated:none:previous,updated:none:linear,"
+                            "updated:amg:linear,fixed:none:linear",
+                    help="verbss runs: defaults (the command line's defaults) or "
+                         "REFERENCE:ACCEL:PREDICTOR (updated|fixed, none|amg, previous|linear), "
+                         "comma-separated")
     ap.add_argument("--series-2d", action="store_true",
                     help="instead: the paper's 2D rectangles (no OpenFOAM)")
     ap.add_argument("--json", default=None)
@@ -419,15 +519,16 @@ def main():
     ap.add_argument("--foam-apps", default="moveDynamicMesh,moveMesh",
                     help="the OpenFOAM applications to time")
     ap.add_argument("--report", nargs="+", default=None, metavar="JSON",
-                    help="print the tables of earlier runs' --json files (and --plot)")
+                    help="print the tables of earlier runs' --json files, merged by mesh "
+                         "(and --plot)")
     ap.add_argument("--plot", default=None, help="with --report: a log-log PNG here")
     ap.add_argument("--smoke", action="store_true",
                     help="a tiny mesh (h 2.5), 2 steps, debug build: checks that it all runs")
     a = ap.parse_args()
     if a.report:
-        results = [m for f in a.report for m in json.loads(Path(f).read_text())]
-        results.sort(key=lambda m: m["nodes"])
+        results = merged(a.report)
         table(results)
+        defaults_table(results)
         fits(results)
         if a.plot:
             plot(results, a.plot)
@@ -461,15 +562,19 @@ def main():
         if have_foam:
             m["openfoam"] = openfoam_run(bins, mesh, work, steps, a.foam_apps.split(","))
         results.append(m)
+        if a.json:
+            Path(a.json).write_text(json.dumps(results, indent=1))
     print(f"load average at end: {os.getloadavg()}", file=sys.stderr)
     table(results)
+    defaults_table(results)
     fits(results)
-    if a.json:
-        Path(a.json).write_text(json.dumps(results, indent=1))
     if a.smoke:
         for m in results:
             for r in m["verbss"]:
                 assert r["failure"] is None and len(r["seconds"]) == steps, r
+                if r["threads"] == 1:
+                    assert sorted(errors(r)) == [1, steps], r
+                    assert not r.get("defaults") or len(r["paper_distance"]) == 2, r
             if have_foam:
                 for f in m["openfoam"].values():
                     assert len(f["seconds"]) == steps, f

@@ -1,6 +1,8 @@
 //! The benchmark scripts still work: `bench/compare.py --smoke` (a tiny
 //! sphere-in-a-cube mesh and the smallest of the paper's 2D rectangles, two
-//! steps of every verbss variant on 1 and 2 threads, without OpenFOAM).
+//! steps of every verbss variant, the command line's defaults included, on 1
+//! and 2 threads, without OpenFOAM, and the defaults' table), and
+//! `--report` merging two JSON files of one mesh into one row.
 //! It runs the binaries this `cargo test` built (`--bin-dir`: the
 //! `motion_bench` example of this crate and the `verbss` binary, which
 //! `cargo test --workspace` builds for the CLI's tests), so it compiles
@@ -35,11 +37,14 @@ fn compare_script_runs_in_smoke_mode() {
         return;
     }
     let work = std::env::temp_dir().join(format!("verbss-bench-smoke-{}", std::process::id()));
+    let json = work.join("smoke.json");
     for extra in [&[][..], &["--series-2d"][..]] {
         let out = Command::new("python3")
             .arg(root.join("bench/compare.py"))
             .args(["--smoke", "--no-openfoam", "--work"])
             .arg(&work)
+            .arg("--json")
+            .arg(&json)
             .arg("--bin-dir")
             .arg(bin_dir)
             .args(extra)
@@ -53,6 +58,8 @@ fn compare_script_runs_in_smoke_mode() {
             String::from_utf8_lossy(&out.stderr)
         );
         for variant in [
+            "| verbss defaults | 1 |",
+            "| verbss defaults | 2 |",
             "| verbss updated none previous | 1 |",
             "| verbss updated none linear | 2 |",
             "| verbss updated amg linear | 1 |",
@@ -60,6 +67,30 @@ fn compare_script_runs_in_smoke_mode() {
         ] {
             assert!(stdout.contains(variant), "{variant} missing:\n{stdout}");
         }
+        assert!(
+            stdout.contains("| defaults s/step | moveDynamicMesh s/step | ratio"),
+            "the defaults' table is missing:\n{stdout}"
+        );
     }
+    // --report merges the files by mesh: the same run given twice is one
+    // mesh, its defaults' table one row (the last file's).
+    let out = Command::new("python3")
+        .arg(root.join("bench/compare.py"))
+        .arg("--report")
+        .args([&json, &json])
+        .current_dir(&root)
+        .output()
+        .expect("python3 runs");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "compare.py --report failed:\n{stdout}"
+    );
+    let table = stdout
+        .split("| defaults s/step |")
+        .nth(1)
+        .expect("the defaults' table");
+    let rows = table.lines().skip(2).take_while(|l| l.starts_with('|'));
+    assert_eq!(rows.count(), 1, "one row for the one mesh:\n{stdout}");
     std::fs::remove_dir_all(&work).ok();
 }
