@@ -92,6 +92,8 @@ fn sweeps(
     let mut engine = Engine::new(mesh, roles, &[]).expect("engine");
     let mut p = SolveParams::default();
     p.tolerance = 0.0;
+    // The sweeps alone: never escalate to another solver.
+    p.escalate = false;
     p.max_iterations = count;
     p.threads = threads;
     let mut best = f64::INFINITY;
