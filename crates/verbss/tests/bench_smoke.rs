@@ -9,10 +9,29 @@
 //! nothing itself. Needs python3 with gmsh and the `verbss` binary; without
 //! them it skips with a notice (`verbss_testkit::needs`).
 
+use std::ffi::OsStr;
 use std::path::Path;
 use std::process::Command;
 
 use verbss_testkit::{needs, python};
+
+/// Runs `bench/compare.py ARGS` from the repository `root`; its standard
+/// output, after checking that it succeeded.
+fn compare(root: &Path, args: &[&OsStr]) -> String {
+    let out = Command::new("python3")
+        .arg(root.join("bench/compare.py"))
+        .args(args)
+        .current_dir(root)
+        .output()
+        .expect("python3 runs");
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "compare.py {args:?} failed:\n{stdout}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    stdout
+}
 
 #[test]
 fn compare_script_runs_in_smoke_mode() {
@@ -39,24 +58,14 @@ fn compare_script_runs_in_smoke_mode() {
     let work = std::env::temp_dir().join(format!("verbss-bench-smoke-{}", std::process::id()));
     let json = work.join("smoke.json");
     for extra in [&[][..], &["--series-2d"][..]] {
-        let out = Command::new("python3")
-            .arg(root.join("bench/compare.py"))
-            .args(["--smoke", "--no-openfoam", "--work"])
-            .arg(&work)
-            .arg("--json")
-            .arg(&json)
-            .arg("--bin-dir")
-            .arg(bin_dir)
-            .args(extra)
-            .current_dir(&root)
-            .output()
-            .expect("python3 runs");
-        let stdout = String::from_utf8_lossy(&out.stdout);
-        assert!(
-            out.status.success(),
-            "compare.py --smoke {extra:?} failed:\n{stdout}\n{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        let mut args: Vec<&OsStr> = ["--smoke", "--no-openfoam", "--work"]
+            .iter()
+            .map(OsStr::new)
+            .collect();
+        args.extend([work.as_os_str(), OsStr::new("--json"), json.as_os_str()]);
+        args.extend([OsStr::new("--bin-dir"), bin_dir.as_os_str()]);
+        args.extend(extra.iter().map(OsStr::new));
+        let stdout = compare(&root, &args);
         for variant in [
             "| verbss defaults | 1 |",
             "| verbss defaults | 2 |",
@@ -74,17 +83,9 @@ fn compare_script_runs_in_smoke_mode() {
     }
     // --report merges the files by mesh: the same run given twice is one
     // mesh, its defaults' table one row (the last file's).
-    let out = Command::new("python3")
-        .arg(root.join("bench/compare.py"))
-        .arg("--report")
-        .args([&json, &json])
-        .current_dir(&root)
-        .output()
-        .expect("python3 runs");
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "compare.py --report failed:\n{stdout}"
+    let stdout = compare(
+        &root,
+        &[OsStr::new("--report"), json.as_os_str(), json.as_os_str()],
     );
     let table = stdout
         .split("| defaults s/step |")
