@@ -213,7 +213,7 @@ pub fn write(path: &Path, mesh: &Mesh, options: &WriteOptions) -> Result<()> {
     write_moved(path, mesh, &mesh.coords, options)
 }
 
-/// [`write`] with the nodes at `coords` (`dim` numbers per node) instead of
+/// [`write()`] with the nodes at `coords` (`dim` numbers per node) instead of
 /// the mesh's own: a moved mesh written without a copy of its cells.
 pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], options: &WriteOptions) -> Result<()> {
     if coords.len() != mesh.coords.len() {

@@ -117,7 +117,7 @@ pub fn write(path: &Path, mesh: &Mesh, fields: &Fields) -> Result<()> {
     write_moved(path, mesh, &mesh.coords, fields)
 }
 
-/// [`write`] with the nodes at `coords` ([`write_moved_to`]).
+/// [`write()`] with the nodes at `coords` ([`write_moved_to`]).
 pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], fields: &Fields) -> Result<()> {
     crate::io::write_atomic(path, |w| write_moved_to(w, mesh, coords, fields))
 }

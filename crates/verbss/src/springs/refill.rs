@@ -57,8 +57,9 @@ pub fn reassemble(
     }
 }
 
-/// [`reassemble`] into `kept` (without one, into [`full_pattern`]) when
-/// the couplings fit its pattern, [`assemble`] afresh otherwise.
+/// [`reassemble`] into `kept` (without one, into the pattern of every
+/// coupling of the node graph) when the couplings fit its pattern,
+/// [`assemble`] afresh otherwise.
 pub fn assemble_reusing(
     conn: &Connectivity,
     coords: &[f64],

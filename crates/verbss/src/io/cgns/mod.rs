@@ -101,7 +101,7 @@ pub fn write(path: &Path, mesh: &Mesh) -> Result<()> {
     write_moved(path, mesh, &mesh.coords)
 }
 
-/// [`write`] with the nodes at `coords` (`dim` numbers per node) instead of
+/// [`write()`] with the nodes at `coords` (`dim` numbers per node) instead of
 /// the mesh's own.
 pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64]) -> Result<()> {
     #[cfg(with_cgns)]

@@ -25,7 +25,7 @@ pub fn write(path: &Path, mesh: &Mesh, time: Option<&str>) -> Result<()> {
     write_moved(path, mesh, &mesh.coords, time)
 }
 
-/// [`write`] with the nodes at `coords` (`dim` numbers per node) instead of
+/// [`write()`] with the nodes at `coords` (`dim` numbers per node) instead of
 /// the mesh's own.
 pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], time: Option<&str>) -> Result<()> {
     let refuse = |message: String| Error::Io {
