@@ -13,10 +13,11 @@
 //! reference, the default of periodic motions), `verbss` (the paper's
 //! method), `laplacian`, `exact` (the default's near-wall treatment and
 //! reference, every step solved by the sparse direct solve), `springs` (the
-//! near-wall treatment without the blended rigid motion), and the single
-//! treatments `layer`, `stiffening`, `substeps` — with the case's steps,
-//! motions and (but for `default`, `anchored` and `exact`) reference,
-//! until the first inverted element, an unconverged step or the last step.
+//! near-wall treatment without the blended rigid motion), `no-layer` (the
+//! default without the rigid layer), and the single treatments `layer`,
+//! `stiffening`, `substeps` — with the case's steps, motions and (but for
+//! `default`, `no-layer`, `anchored` and `exact`) reference, until the
+//! first inverted element, an unconverged step or the last step.
 //! Printed per case and variant: the steps completed and the amplitude
 //! reached (for a rotation, in degrees), where the run stopped, the rigid
 //! layer's nodes, sweeps and seconds per step, the cost of a step relative
@@ -34,8 +35,9 @@ use verbss::motion::Motion;
 use verbss::robust::{Layer, Robust};
 use verbss::solve::{Method, SolveParams, Solver, Stage};
 
-const VARIANTS: [&str; 9] = [
+const VARIANTS: [&str; 10] = [
     "default",
+    "no-layer",
     "anchored",
     "springs",
     "verbss",
@@ -55,6 +57,10 @@ fn variant(name: &str) -> (Robust, SolveParams) {
         "springs" => {
             r = Robust::recommended();
             r.blend = false;
+        }
+        "no-layer" => {
+            r = Robust::recommended();
+            r.layer = Layer::Off;
         }
         "laplacian" => s.method = Method::Laplacian,
         "exact" => {
@@ -89,7 +95,9 @@ fn run(case: &Case, variant_name: &str) -> Result<Outcome, Error> {
     let threads = settings.solve.threads;
     (settings.robust, settings.solve) = variant(variant_name);
     settings.reference = match variant_name {
-        "default" | "exact" => Reference::for_motions(attachments.iter().map(|a| &a.motion)),
+        "default" | "no-layer" | "exact" => {
+            Reference::for_motions(attachments.iter().map(|a| &a.motion))
+        }
         "anchored" => Reference::Anchored,
         _ => settings.reference,
     };

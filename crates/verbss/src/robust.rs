@@ -7,9 +7,10 @@
 //! and survive such meshes ([`Robust`]):
 //!
 //! * the **rigid layer** ([`Layer`]): the free nodes within a distance `t` of
-//!   a moving wall — and nearer to it than half their distance to any other
-//!   boundary, so that a gap between two bodies keeps free nodes — move with
-//!   the wall and become prescribed nodes of the spring system. A node takes
+//!   a moving wall — and nearer to it than [`GAP_SHARE`] of their distance
+//!   to any other boundary, so that a gap between two bodies keeps most of
+//!   its width free to close — move with the wall and become prescribed
+//!   nodes of the spring system. A node takes
 //!   the motion of its nearest wall node: that motion evaluated at the node
 //!   itself for the analytic motions (exactly rigid for a rigid body), or the
 //!   nearest wall node's displacement for prescribed positions (carried along
@@ -47,8 +48,13 @@ pub const BL_CAP: f64 = 0.2;
 pub const INNER_FRACTION: f64 = 0.05;
 
 /// A rigid-layer node must be at most this fraction of its distance to any
-/// other boundary (another body, a fixed wall) away from its own wall.
-pub const GAP_SHARE: f64 = 0.5;
+/// other boundary (another body, a fixed wall) away from its own wall. In a
+/// gap of width `g` each side's layer then takes at most `g/11`, and the free
+/// nodes between keep `9/11` of it to absorb a gap that closes: with `1/2`
+/// (a third of the gap each) the paper's three-element airfoil inverted in
+/// its slat's slot at step 27 of 40 (docs/robustness.md, "The layer in a
+/// closing slot").
+pub const GAP_SHARE: f64 = 0.1;
 
 /// The thickness of the rigid layer around moving walls.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

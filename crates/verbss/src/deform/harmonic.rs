@@ -76,13 +76,12 @@ impl Laplace {
                 y[b] -= f;
             }
         };
+        // r, z and p stay 0 at the prescribed entries, so their dot products
+        // need no mask (the sums add the same terms, in the same order).
         let mut r = vec![0.0; n];
         apply(w, &mut r);
-        let dot = |x: &[f64], y: &[f64]| -> f64 {
-            (0..n).filter(|&i| unknown[i]).map(|i| x[i] * y[i]).sum()
-        };
-        for i in 0..n {
-            r[i] = if unknown[i] { -r[i] } else { 0.0 };
+        for (ri, &u) in r.iter_mut().zip(&unknown) {
+            *ri = if u { -*ri } else { 0.0 };
         }
         // The scale of the residual: the prescribed values' pull on the
         // unknowns with the unknowns at zero.
@@ -91,27 +90,31 @@ impl Laplace {
             .map(|i| if unknown[i] { 0.0 } else { w[i] })
             .collect();
         apply(&prescribed, &mut pull);
-        let scale = dot(&pull, &pull).sqrt();
+        let scale = (0..n)
+            .filter(|&i| unknown[i])
+            .map(|i| pull[i] * pull[i])
+            .sum::<f64>()
+            .sqrt();
         if scale == 0.0 {
             for i in (0..n).filter(|&i| unknown[i]) {
                 w[i] = 0.0;
             }
             return;
         }
-        let mut z: Vec<f64> = (0..n)
-            .map(|i| r[i] / diag[i].max(f64::MIN_POSITIVE))
-            .collect();
+        // 1 at the unknowns, 0 at the prescribed: keeps `A p` off the
+        // prescribed entries of r.
+        let mask: Vec<f64> = unknown.iter().map(|&u| f64::from(u)).collect();
+        for d in diag.iter_mut() {
+            *d = d.max(f64::MIN_POSITIVE);
+        }
+        let mut z: Vec<f64> = r.iter().zip(&diag).map(|(ri, di)| ri / di).collect();
         let mut p = z.clone();
         let mut q = vec![0.0; n];
         let mut rz = dot(&r, &z);
+        let mut rr = dot(&r, &r);
         for _ in 0..MAX_ITERATIONS {
-            if dot(&r, &r).sqrt() <= REDUCTION * scale {
+            if rr.sqrt() <= REDUCTION * scale {
                 break;
-            }
-            for i in 0..n {
-                if !unknown[i] {
-                    p[i] = 0.0;
-                }
             }
             apply(&p, &mut q);
             let pq = dot(&p, &q);
@@ -119,20 +122,28 @@ impl Laplace {
                 break;
             }
             let alpha = rz / pq;
-            for i in (0..n).filter(|&i| unknown[i]) {
+            let (mut next, mut next_rr) = (0.0, 0.0);
+            for i in 0..n {
                 w[i] += alpha * p[i];
-                r[i] -= alpha * q[i];
+                r[i] -= alpha * q[i] * mask[i];
                 z[i] = r[i] / diag[i];
+                next += r[i] * z[i];
+                next_rr += r[i] * r[i];
             }
-            let next = dot(&r, &z);
             let beta = next / rz;
             rz = next;
-            for i in (0..n).filter(|&i| unknown[i]) {
-                p[i] = z[i] + beta * p[i];
+            rr = next_rr;
+            for (pi, zi) in p.iter_mut().zip(&z) {
+                *pi = zi + beta * *pi;
             }
         }
         for wi in w.iter_mut() {
             *wi = wi.clamp(0.0, 1.0);
         }
     }
+}
+
+/// `x · y`, summed in order.
+fn dot(x: &[f64], y: &[f64]) -> f64 {
+    x.iter().zip(y).map(|(a, b)| a * b).sum()
 }
