@@ -57,7 +57,7 @@ pub use sys::{Comm, Mpi, Scalar};
 
 /// Why this build cannot partition with PT-Scotch (no MPI, or no PT-Scotch
 /// was found when it was compiled), which the distributed read of SU2
-/// files needs ([`scatter`]); `None` when it can.
+/// files needs (`scatter`, `repartition`); `None` when it can.
 pub fn ptscotch_missing() -> Option<&'static str> {
     let why = env!("VERBSS_PTSCOTCH_MISSING");
     (!why.is_empty()).then_some(why)

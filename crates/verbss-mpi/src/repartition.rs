@@ -213,3 +213,26 @@ fn ask(comm: &Comm, nodes: &[u64], answer: impl Fn(u64) -> Vec<u64>) -> Vec<Vec<
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::directory_count;
+
+    /// Directory rank `q` holds the nodes `g ≡ q (mod P)`: counted, they are
+    /// every node once.
+    #[test]
+    fn directories_hold_every_node_once() {
+        for (points, ranks) in [(10, 3), (2, 3), (0, 2), (9, 3), (1, 1)] {
+            let counts: Vec<u64> = (0..ranks)
+                .map(|q| directory_count(points, ranks, q))
+                .collect();
+            for q in 0..ranks {
+                assert_eq!(
+                    counts[q as usize],
+                    (0..points).filter(|g| g % ranks == q).count() as u64
+                );
+            }
+            assert_eq!(counts.iter().sum::<u64>(), points);
+        }
+    }
+}

@@ -156,9 +156,10 @@ fn finish(mine: &mut Scattered, outline: &[u64], names: &[u8]) {
     mine.elements = outline[2];
     mine.chunks = outline[3] as usize;
     let names = String::from_utf8_lossy(names);
-    mine.markers = match names.is_empty() {
-        true => Vec::new(),
-        false => names.split('\n').map(str::to_string).collect(),
+    mine.markers = if names.is_empty() {
+        Vec::new()
+    } else {
+        names.split('\n').map(str::to_string).collect()
     };
     mine.on_marker.sort_unstable();
     mine.on_marker.dedup();
@@ -220,4 +221,20 @@ fn round(comm: &Comm, mine: &mut Scattered, chunk: Option<&Chunk>) {
 /// The block of `index` of `count` on `ranks` ranks: `⌊index·ranks/count⌋`.
 pub fn block_of(index: u64, count: u64, ranks: usize) -> usize {
     (u128::from(index) * ranks as u128 / u128::from(count)) as usize
+}
+
+#[cfg(test)]
+mod tests {
+    use super::block_of;
+
+    #[test]
+    fn elements_go_to_ranks_in_contiguous_blocks() {
+        let blocks = |count: u64, ranks: usize| -> Vec<usize> {
+            (0..count).map(|e| block_of(e, count, ranks)).collect()
+        };
+        assert_eq!(blocks(7, 3), [0, 0, 0, 1, 1, 2, 2]);
+        assert_eq!(blocks(2, 3), [0, 1]);
+        assert_eq!(blocks(4, 1), [0, 0, 0, 0]);
+        assert_eq!(block_of(u64::MAX - 1, u64::MAX, 1000), 999);
+    }
 }

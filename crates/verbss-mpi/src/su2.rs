@@ -40,13 +40,12 @@ pub fn read(world: &Comm, path: &Path) -> anyhow::Result<(Share, String)> {
     let scattered = verbss_mpi::scatter::scatter(world, path, lines)?;
     let share = verbss_mpi::repartition::repartition(world, &scattered)?;
     let from = format!(
-        "part {} of {} by PT-Scotch (rank 0 read the file in {} chunks of at most {lines} \
-         lines), {} of the file's {} cells",
+        "PT-Scotch part {} of {} (the file's {} cells read by rank 0 in {} chunks of at most \
+         {lines} lines)",
         world.rank() + 1,
         world.size(),
-        scattered.chunks,
-        share.mesh.cell_count(),
-        scattered.elements
+        scattered.elements,
+        scattered.chunks
     );
     Ok((share, from))
 }

@@ -55,10 +55,10 @@ fn rank_lines(stdout: &str) -> Vec<(usize, usize, usize, usize)> {
         .filter(|l| l.starts_with("rank "))
         .map(|l| {
             (
-                number(l, ": part "),
+                number(l, ": PT-Scotch part "),
                 number(l, " chunks of"),
-                number(l, " of the file's"),
-                number(l, " cells:"),
+                number(l, " cells read;"),
+                number(l, " cells read by rank 0"),
             )
         })
         .collect();
