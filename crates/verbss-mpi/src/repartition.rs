@@ -16,16 +16,21 @@
 //! 4. **Nodes.** Each rank asks the directory ranks for its cells' nodes:
 //!    their coordinates and their markers. A node is on the boundary when it
 //!    is on a facet of any marker, and on a group when on one of that
-//!    marker's facets (as `verbss deform --moving MARKER`).
+//!    marker's facets (as `verbss deform --moving MARKER`). Each rank checks
+//!    its cells as the whole-file reader checks a mesh ([`validate_at`]):
+//!    the line checks were the stream's, and two cells with the same nodes
+//!    have the same lowest node, so they meet on one rank.
 
 use std::collections::HashMap;
 
 use verbss::io::gmsh::partitioned::Share;
+use verbss::io::su2::validate_at;
 use verbss::mesh::{CellKind, Cells, FileOrigin};
 use verbss::{Error, Mesh, Result};
 
 use crate::coupled::kind_code;
 use crate::scatter::Scattered;
+use crate::share::agree;
 use crate::sys::ScotchError;
 use crate::Comm;
 
@@ -169,6 +174,10 @@ pub fn repartition(comm: &Comm, scattered: &Scattered) -> Result<Share> {
         groups: Vec::new(),
         origin: FileOrigin::default(),
     };
+    // A duplicated element lands on one rank (the part of its lowest node),
+    // which finds it here as the whole-file reader would.
+    let valid = validate_at(&mesh, &scattered.path, scattered.elements_line);
+    agree(comm, valid, "found an invalid cell")?;
     Ok(Share {
         mesh,
         boundary: markers.iter().map(|on| !on.is_empty()).collect(),

@@ -17,7 +17,7 @@
 //! with) ends the rounds: rank 0 broadcasts its message, naming the file and
 //! the line, and every rank returns it.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use verbss::io::su2::{stream, Chunk};
 use verbss::mesh::CellKind;
@@ -39,12 +39,16 @@ const TAG_MARKER: u64 = 1;
 /// What one rank holds after the read.
 #[derive(Debug, Default)]
 pub struct Scattered {
+    /// The file.
+    pub path: PathBuf,
     /// `NDIME=`.
     pub dim: usize,
     /// `NPOIN=`, the number of nodes `N`.
     pub points: u64,
     /// `NELEM=`, the number of cells `E`.
     pub elements: u64,
+    /// The line of `NELEM=`.
+    pub elements_line: usize,
     /// The markers' names, in file order.
     pub markers: Vec<String>,
     /// The number of chunks rank 0 read.
@@ -79,7 +83,10 @@ impl Scattered {
 /// Reads the SU2 file at `path` on rank 0, `lines` lines at a time, and
 /// scatters it (collective; see the module documentation).
 pub fn scatter(comm: &Comm, path: &Path, lines: usize) -> Result<Scattered> {
-    let mut mine = Scattered::default();
+    let mut mine = Scattered {
+        path: path.to_path_buf(),
+        ..Scattered::default()
+    };
     if comm.rank() != 0 {
         return receive(comm, &mut mine).map(|()| mine);
     }
@@ -97,6 +104,7 @@ pub fn scatter(comm: &Comm, path: &Path, lines: usize) -> Result<Scattered> {
                 outline.points as u64,
                 outline.elements as u64,
                 outline.chunks as u64,
+                outline.elements_line as u64,
             ];
             comm.broadcast(0, &mut header[..1]);
             comm.broadcast(0, &mut header[1..]);
@@ -122,7 +130,7 @@ fn receive(comm: &Comm, mine: &mut Scattered) -> Result<()> {
         match header[0] {
             ROUND_CHUNK => round(comm, mine, None),
             ROUND_END => {
-                let mut outline = [0u64; 4];
+                let mut outline = [0u64; 5];
                 comm.broadcast(0, &mut outline);
                 let mut names = Vec::new();
                 broadcast_bytes(comm, &mut names);
@@ -148,13 +156,14 @@ fn broadcast_bytes(comm: &Comm, bytes: &mut Vec<u8>) {
     comm.broadcast(0, bytes);
 }
 
-/// The end: the outline `[dim, points, elements, chunks]` and the marker
+/// The end: the outline `[dim, points, elements, chunks, elements_line]` and the marker
 /// names, one a line.
 fn finish(mine: &mut Scattered, outline: &[u64], names: &[u8]) {
     mine.dim = outline[0] as usize;
     mine.points = outline[1];
     mine.elements = outline[2];
     mine.chunks = outline[3] as usize;
+    mine.elements_line = outline[4] as usize;
     let names = String::from_utf8_lossy(names);
     mine.markers = if names.is_empty() {
         Vec::new()

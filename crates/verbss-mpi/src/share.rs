@@ -94,6 +94,8 @@ pub fn prescribe(
 }
 
 #[cfg(with_mpi)]
+pub(crate) use with_mpi::agree;
+#[cfg(with_mpi)]
 pub use with_mpi::read_rank_share;
 
 #[cfg(with_mpi)]
@@ -119,7 +121,14 @@ mod with_mpi {
             let wanted = partitions_of(count, comm.size() as usize, comm.rank() as usize, path)?;
             read_share(path, wanted)
         };
-        let result = read();
+        agree(comm, read(), "could not read its share")
+    }
+
+    /// `result` on every rank where every rank's is `Ok` (collective);
+    /// otherwise every rank returns an error: the failing ranks their own,
+    /// the others the lowest failing rank's, as `rank R WHAT: MESSAGE`. So
+    /// that no rank goes on to wait for the others.
+    pub(crate) fn agree<T>(comm: &Comm, result: Result<T>, what: &str) -> Result<T> {
         let message = result
             .as_ref()
             .err()
@@ -127,9 +136,9 @@ mod with_mpi {
         let all = comm.all_gather(&message);
         match all.iter().position(|m| !m.is_empty()) {
             None => result,
-            Some(r) if r == comm.rank() as usize => result,
+            Some(_) if result.is_err() => result,
             Some(r) => Err(Error::InvalidMesh(format!(
-                "rank {r} could not read its share: {}",
+                "rank {r} {what}: {}",
                 String::from_utf8_lossy(&all[r])
             ))),
         }

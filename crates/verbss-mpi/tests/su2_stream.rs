@@ -155,8 +155,9 @@ fn the_tetrahedral_brick_is_scattered_cut_and_deformed_on_one_to_three_ranks() {
     check_counts(&stdouts, &whole, lines / 5000);
 }
 
-/// A bad line and a file cut short: every rank stops, one message (the
-/// whole-file reader's, with the file and the line), exit code 2.
+/// A bad line, a file cut short and a duplicated element: every rank stops,
+/// one message (the whole-file reader's, with the file and the line), exit
+/// code 2.
 #[test]
 fn a_bad_su2_file_stops_every_rank_with_one_message() {
     if !ready() {
@@ -168,9 +169,17 @@ fn a_bad_su2_file_stops_every_rank_with_one_message() {
     let npoin = lines.iter().position(|l| l.starts_with("NPOIN")).unwrap();
     let mut bad_line: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
     bad_line[npoin + 100] = "0.5 x 100".into();
+    // The first element twice (NELEM= one more): found after the cut, on
+    // the rank that holds both.
+    let mut duplicated: Vec<String> = lines.iter().map(|l| l.to_string()).collect();
+    let nelem = lines.iter().position(|l| l.starts_with("NELEM")).unwrap();
+    let count: usize = lines[nelem]["NELEM=".len()..].trim().parse().unwrap();
+    duplicated[nelem] = format!("NELEM= {}", count + 1);
+    duplicated.insert(nelem + 2, lines[nelem + 1].to_string());
     let files = [
         ("bad_line.su2", bad_line.join("\n") + "\n"),
         ("cut.su2", lines[..npoin + 100].join("\n") + "\n"),
+        ("duplicated.su2", duplicated.join("\n") + "\n"),
     ];
     for (name, text) in files {
         let path = dir.path().join(name);
@@ -198,10 +207,30 @@ fn a_bad_su2_file_stops_every_rank_with_one_message() {
         assert_eq!(o.status.code(), Some(2), "{name}");
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert_eq!(stderr.matches("error: ").count(), 1, "{name}: {stderr}");
-        assert_eq!(
-            stderr.matches(&format!("error: {expected}")).count(),
-            1,
-            "{name}: {stderr}"
-        );
+        // Rank 0's message, or the rank's that found the duplicated element.
+        let said = stderr.matches(&format!("error: {expected}")).count()
+            + stderr
+                .matches(&format!(" found an invalid cell: {expected}"))
+                .count();
+        assert_eq!(said, 1, "{name}: {stderr}");
     }
+    // What the partitioned MSH path refuses, this path refuses: the default
+    // --method robust, which needs the whole mesh.
+    let mesh = asset("su2/mesh_NACA0012_inv.su2");
+    let out = dir.path().join("moved.pvtu");
+    let args = [
+        "deform",
+        mesh.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "airfoil",
+        "--translate",
+        "0.01,0",
+    ];
+    let o = verbss_mpi_with(2, &args, dir.path(), &[]);
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let refused = "which runs --method verbss or spring";
+    assert_eq!(stderr.matches(refused).count(), 1, "{stderr}");
 }

@@ -61,7 +61,7 @@
 mod read;
 mod write;
 
-pub use read::{stream, Chunk, Outline};
+pub use read::{stream, validate_at, Chunk, Outline};
 pub use write::{write_moved_to, write_to, write_zones_to};
 
 use std::path::Path;

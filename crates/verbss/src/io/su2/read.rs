@@ -16,6 +16,18 @@ use crate::io::shown;
 use crate::io::MAX_GROUPS;
 use crate::mesh::{Cells, FileOrigin, Group, Mesh};
 
+/// [`Mesh::validate`] with its message given at line `line` of `path` (the
+/// `NELEM=` line: what it finds is about whole elements).
+pub fn validate_at(mesh: &Mesh, path: &Path, line: usize) -> Result<()> {
+    mesh.validate().map_err(|e| {
+        crate::io::invalid_at(e, |message| Error::Parse {
+            path: path.to_path_buf(),
+            line,
+            message,
+        })
+    })
+}
+
 /// One non-blank line with its comment removed.
 enum Line<'a> {
     /// `KEY= value`: the key as written, upper-cased without `_` and spaces
@@ -563,14 +575,7 @@ impl<'a> Parser<'a> {
                 ..FileOrigin::default()
             },
         };
-        let line = nelem.map_or(last, |(_, line)| line);
-        mesh.validate().map_err(|e| {
-            crate::io::invalid_at(e, |message| Error::Parse {
-                path: path.to_path_buf(),
-                line,
-                message,
-            })
-        })?;
+        validate_at(&mesh, path, nelem.map_or(last, |(_, line)| line))?;
         Ok(mesh)
     }
 

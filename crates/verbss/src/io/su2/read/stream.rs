@@ -40,6 +40,9 @@ pub struct Outline {
     pub points: usize,
     /// `NELEM=`.
     pub elements: usize,
+    /// The line of `NELEM=` (where [`crate::io::su2::validate_at`] puts
+    /// what it finds of whole elements).
+    pub elements_line: usize,
     /// The markers' names, in file order.
     pub markers: Vec<String>,
     /// The number of chunks handed over.
@@ -51,8 +54,9 @@ pub struct Outline {
 /// most `lines` points, elements or facets. Checks what the whole-file
 /// reader checks line by line, with its messages; at the end what only the
 /// end tells (counts, missing sections, node indices below `NPOIN=`). The
-/// check of whole cells the whole-file reader adds ([`crate::Mesh::validate`])
-/// is left to whoever assembles them. Fails with the first error of the
+/// check of whole cells the whole-file reader adds
+/// ([`crate::io::su2::validate_at`], a
+/// duplicated element) is left to whoever assembles them. Fails with the first error of the
 /// file or of `each`; `each` may have seen chunks before it.
 pub fn stream(
     path: &Path,
@@ -82,6 +86,7 @@ pub fn stream(
                 dim,
                 points: npoin,
                 elements: state.nelem.map_or(0, |n| n.0),
+                elements_line: state.nelem.map_or(0, |n| n.1),
                 markers: state.markers.into_iter().map(|m| m.name).collect(),
                 chunks,
             });
