@@ -15,10 +15,11 @@
 //! Gmsh tag − 1), whether it is on the boundary and on which groups.
 //!
 //! **Ghosts.** The ghost layer comes from one exchange in
-//! [`LocalSolver::new`]: each node's owner is the lowest rank holding it,
-//! and every rank sends each of its cells to the owners of the cell's
-//! nodes, so that an owner holds every cell around its nodes — its own and
-//! those of the neighbouring partitions — and their other nodes as ghosts
+//! [`LocalSolver::new`](crate::coupled::LocalSolver::new): each node's
+//! owner is the lowest rank holding it, and every rank sends each of its
+//! cells to the owners of the cell's nodes, so that an owner holds every
+//! cell around its nodes — its own and those of the neighbouring
+//! partitions — and their other nodes as ghosts
 //! ([`crate::part::Part`]). A rank's memory then holds its partitions plus
 //! one layer of cells.
 //!
