@@ -19,8 +19,9 @@
 //!   the whole mesh.
 //!
 //! The MPI parts ([`Comm`], [`coupled`], [`halo`], [`partition`],
-//! [`stepper`], [`sweeper`]) are built when `build.rs` finds MPI and METIS
-//! ([`missing`] says why they were not); [`colouring`], [`cost`], [`part`],
+//! [`scatter`], [`stepper`], [`sweeper`]) are built when `build.rs` finds
+//! MPI and METIS ([`missing`] says why they were not), `repartition` when it
+//! also finds PT-Scotch ([`ptscotch_missing`]); [`colouring`], [`cost`], [`part`],
 //! [`pieces`] and [`share`] (except [`share::read_rank_share`]) need neither. The crate's only `unsafe` code calls MPI and
 //! METIS (the private module `sys`).
 //!

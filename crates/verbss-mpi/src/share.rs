@@ -94,7 +94,7 @@ pub fn prescribe(
     Ok((roles, u))
 }
 
-#[cfg(with_mpi)]
+#[cfg(with_ptscotch)]
 pub(crate) use with_mpi::agree;
 #[cfg(with_mpi)]
 pub use with_mpi::read_rank_share;
