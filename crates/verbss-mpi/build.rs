@@ -9,6 +9,13 @@
 //! compiler's default paths. Both are confirmed by compiling and linking a
 //! probe program. The reason for a build without them is passed on as
 //! `VERBSS_MPI_MISSING` (empty when they were found).
+//!
+//! PT-Scotch, for the distributed read of SU2 files, is looked for only
+//! with MPI: `$PTSCOTCH_DIR/include` and `$PTSCOTCH_DIR/lib` when set, else
+//! Debian's `/usr/include/scotch` and the compiler's default paths, with the
+//! libraries `ptscotch`, `scotch` and `ptscotcherr`, confirmed by a probe.
+//! When found it compiles `src/scotch.c` and sets `cfg(with_ptscotch)`;
+//! otherwise `VERBSS_PTSCOTCH_MISSING` says why.
 
 use std::env;
 use std::path::PathBuf;
@@ -41,14 +48,41 @@ fn metis() -> Flags {
     }
 }
 
+/// PT-Scotch's flags (see the module documentation).
+fn ptscotch() -> Flags {
+    let mut flags = match env::var_os("PTSCOTCH_DIR") {
+        Some(dir) => Flags::under(&PathBuf::from(dir), "ptscotch"),
+        None => Flags {
+            include: vec!["/usr/include/scotch".into()],
+            ..Flags::lib("ptscotch")
+        },
+    };
+    flags.libs.extend(["scotch".into(), "ptscotcherr".into()]);
+    flags
+}
+
+/// PT-Scotch's flags when a probe against them and MPI's links, or why not.
+fn find_ptscotch(mpi: &Flags, out: &std::path::Path) -> Result<Flags, String> {
+    let flags = ptscotch();
+    let mut all = flags.clone();
+    all.extend(mpi.clone());
+    let source = "#include <stdio.h>\n#include <mpi.h>\n#include <ptscotch.h>\n\
+         int main(void) { SCOTCH_Context c; SCOTCH_Dgraph g; SCOTCH_contextInit(&c); \
+         SCOTCH_dgraphInit(&g, MPI_COMM_WORLD); return 0; }\n";
+    probe(&all, out, "probe_ptscotch", source, false).map(|()| flags)
+}
+
 fn main() {
     println!("cargo::rustc-check-cfg=cfg(with_mpi)");
+    println!("cargo::rustc-check-cfg=cfg(with_ptscotch)");
+    println!("cargo::rerun-if-changed=src/scotch.c");
     println!("cargo::rerun-if-changed=build.rs");
     println!("cargo::rerun-if-changed=src/shim.c");
     for var in [
         "PATH",
         "MPICC",
         "METIS_DIR",
+        "PTSCOTCH_DIR",
         "PKG_CONFIG",
         "PKG_CONFIG_PATH",
         "PKG_CONFIG_LIBDIR",
@@ -70,6 +104,21 @@ fn main() {
                 .warnings(true)
                 .extra_warnings(true)
                 .compile("verbss_mpi_shim");
+            match find_ptscotch(&flags, &out) {
+                Ok(scotch) => {
+                    cc::Build::new()
+                        .file("src/scotch.c")
+                        .includes(&scotch.include)
+                        .includes(&flags.include)
+                        .warnings(true)
+                        .extra_warnings(true)
+                        .compile("verbss_mpi_scotch");
+                    scotch.link();
+                    println!("cargo::rustc-cfg=with_ptscotch");
+                    println!("cargo::rustc-env=VERBSS_PTSCOTCH_MISSING=");
+                }
+                Err(why) => println!("cargo::rustc-env=VERBSS_PTSCOTCH_MISSING={why}"),
+            }
             flags.link();
             println!("cargo::rustc-cfg=with_mpi");
             println!("cargo::rustc-env=VERBSS_MPI_MISSING=");
@@ -81,6 +130,7 @@ fn main() {
                  then `cargo clean -p verbss-mpi` and build again"
             );
             println!("cargo::rustc-env=VERBSS_MPI_MISSING={why}");
+            println!("cargo::rustc-env=VERBSS_PTSCOTCH_MISSING=no MPI");
         }
     }
 }

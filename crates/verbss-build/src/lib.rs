@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// Include folders, library folders and libraries.
-#[derive(Default)]
+#[derive(Default, Clone)]
 pub struct Flags {
     /// `-I` folders.
     pub include: Vec<PathBuf>,

@@ -326,7 +326,7 @@ fn mix(g: u64) -> u64 {
 }
 
 /// The position of `kind` in [`CellKind::ALL`].
-fn kind_code(kind: CellKind) -> u64 {
+pub(crate) fn kind_code(kind: CellKind) -> u64 {
     CellKind::ALL
         .iter()
         .position(|&k| k == kind)

@@ -12,11 +12,16 @@
 //!   already has its partition and communicator;
 //! * [`cost`] counts what one sweep sends on a given partition;
 //! * [`share`] reads a rank's own partitions of a partitioned MSH 4.1 file,
-//!   for [`coupled::LocalSolver`], without any rank holding the whole mesh.
+//!   for [`coupled::LocalSolver`], without any rank holding the whole mesh;
+//! * [`scatter`] reads an SU2 file on rank 0 in one pass and scatters it in
+//!   blocks, and `repartition` (built with PT-Scotch) cuts it with PT-Scotch
+//!   and gives each rank its part's share, again without any rank holding
+//!   the whole mesh.
 //!
 //! The MPI parts ([`Comm`], [`coupled`], [`halo`], [`partition`],
-//! [`stepper`], [`sweeper`]) are built when `build.rs` finds MPI and METIS
-//! ([`missing`] says why they were not); [`colouring`], [`cost`], [`part`],
+//! [`scatter`], [`stepper`], [`sweeper`]) are built when `build.rs` finds
+//! MPI and METIS ([`missing`] says why they were not), `repartition` when it
+//! also finds PT-Scotch ([`ptscotch_missing`]); [`colouring`], [`cost`], [`part`],
 //! [`pieces`] and [`share`] (except [`share::read_rank_share`]) need neither. The crate's only `unsafe` code calls MPI and
 //! METIS (the private module `sys`).
 //!
@@ -35,6 +40,10 @@ pub mod part;
 #[cfg(with_mpi)]
 pub mod partition;
 pub mod pieces;
+#[cfg(with_ptscotch)]
+pub mod repartition;
+#[cfg(with_mpi)]
+pub mod scatter;
 pub mod share;
 #[cfg(with_mpi)]
 pub mod stepper;
@@ -46,6 +55,14 @@ mod sys;
 
 #[cfg(with_mpi)]
 pub use sys::{Comm, Mpi, Scalar};
+
+/// Why this build cannot partition with PT-Scotch (no MPI, or no PT-Scotch
+/// was found when it was compiled), which the distributed read of SU2
+/// files needs (`scatter`, `repartition`); `None` when it can.
+pub fn ptscotch_missing() -> Option<&'static str> {
+    let why = env!("VERBSS_PTSCOTCH_MISSING");
+    (!why.is_empty()).then_some(why)
+}
 
 /// Why this build has no MPI parts (no MPI or no METIS was found when it
 /// was compiled); `None` when it has them.

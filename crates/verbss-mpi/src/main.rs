@@ -10,9 +10,11 @@
 //! report; every rank writes its piece `OUT-STEM_RANK.vtu` beside OUT, and
 //! rank 0 the `OUT-STEM.pvtu` joining them.
 //!
-//! A `.pvtu` output, from a partitioned MSH 4.1 input, goes another way
-//! ([`share_run::run_shares`]): every rank reads only its own partitions and
-//! writes only its own cells, and no rank holds the whole mesh.
+//! A `.pvtu` output, from a partitioned MSH 4.1 input or an SU2 input, goes
+//! another way ([`share_run::run_shares`]): every rank reads only its own
+//! partitions (MSH) or rank 0 streams the file to the others and PT-Scotch
+//! cuts it (SU2, [`su2`]); every rank writes only its own cells, and no rank
+//! holds the whole mesh.
 //!
 //! Exit codes as `verbss`: 0 success, 2 bad input, 3 an inverted element,
 //! 4 a step no solver could solve. Built without MPI or METIS (see
@@ -24,6 +26,8 @@
 mod run;
 #[cfg(with_mpi)]
 mod share_run;
+#[cfg(with_mpi)]
+mod su2;
 
 use std::process::ExitCode;
 

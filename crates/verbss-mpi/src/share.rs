@@ -15,10 +15,11 @@
 //! Gmsh tag − 1), whether it is on the boundary and on which groups.
 //!
 //! **Ghosts.** The ghost layer comes from one exchange in
-//! [`LocalSolver::new`]: each node's owner is the lowest rank holding it,
-//! and every rank sends each of its cells to the owners of the cell's
-//! nodes, so that an owner holds every cell around its nodes — its own and
-//! those of the neighbouring partitions — and their other nodes as ghosts
+//! [`LocalSolver::new`](crate::coupled::LocalSolver::new): each node's
+//! owner is the lowest rank holding it, and every rank sends each of its
+//! cells to the owners of the cell's nodes, so that an owner holds every
+//! cell around its nodes — its own and those of the neighbouring
+//! partitions — and their other nodes as ghosts
 //! ([`crate::part::Part`]). A rank's memory then holds its partitions plus
 //! one layer of cells.
 //!
@@ -93,6 +94,8 @@ pub fn prescribe(
     Ok((roles, u))
 }
 
+#[cfg(with_ptscotch)]
+pub(crate) use with_mpi::agree;
 #[cfg(with_mpi)]
 pub use with_mpi::read_rank_share;
 
@@ -119,7 +122,14 @@ mod with_mpi {
             let wanted = partitions_of(count, comm.size() as usize, comm.rank() as usize, path)?;
             read_share(path, wanted)
         };
-        let result = read();
+        agree(comm, read(), "could not read its share")
+    }
+
+    /// `result` on every rank where every rank's is `Ok` (collective);
+    /// otherwise every rank returns an error: the failing ranks their own,
+    /// the others the lowest failing rank's, as `rank R WHAT: MESSAGE`. So
+    /// that no rank goes on to wait for the others.
+    pub(crate) fn agree<T>(comm: &Comm, result: Result<T>, what: &str) -> Result<T> {
         let message = result
             .as_ref()
             .err()
@@ -127,9 +137,9 @@ mod with_mpi {
         let all = comm.all_gather(&message);
         match all.iter().position(|m| !m.is_empty()) {
             None => result,
-            Some(r) if r == comm.rank() as usize => result,
+            Some(_) if result.is_err() => result,
             Some(r) => Err(Error::InvalidMesh(format!(
-                "rank {r} could not read its share: {}",
+                "rank {r} {what}: {}",
                 String::from_utf8_lossy(&all[r])
             ))),
         }

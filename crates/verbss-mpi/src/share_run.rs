@@ -1,6 +1,8 @@
 //! `verbss-mpi deform` with a `.pvtu` output, from a partitioned MSH 4.1
-//! input: every rank reads only its own partitions
-//! ([`verbss_mpi::share::read_rank_share`]), the flow-solver entry
+//! input, where every rank reads only its own partitions
+//! ([`verbss_mpi::share::read_rank_share`]), or from a single-zone SU2
+//! input, which rank 0 reads in one pass and scatters and PT-Scotch cuts
+//! ([`verbss_mpi::scatter`], `verbss_mpi::repartition`). Then the flow-solver entry
 //! ([`verbss_mpi::coupled::LocalSolver`]) adds the ghost layer and sweeps,
 //! and every rank checks and writes its own cells — no rank holds the whole
 //! mesh (docs/distributed.md).
@@ -19,7 +21,7 @@ use std::process::ExitCode;
 
 use anyhow::bail;
 use verbss::deform::Reference;
-use verbss::io::gmsh::partitioned::partition_count;
+use verbss::io::gmsh::partitioned::{partition_count, Share};
 use verbss::mesh::Mesh;
 use verbss::motion::{Clock, Frame, Motion};
 use verbss::quality;
@@ -31,28 +33,51 @@ use verbss_mpi::share::{global_numbers, partitions_of, prescribe, read_rank_shar
 use verbss_mpi::Comm;
 
 use crate::run::join_pieces;
+use crate::su2;
 
 /// Whether `verbss-mpi deform` takes this path: a `.pvtu` output, which
-/// only a partitioned MSH 4.1 input is written to.
+/// only a partitioned MSH 4.1 or an SU2 input is written to.
 pub fn applies(args: &DeformArgs) -> bool {
     args.output().extension().is_some_and(|e| e == "pvtu")
 }
 
+/// Whether `path` has the extension `ext`, in any case.
+fn has_extension(path: &Path, ext: &str) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
+}
+
 /// Fails unless `input` is a partitioned MSH 4.1 file.
 fn check_partitioned(input: &Path, output: &Path) -> anyhow::Result<()> {
-    let is_msh = input
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("msh"));
-    if is_msh && partition_count(input)? > 0 {
+    if has_extension(input, "msh") && partition_count(input)? > 0 {
         return Ok(());
     }
     bail!(
         "{}: a .pvtu output is written rank by rank, from a partitioned MSH 4.1 input \
-         (`gmsh -part N -format msh41`), and {} is not partitioned: give another output \
-         format, or partition the mesh",
+         (`gmsh -part N -format msh41`) or an SU2 input, and {} is neither: give another \
+         output format, or partition the mesh",
         output.display(),
         input.display()
     )
+}
+
+/// This rank's share of the input, and what it says of where the share
+/// comes from (the start of its line).
+fn read_input(world: &Comm, input: &Path, output: &Path) -> anyhow::Result<(Share, String)> {
+    if has_extension(input, "su2") {
+        return su2::read(world, input);
+    }
+    check_partitioned(input, output)?;
+    let share = read_rank_share(world, input)?;
+    let size = world.size() as usize;
+    let partitions = partitions_of(share.partitions, size, world.rank() as usize, input)?;
+    let from = format!(
+        "partitions {}-{} of {}",
+        partitions.start(),
+        partitions.end(),
+        share.partitions
+    );
+    Ok((share, from))
 }
 
 /// The displacement of input position `p` at step `step` of `steps`.
@@ -69,10 +94,9 @@ fn displacement(motion: &Motion, p: &[f64], step: usize, steps: usize) -> verbss
 
 /// Runs the job on every rank (see the module documentation).
 pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
-    check_partitioned(args.mesh(), args.output())?;
     let world = Comm::world();
     let root = world.rank() == 0;
-    let share = read_rank_share(&world, args.mesh())?;
+    let (share, from) = read_input(&world, args.mesh(), args.output())?;
     let job = args.share_job(share.mesh.dim)?;
     let mesh = &share.mesh;
     job.settings.validate()?;
@@ -86,15 +110,10 @@ pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
     let mut solver = LocalSolver::new(&world, mesh, &global_numbers(&share), &roles, &[])?;
     if !job.quiet {
         let part = solver.part();
-        let size = world.size() as usize;
-        let partitions = partitions_of(share.partitions, size, world.rank() as usize, args.mesh())?;
         println!(
-            "rank {}: partitions {}-{} of {}: {} nodes and {} cells read; with the ghost \
-             layer {} nodes and {} cells",
+            "rank {}: {from}: {} nodes and {} cells read; with the ghost layer {} nodes and \
+             {} cells",
             world.rank(),
-            partitions.start(),
-            partitions.end(),
-            share.partitions,
             mesh.node_count(),
             mesh.cell_count(),
             part.node_count(),

@@ -67,6 +67,16 @@ mod ffi {
             recv: *const *mut f64,
             recv_len: *const c_int,
         ) -> c_int;
+        #[cfg(with_ptscotch)]
+        pub fn verbss_scotch_part(
+            comm: c_int,
+            n: usize,
+            offsets: *const u64,
+            targets: *const u64,
+            vertices: u64,
+            parts: c_int,
+            part: *mut i32,
+        ) -> c_int;
         pub fn verbss_metis_idx_bits() -> c_int;
         pub fn verbss_metis_part_kway(
             n: usize,
@@ -410,6 +420,65 @@ impl Comm {
             },
             "a neighbour exchange (MPI_Isend, MPI_Irecv, MPI_Waitall)",
         );
+    }
+}
+
+/// Why PT-Scotch could not partition a distributed graph (the same on every rank).
+#[cfg(with_ptscotch)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum ScotchError {
+    /// A number beyond PT-Scotch's index type.
+    TooLarge,
+    /// PT-Scotch failed (it said why on stderr).
+    Failed,
+    /// Out of memory.
+    Memory,
+}
+
+#[cfg(with_ptscotch)]
+impl Comm {
+    /// PT-Scotch's cut of the distributed graph into `parts` parts
+    /// (collective; `src/scotch.c`): this rank's `offsets.len() − 1`
+    /// vertices are numbered after the lower ranks' ones, local vertex `i`
+    /// has the neighbours `targets[offsets[i]..offsets[i + 1]]` (global
+    /// numbers below `vertices`, the graph symmetric without self loops).
+    /// Deterministic: the same graph on the same ranks gives the same parts.
+    /// The part of each local vertex.
+    pub(crate) fn scotch_part(
+        &self,
+        offsets: &[u64],
+        targets: &[u64],
+        vertices: u64,
+        parts: usize,
+    ) -> Result<Vec<i32>, ScotchError> {
+        assert!(!offsets.is_empty(), "one offset per vertex, plus the end");
+        let n = offsets.len() - 1;
+        assert_eq!(
+            offsets[n],
+            targets.len() as u64,
+            "the offsets end at the targets' end"
+        );
+        let parts = c_int::try_from(parts).map_err(|_| ScotchError::TooLarge)?;
+        let mut part = vec![0i32; n];
+        // SAFETY: `offsets` has n + 1 entries ending at `targets.len()`,
+        // `part` n; scotch.c checks every number against SCOTCH_Num.
+        let status = unsafe {
+            ffi::verbss_scotch_part(
+                self.handle,
+                n,
+                offsets.as_ptr(),
+                targets.as_ptr(),
+                vertices,
+                parts,
+                part.as_mut_ptr(),
+            )
+        };
+        match status {
+            0 => Ok(part),
+            1 => Err(ScotchError::TooLarge),
+            3 => Err(ScotchError::Memory),
+            _ => Err(ScotchError::Failed),
+        }
     }
 }
 

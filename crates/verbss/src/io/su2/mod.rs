@@ -47,6 +47,11 @@
 //! [`parse_zone`] reads one zone and keeps the others verbatim; [`parse_zones`]
 //! reads them all.
 //!
+//! [`stream`] reads a single-zone file once in chunks of lines, handing
+//! each chunk's points, elements and marker facets over without ever
+//! holding the whole mesh (the distributed read of `docs/distributed.md`);
+//! it parses every line as the whole-file reader does, with its messages.
+//!
 //! Sections it does not use (`FFD_NBOX=`, `NPERIODIC=` and any other unknown
 //! keyword, with their data lines) are kept verbatim in [`FileOrigin::su2_skipped`](crate::mesh::FileOrigin::su2_skipped),
 //! each with the section it followed, and [`write_to`] puts them back in the
@@ -56,6 +61,7 @@
 mod read;
 mod write;
 
+pub use read::{stream, validate_at, Chunk, Outline};
 pub use write::{write_moved_to, write_to, write_zones_to};
 
 use std::path::Path;
@@ -150,6 +156,8 @@ fn kind_name(kind: CellKind) -> &'static str {
 
 #[cfg(test)]
 mod hostile_tests;
+#[cfg(test)]
+mod stream_tests;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]

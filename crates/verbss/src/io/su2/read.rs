@@ -1,8 +1,10 @@
 //! The SU2 reader: a line-by-line state machine over the file's sections.
 
 mod entries;
+mod stream;
 mod zones;
 
+pub use stream::{stream, Chunk, Outline};
 pub(super) use zones::{parse_zone, parse_zones};
 
 use std::collections::HashMap;
@@ -13,6 +15,18 @@ use crate::error::{Error, Result};
 use crate::io::shown;
 use crate::io::MAX_GROUPS;
 use crate::mesh::{Cells, FileOrigin, Group, Mesh};
+
+/// [`Mesh::validate`] with its message given at line `line` of `path` (the
+/// `NELEM=` line: what it finds is about whole elements).
+pub fn validate_at(mesh: &Mesh, path: &Path, line: usize) -> Result<()> {
+    mesh.validate().map_err(|e| {
+        crate::io::invalid_at(e, |message| Error::Parse {
+            path: path.to_path_buf(),
+            line,
+            message,
+        })
+    })
+}
 
 /// One non-blank line with its comment removed.
 enum Line<'a> {
@@ -75,30 +89,21 @@ struct Marker {
     facets: Cells,
 }
 
-/// Line-by-line reader state.
-pub(super) struct Parser<'a> {
-    bytes: &'a [u8],
-    path: &'a Path,
-    pos: usize,
-    line: usize,
-    /// Byte offset of the current line.
-    line_start: usize,
-    /// Byte offset just past the line read before the current one (blank
-    /// and comment lines not counted): where the current line's leading
-    /// comments begin.
-    gap_start: usize,
-    /// Byte offset just past the current line.
-    line_end: usize,
+/// What the reader has read so far, apart from where it stands in the bytes:
+/// a streamed read carries it from one chunk of lines to the next.
+pub(super) struct State {
     /// `(value, line)` of `NDIME=`, `NPOIN=`, `NELEM=`, `NMARK=`.
     ndime: Option<(usize, usize)>,
     npoin: Option<(usize, usize)>,
     nelem: Option<(usize, usize)>,
     nmark: Option<(usize, usize)>,
+    /// The points read (and not yet taken by a streamed read).
     coords: Vec<f64>,
+    /// The elements read (and not yet taken by a streamed read).
     cells: Cells,
     markers: Vec<Marker>,
     /// The line of each marker's `MARKER_TAG=`, by name.
-    marker_lines: HashMap<&'a str, usize>,
+    marker_lines: HashMap<String, usize>,
     /// One entry per element or marker section, in file order.
     max_refs: Vec<MaxRef>,
     /// The section whose data lines are being read.
@@ -106,26 +111,20 @@ pub(super) struct Parser<'a> {
     /// The section just read to its end, for "more data than announced" messages.
     closed: Option<Section>,
     /// The last keyword line: `(keyword, line)`.
-    last_keyword: Option<(&'a str, usize)>,
+    last_keyword: Option<(String, usize)>,
     /// Inside sections verbss does not use: where they began (byte offset)
     /// and the section before them. Their data lines are not parsed.
     skipping: Option<(usize, Anchor)>,
     /// The last section read, where a skipped block starting now would stand.
     anchor: Anchor,
-    /// The skipped blocks read so far.
+    /// The skipped blocks read so far (none in a streamed read).
     skipped: Vec<Skipped>,
 }
 
-impl<'a> Parser<'a> {
-    pub(super) fn new(bytes: &'a [u8], path: &'a Path) -> Self {
-        Parser {
-            bytes,
-            path,
-            pos: crate::io::bom(bytes),
-            line: 0,
-            line_start: 0,
-            gap_start: 0,
-            line_end: 0,
+impl State {
+    /// Nothing read yet.
+    fn new() -> Self {
+        State {
             ndime: None,
             npoin: None,
             nelem: None,
@@ -141,6 +140,42 @@ impl<'a> Parser<'a> {
             skipping: None,
             anchor: Anchor::Start,
             skipped: Vec::new(),
+        }
+    }
+}
+
+/// Line-by-line reader: where it stands in the bytes, and its [`State`].
+pub(super) struct Parser<'a> {
+    bytes: &'a [u8],
+    path: &'a Path,
+    pos: usize,
+    line: usize,
+    /// Byte offset of the current line.
+    line_start: usize,
+    /// Byte offset just past the line read before the current one (blank
+    /// and comment lines not counted): where the current line's leading
+    /// comments begin.
+    gap_start: usize,
+    /// Byte offset just past the current line.
+    line_end: usize,
+    /// Whether `bytes` is one chunk of a streamed read: skipped sections
+    /// are not kept (they may span chunks) and `NZONE=` is refused.
+    streamed: bool,
+    state: State,
+}
+
+impl<'a> Parser<'a> {
+    pub(super) fn new(bytes: &'a [u8], path: &'a Path) -> Self {
+        Parser {
+            bytes,
+            path,
+            pos: crate::io::bom(bytes),
+            line: 0,
+            line_start: 0,
+            gap_start: 0,
+            line_end: 0,
+            streamed: false,
+            state: State::new(),
         }
     }
 
@@ -161,7 +196,7 @@ impl<'a> Parser<'a> {
 
     /// The spatial dimension (`NDIME=` was read before any section that needs it).
     fn dim(&self) -> usize {
-        self.ndime.map_or(0, |d| d.0)
+        self.state.ndime.map_or(0, |d| d.0)
     }
 
     /// The next non-blank line without its `%` comment, or `None` at the end.
@@ -227,26 +262,32 @@ impl<'a> Parser<'a> {
     /// Reads to the end: the mesh, and the byte offset where what it read
     /// ends (past its last line or skipped block; trailing comments not included).
     pub(super) fn run(mut self) -> Result<(Mesh, usize)> {
-        while let Some(line) = self.next_line()? {
-            match line {
-                Line::Data(text) => self.data(text)?,
-                Line::Keyword { raw, key, value } => self.keyword(raw, key, value)?,
-            }
-        }
-        let end = match self.skipping {
+        self.read_all()?;
+        let end = match self.state.skipping {
             Some(_) => self.bytes.len(),
             None => self.line_end,
         };
         Ok((self.finish()?, end))
     }
 
+    /// Reads every line of `bytes`.
+    fn read_all(&mut self) -> Result<()> {
+        while let Some(line) = self.next_line()? {
+            match line {
+                Line::Data(text) => self.data(text)?,
+                Line::Keyword { raw, key, value } => self.keyword(raw, key, value)?,
+            }
+        }
+        Ok(())
+    }
+
     /// A data line: the next entry of the open section, skipped, or an error.
     fn data(&mut self, text: &str) -> Result<()> {
-        let Some(open) = &mut self.open else {
-            if self.skipping.is_some() {
+        let Some(open) = &mut self.state.open else {
+            if self.state.skipping.is_some() {
                 return Ok(());
             }
-            let message = match (&self.closed, &self.last_keyword) {
+            let message = match (&self.state.closed, &self.state.last_keyword) {
                 (Some(c), _) => format!(
                     "unexpected data line '{}' after the {} {} announced by {} at line {} \
                      (the count disagrees with the data)",
@@ -271,7 +312,7 @@ impl<'a> Parser<'a> {
         open.done += 1;
         let block = open.block;
         if open.done == open.count {
-            self.closed = self.open.take();
+            self.state.closed = self.state.open.take();
         }
         match block {
             Block::Points => self.point(text),
@@ -283,7 +324,7 @@ impl<'a> Parser<'a> {
     /// A keyword line: opens a section, or starts skipping an unknown one.
     fn keyword(&mut self, raw: &'a str, key: String, value: &'a str) -> Result<()> {
         let line = self.line;
-        if let Some(open) = &self.open {
+        if let Some(open) = &self.state.open {
             return Err(self.err(
                 line,
                 format!(
@@ -297,41 +338,41 @@ impl<'a> Parser<'a> {
                 ),
             ));
         }
-        self.closed = None;
-        let skipped_from = self.skipping.take();
+        self.state.closed = None;
+        let skipped_from = self.state.skipping.take();
         match key.as_str() {
             "NDIME" => {
-                self.once(self.ndime, "NDIME=")?;
+                self.once(self.state.ndime, "NDIME=")?;
                 let d = self.count(value, "NDIME=")?;
                 if d != 2 && d != 3 {
                     return Err(self.err(line, format!("NDIME= {d} (expected 2 or 3)")));
                 }
-                self.ndime = Some((d, line));
-                self.anchor = Anchor::Dimension;
+                self.state.ndime = Some((d, line));
+                self.state.anchor = Anchor::Dimension;
             }
             "NPOIN" => {
                 self.need_dim("NPOIN=")?;
-                self.once(self.npoin, "NPOIN=")?;
+                self.once(self.state.npoin, "NPOIN=")?;
                 let n = self.count(value, "NPOIN=")?;
-                self.coords = Vec::with_capacity(self.capacity(n, self.dim()) * self.dim());
-                self.npoin = Some((n, line));
-                self.anchor = Anchor::Points;
+                self.state.coords = Vec::with_capacity(self.capacity(n, self.dim()) * self.dim());
+                self.state.npoin = Some((n, line));
+                self.state.anchor = Anchor::Points;
                 self.start(Block::Points, n);
             }
             "NELEM" => {
                 self.need_dim("NELEM=")?;
-                self.once(self.nelem, "NELEM=")?;
+                self.once(self.state.nelem, "NELEM=")?;
                 let n = self.count(value, "NELEM=")?;
                 let cap = self.capacity(n, 4);
-                self.cells.kinds.reserve(cap);
-                self.cells.offsets.reserve(cap);
-                self.nelem = Some((n, line));
-                self.anchor = Anchor::Elements;
+                self.state.cells.kinds.reserve(cap);
+                self.state.cells.offsets.reserve(cap);
+                self.state.nelem = Some((n, line));
+                self.state.anchor = Anchor::Elements;
                 self.start(Block::Elements, n);
             }
             "NMARK" => {
                 self.need_dim("NMARK=")?;
-                self.once(self.nmark, "NMARK=")?;
+                self.once(self.state.nmark, "NMARK=")?;
                 let n = self.count(value, "NMARK=")?;
                 if n > MAX_GROUPS {
                     return Err(self.err(
@@ -341,12 +382,21 @@ impl<'a> Parser<'a> {
                         ),
                     ));
                 }
-                self.nmark = Some((n, line));
-                self.anchor = Anchor::MarkerCount;
+                self.state.nmark = Some((n, line));
+                self.state.anchor = Anchor::MarkerCount;
+            }
+            "NZONE" if self.streamed && self.count(value, "NZONE=")? > 1 => {
+                return Err(self.err(
+                    line,
+                    format!(
+                        "NZONE= {value}: a multi-zone file (expected one zone: a streamed read \
+                         takes single-zone files)"
+                    ),
+                ));
             }
             "MARKERTAG" => self.marker_tag(value)?,
             "MARKERELEMS" => {
-                let Some(m) = self.markers.last() else {
+                let Some(m) = self.state.markers.last() else {
                     return Err(self.err(line, "MARKER_ELEMS= before MARKER_TAG=".into()));
                 };
                 if m.elems_seen {
@@ -360,27 +410,30 @@ impl<'a> Parser<'a> {
                 }
                 let n = self.count(value, "MARKER_ELEMS=")?;
                 let cap = self.capacity(n, 2);
-                let m = self.markers.last_mut().expect("checked above");
+                let m = self.state.markers.last_mut().expect("checked above");
                 m.elems_seen = true;
                 m.facets.kinds.reserve(cap);
                 m.facets.offsets.reserve(cap);
                 self.start(Block::Marker, n);
             }
             _ => {
-                self.skipping = skipped_from.or(Some((self.gap_start, self.anchor)));
+                self.state.skipping = skipped_from.or(Some((self.gap_start, self.state.anchor)));
             }
         }
-        if let (None, Some(from)) = (self.skipping, skipped_from) {
+        if let (None, Some(from)) = (self.state.skipping, skipped_from) {
             self.keep_skipped(from, self.line_start);
         }
-        self.last_keyword = Some((raw, line));
+        self.state.last_keyword = Some((raw.to_string(), line));
         Ok(())
     }
 
     /// Keeps the skipped block that began at byte `start` after `after`, up to byte `end`.
     fn keep_skipped(&mut self, (start, after): (usize, Anchor), end: usize) {
+        if self.streamed {
+            return;
+        }
         let text = &self.bytes[start..end.min(self.bytes.len())];
-        self.skipped.push(Skipped {
+        self.state.skipped.push(Skipped {
             after,
             text: String::from_utf8_lossy(text).into_owned(),
         });
@@ -389,11 +442,11 @@ impl<'a> Parser<'a> {
     /// `MARKER_TAG= name`: starts a new marker.
     fn marker_tag(&mut self, name: &'a str) -> Result<()> {
         let line = self.line;
-        let Some((nmark, nmark_line)) = self.nmark else {
+        let Some((nmark, nmark_line)) = self.state.nmark else {
             return Err(self.err(line, "MARKER_TAG= before NMARK=".into()));
         };
         self.check_marker_elems()?;
-        if self.markers.len() == nmark {
+        if self.state.markers.len() == nmark {
             return Err(self.err(
                 line,
                 format!(
@@ -405,25 +458,25 @@ impl<'a> Parser<'a> {
         if name.is_empty() {
             return Err(self.err(line, "empty MARKER_TAG= (expected a name)".into()));
         }
-        if let Some(first) = self.marker_lines.insert(name, line) {
+        if let Some(first) = self.state.marker_lines.insert(name.to_string(), line) {
             return Err(self.err(
                 line,
                 format!("marker '{name}' given twice (first at line {first})"),
             ));
         }
-        self.markers.push(Marker {
+        self.state.markers.push(Marker {
             name: name.to_string(),
             line,
             elems_seen: false,
             facets: Cells::new(),
         });
-        self.anchor = Anchor::Marker(self.markers.len() - 1);
+        self.state.anchor = Anchor::Marker(self.state.markers.len() - 1);
         Ok(())
     }
 
     /// Fails when the last marker has no `MARKER_ELEMS=`.
     fn check_marker_elems(&self) -> Result<()> {
-        match self.markers.last() {
+        match self.state.markers.last() {
             Some(m) if !m.elems_seen => Err(self.err(
                 self.line,
                 format!(
@@ -444,17 +497,17 @@ impl<'a> Parser<'a> {
             line: self.line,
         };
         if block != Block::Points {
-            self.max_refs.push(MaxRef { index: 0, line: 0 });
+            self.state.max_refs.push(MaxRef { index: 0, line: 0 });
         }
         if count == 0 {
-            self.closed = Some(section);
+            self.state.closed = Some(section);
         } else {
-            self.open = Some(section);
+            self.state.open = Some(section);
         }
     }
 
     fn need_dim(&self, keyword: &str) -> Result<()> {
-        match self.ndime {
+        match self.state.ndime {
             Some(_) => Ok(()),
             None => Err(self.err(
                 self.line,
@@ -495,11 +548,43 @@ impl<'a> Parser<'a> {
     }
     /// Checks what only the end of the file tells and builds the mesh.
     fn finish(mut self) -> Result<Mesh> {
-        if let Some(from) = self.skipping.take() {
+        if let Some(from) = self.state.skipping.take() {
             self.keep_skipped(from, self.bytes.len());
         }
+        let (dim, npoin) = self.check_end()?;
         let last = self.line.max(1);
-        if let Some(open) = &self.open {
+        let (path, nelem) = (self.path, self.state.nelem);
+        let mesh = Mesh {
+            dim,
+            node_tags: (1..=npoin as u64).collect(),
+            cell_tags: (1..=self.state.cells.len() as u64).collect(),
+            coords: self.state.coords,
+            cells: self.state.cells,
+            groups: self
+                .state
+                .markers
+                .into_iter()
+                .map(|m| Group {
+                    name: m.name,
+                    tag: None,
+                    facets: m.facets,
+                })
+                .collect(),
+            origin: FileOrigin {
+                su2_skipped: self.state.skipped,
+                ..FileOrigin::default()
+            },
+        };
+        validate_at(&mesh, path, nelem.map_or(last, |(_, line)| line))?;
+        Ok(mesh)
+    }
+
+    /// Checks what only the end of the file tells: no section left open,
+    /// `NDIME=`, `NPOIN=` and `NELEM=` given, every marker complete, every
+    /// node index below `NPOIN=`. Gives `NDIME=` and `NPOIN=`.
+    pub(super) fn check_end(&self) -> Result<(usize, usize)> {
+        let last = self.line.max(1);
+        if let Some(open) = &self.state.open {
             return Err(self.err(
                 last,
                 format!(
@@ -512,28 +597,29 @@ impl<'a> Parser<'a> {
                 ),
             ));
         }
-        let Some((dim, _)) = self.ndime else {
+        let Some((dim, _)) = self.state.ndime else {
             return Err(self.err(last, "missing NDIME= (expected NDIME= 2 or 3)".into()));
         };
-        let Some((npoin, npoin_line)) = self.npoin else {
+        let Some((npoin, npoin_line)) = self.state.npoin else {
             return Err(self.err(last, "missing NPOIN= (the file has no points)".into()));
         };
-        if self.nelem.is_none() {
+        if self.state.nelem.is_none() {
             return Err(self.err(last, "missing NELEM= (the file has no elements)".into()));
         }
         self.check_marker_elems()?;
-        if let Some((nmark, line)) = self.nmark {
-            if self.markers.len() < nmark {
+        if let Some((nmark, line)) = self.state.nmark {
+            if self.state.markers.len() < nmark {
                 return Err(self.err(
                     last,
                     format!(
                         "file ends after {} of the {nmark} markers announced by NMARK= at line {line}",
-                        self.markers.len()
+                        self.state.markers.len()
                     ),
                 ));
             }
         }
         if let Some(bad) = self
+            .state
             .max_refs
             .iter()
             .find(|m| m.line > 0 && m.index >= npoin)
@@ -550,35 +636,6 @@ impl<'a> Parser<'a> {
                 ),
             ));
         }
-        let (path, nelem) = (self.path, self.nelem);
-        let mesh = Mesh {
-            dim,
-            node_tags: (1..=npoin as u64).collect(),
-            cell_tags: (1..=self.cells.len() as u64).collect(),
-            coords: self.coords,
-            cells: self.cells,
-            groups: self
-                .markers
-                .into_iter()
-                .map(|m| Group {
-                    name: m.name,
-                    tag: None,
-                    facets: m.facets,
-                })
-                .collect(),
-            origin: FileOrigin {
-                su2_skipped: self.skipped,
-                ..FileOrigin::default()
-            },
-        };
-        let line = nelem.map_or(last, |(_, line)| line);
-        mesh.validate().map_err(|e| {
-            crate::io::invalid_at(e, |message| Error::Parse {
-                path: path.to_path_buf(),
-                line,
-                message,
-            })
-        })?;
-        Ok(mesh)
+        Ok((dim, npoin))
     }
 }

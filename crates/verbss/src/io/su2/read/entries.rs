@@ -36,7 +36,7 @@ impl Parser<'_> {
                     ),
                 ));
             }
-            self.coords.push(x);
+            self.state.coords.push(x);
         }
         self.trailing_indices(tokens, &format!("the {dim} coordinates"))
     }
@@ -62,9 +62,9 @@ impl Parser<'_> {
     pub(super) fn element(&mut self, text: &str) -> Result<()> {
         let dim = self.dim();
         let kind = self.element_kind(text, |k| k.dim() == dim)?;
-        let mut cells = std::mem::take(&mut self.cells);
+        let mut cells = std::mem::take(&mut self.state.cells);
         let done = self.element_nodes(text, kind, &mut cells);
-        self.cells = cells;
+        self.state.cells = cells;
         done
     }
 
@@ -72,9 +72,13 @@ impl Parser<'_> {
     pub(super) fn marker_element(&mut self, text: &str) -> Result<()> {
         let dim = self.dim();
         let kind = self.element_kind(text, |k| k.dim() < dim)?;
-        let mut m = self.markers.pop().expect("a marker section has a marker");
+        let mut m = self
+            .state
+            .markers
+            .pop()
+            .expect("a marker section has a marker");
         let done = self.element_nodes(text, kind, &mut m.facets);
-        self.markers.push(m);
+        self.state.markers.push(m);
         done
     }
 
@@ -129,9 +133,10 @@ impl Parser<'_> {
 
     /// What the section being read holds (the section may have just been closed).
     fn open_what(&self) -> &'static str {
-        self.open
+        self.state
+            .open
             .as_ref()
-            .or(self.closed.as_ref())
+            .or(self.state.closed.as_ref())
             .map_or("elements", |s| s.block.what())
     }
 
@@ -169,6 +174,7 @@ impl Parser<'_> {
         let top = cells.nodes[start..].iter().copied().max().unwrap_or(0);
         let line = self.line;
         let max = self
+            .state
             .max_refs
             .last_mut()
             .expect("an element section has a max");
