@@ -201,7 +201,13 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
 pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
     let format = Format::from_path(&args.output)?;
     refuse_input_as_output(&args.mesh, &args.output, args.overwrite, true)?;
-    let mesh = zone::read(&args.mesh, args.zone.zone, "--zone K", args.quiet)?;
+    let mut mesh = zone::read(&args.mesh, args.zone.zone, "--zone K", args.quiet)?;
+    let write_options = args.msh.options(&mesh);
+    if format != Format::Msh {
+        // Only an MSH output writes the coordinates back into the input
+        // file's bytes; any other format frees them (the file's size).
+        mesh.origin.gmsh = None;
+    }
     let dim = mesh.dim;
     let slides = slides(&args.slide, dim)?;
     for g in args
@@ -230,7 +236,7 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
     let job = Job {
         name: file_stem(&output),
         source: args.mesh.display().to_string(),
-        write_options: args.msh.options(&mesh),
+        write_options,
         mesh: Arc::new(mesh),
         attachments: slides
             .into_iter()

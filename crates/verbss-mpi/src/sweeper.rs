@@ -28,7 +28,7 @@ use verbss::solve::{
 };
 use verbss::springs::{self, Connectivity, NodeBlocks, Springs};
 use verbss::topology;
-use verbss::{Error, Result};
+use verbss::{CompactCells, Error, Result};
 
 use crate::halo::{swap, Halo};
 use crate::part::Part;
@@ -97,7 +97,7 @@ impl<'c> Sweeper<'c> {
             graph: topology::node_graph_from(&part.cells, &node_cells),
             edge_graph: topology::edge_graph_from(&part.cells, &node_cells),
             node_cells,
-            cells: part.cells.clone(),
+            cells: CompactCells::ordered(&part.cells, 0..part.cells.len()),
             node_tags: part.node_tags.clone(),
             cell_tags: part.cell_tags.clone(),
             stiffness: Vec::new(),

@@ -75,7 +75,7 @@ pub mod springs;
 pub mod topology;
 
 pub use error::{Error, Result};
-pub use mesh::{CellKind, Cells, Group, Mesh};
+pub use mesh::{CellKind, Cells, CompactCells, Group, Mesh};
 
 /// The README's library example, run as a doctest.
 #[doc = include_str!("../../../README.md")]

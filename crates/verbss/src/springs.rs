@@ -28,7 +28,7 @@ use crate::geometry::{
     add_outer, morton_keys, nearest_on_quad, nearest_on_segment, nearest_on_triangle, norm,
     packed_len, packed_mul, point, sub,
 };
-use crate::mesh::{Cells, Mesh};
+use crate::mesh::{CompactCells, Mesh};
 use crate::topology::{self, Csr};
 
 mod refill;
@@ -49,8 +49,8 @@ pub enum Springs {
 pub struct Connectivity {
     /// Spatial dimension `D`.
     pub dim: usize,
-    /// The mesh's volume cells.
-    pub cells: Cells,
+    /// The mesh's volume cells (in the order of [`Connectivity::new`]).
+    pub cells: CompactCells,
     /// Node → cells incidence.
     pub node_cells: Csr,
     /// Node-coupling graph: nodes sharing a cell.
@@ -85,11 +85,10 @@ impl Connectivity {
         let edge_graph = topology::edge_graph_from(&mesh.cells, &node_cells);
         let by_curve = curve_order(mesh);
         let mut rank = vec![0; by_curve.len()];
-        let mut cells = Cells::new();
         for (r, &c) in by_curve.iter().enumerate() {
             rank[c] = r;
-            cells.push(mesh.cells.kinds[c], mesh.cells.cell(c));
         }
+        let cells = CompactCells::ordered(&mesh.cells, by_curve.iter().copied());
         for c in &mut node_cells.targets {
             *c = rank[*c as usize] as u32;
         }
@@ -348,7 +347,7 @@ fn row<const D: usize>(
             if facet.contains(&local) {
                 continue;
             }
-            let (p, w, m) = nearest::<D>(coords, &xi, nodes, facet).ok_or_else(|| {
+            let (p, w, m) = nearest::<D>(coords, &xi, &nodes, facet).ok_or_else(|| {
                 Error::InvalidMesh(format!(
                     "cell {} has a degenerate quadrilateral face",
                     conn.cell_tags[c]

@@ -28,7 +28,7 @@ use super::{
 };
 use crate::error::Result;
 use crate::geometry::{ldlt_mul, packed_len, point};
-use crate::mesh::{CellKind, Cells};
+use crate::mesh::CellKind;
 use crate::springs::NodeBlocks;
 
 /// Krylov iterations between GMRES restarts.
@@ -47,16 +47,15 @@ pub(crate) struct AccelState {
 }
 
 impl AccelState {
-    /// Nothing built yet, for a mesh of `cells`.
-    pub(crate) fn new(cells: &Cells) -> AccelState {
-        let simplices = cells
-            .kinds
+    /// Nothing built yet, for a mesh of cells of `kinds`.
+    pub(crate) fn new(kinds: &[CellKind]) -> AccelState {
+        let simplices = kinds
             .iter()
             .filter(|k| matches!(k, CellKind::Triangle | CellKind::Tetra))
             .count();
         AccelState {
             accelerator: None,
-            simplicial: 2 * simplices >= cells.len(),
+            simplicial: 2 * simplices >= kinds.len(),
             declined: false,
         }
     }

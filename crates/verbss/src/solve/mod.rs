@@ -254,7 +254,7 @@ impl Engine {
         }
         let unit = unit_directions(dim, roles, normals, |i| mesh.node_tags[i])?;
         let conn = Connectivity::new(mesh);
-        let accel = accel::AccelState::new(&conn.cells);
+        let accel = accel::AccelState::new(&conn.cells.kinds);
         let fixed: Vec<usize> = (0..n).filter(|&i| roles[i] == NodeRole::Fixed).collect();
         let reach = topology::bfs_layers(&conn.graph, &fixed);
         if let Some(i) = (0..n).find(|&i| reach[i] == u32::MAX && roles[i] != NodeRole::Fixed) {

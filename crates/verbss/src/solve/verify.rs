@@ -64,7 +64,7 @@ pub(crate) fn heights<const D: usize>(
 ) -> Vec<f64> {
     let cells: Vec<f64> = (0..conn.cells.len())
         .into_par_iter()
-        .map(|c| cell_height::<D>(conn.cells.kinds[c], conn.cells.cell(c), coords))
+        .map(|c| cell_height::<D>(conn.cells.kinds[c], &conn.cells.cell(c), coords))
         .collect();
     layout
         .order

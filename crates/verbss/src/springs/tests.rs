@@ -2,7 +2,7 @@
 //! pattern against a fresh assembly.
 
 use super::*;
-use crate::mesh::{samples, CellKind};
+use crate::mesh::{samples, CellKind, Cells};
 
 /// One equilateral-ish triangle with node 2 unknown:
 /// edges to 0 and 1, and the ball-vertex spring to edge (0, 1).
