@@ -137,7 +137,11 @@ pub enum Motion {
     /// the deflection is `w(s) = δ (s/L)²` and each section turns with the
     /// bent axis by `φ(s) = atan(2 δ s / L²)`:
     /// `x(n) = X + (w + b(cos φ − 1)) e_b − b sin φ e_s`. A tip deflection of
-    /// 0.4 L turns the tip section by atan(0.8) ≈ 38.7°.
+    /// 0.4 L turns the tip section by atan(0.8) ≈ 38.7°. Points beyond the
+    /// tip (`s > L`: a rounded tip cap, the cells outboard of it that a
+    /// rigid layer moves with the wing) move rigidly with the tip section:
+    /// with `r = s − L`, `x(n) = X + (w + b(cos φ − 1) + r sin φ) e_b +
+    /// (r(cos φ − 1) − b sin φ) e_s` at `s = L`, not the parabola continued.
     Bending {
         /// A point of the clamped root section.
         root: [f64; 3],
@@ -368,14 +372,17 @@ impl Motion {
                     &std::array::from_fn(|d| direction[d] - k * es[d]),
                     "the bending direction",
                 )?;
-                let s = along(p, root, &es).max(0.0);
+                let along_span = along(p, root, &es).max(0.0);
+                let s = along_span.min(*span);
+                let beyond = along_span - s;
                 let b = along(p, root, &eb);
                 let delta = f * tip;
                 let w = delta * (s / span).powi(2);
                 let phi = (2.0 * delta * s / (span * span)).atan();
                 let (sin, cos) = phi.sin_cos();
                 for d in 0..dim {
-                    p[d] += (w + b * (cos - 1.0)) * eb[d] - b * sin * es[d];
+                    p[d] += (w + b * (cos - 1.0) + beyond * sin) * eb[d]
+                        + (beyond * (cos - 1.0) - b * sin) * es[d];
                 }
             }
             Motion::Positions(PositionSource::Final(table)) => {

@@ -130,6 +130,38 @@ fn bending_deflects_the_tip_and_turns_its_section() {
     );
 }
 
+/// Outboard of the tip the parabola is not continued: a point beyond the
+/// tip keeps its distance to the tip section's points (a rigid motion).
+#[test]
+fn beyond_the_tip_points_move_rigidly_with_the_tip_section() {
+    let m = Motion::Bending {
+        root: [0.0; 3],
+        span_axis: [0.0, 1.0, 0.0],
+        direction: [0.0, 0.0, 1.0],
+        span: 2.0,
+        tip: 0.8,
+    };
+    let phi = 0.8f64.atan();
+    // 0.3 beyond the tip on the axis: along the tip section's turned axis.
+    close(
+        &moved(&m, &[0.3, 2.3, 0.0], clock(40, 40)),
+        &[0.3, 2.0 + 0.3 * phi.cos(), 0.8 + 0.3 * phi.sin()],
+    );
+    let tip = [[0.3, 2.0, 0.0], [0.3, 2.0, 0.1], [-0.2, 2.0, -0.05]];
+    for outboard in [[0.3, 2.3, 0.1], [0.0, 2.15, -0.2]] {
+        let after = moved(&m, &outboard, clock(40, 40));
+        for t in tip {
+            let was: f64 = (0..3).map(|d| (outboard[d] - t[d]).powi(2)).sum();
+            let moved_t = moved(&m, &t, clock(40, 40));
+            let is: f64 = (0..3).map(|d| (after[d] - moved_t[d]).powi(2)).sum();
+            assert!(
+                (is.sqrt() - was.sqrt()).abs() < 1e-12,
+                "{outboard:?} to {t:?}"
+            );
+        }
+    }
+}
+
 #[test]
 fn final_positions_are_reached_exactly() {
     let p = vec![0.1 + 0.2, 0.7];
