@@ -24,7 +24,8 @@ use std::time::Instant;
 
 use verbss::geometry::{ldlt_factor, morton_keys, packed_len, point};
 use verbss::solve::{
-    coupled, relax, unit_directions, Accel, Frames, Method, NodeRole, SolveInfo, SolveParams,
+    cell_height, coupled, relax, unit_directions, Accel, Frames, Method, NodeRole, SolveInfo,
+    SolveParams, Stage, ERROR_FRACTION,
 };
 use verbss::springs::{self, Connectivity, NodeBlocks, Springs};
 use verbss::topology;
@@ -68,6 +69,20 @@ struct Built {
     unprojected: Vec<f64>,
     /// Unknown components of all ranks.
     dofs: u64,
+    /// Each owned position's local size `h_p`, the smallest height of its
+    /// cells ([`cell_height`]).
+    heights: Vec<f64>,
+}
+
+/// How [`Sweeper::sweeps`] ended.
+enum Swept {
+    /// Converged, and trusted under escalation.
+    Accepted,
+    /// The sweep limit came first.
+    Exhausted,
+    /// The eq.-8 value grew a million-fold over the first sweep's (or is
+    /// not finite).
+    Diverged { value: f64, first: f64 },
 }
 
 impl<'c> Sweeper<'c> {
@@ -294,6 +309,16 @@ impl<'c> Sweeper<'c> {
             Springs::BallVertex
         };
         let mut blocks = springs::assemble(&self.conn, coords, &order[..owned], &position, kind)?;
+        let conn = &self.conn;
+        let heights = order[..owned]
+            .iter()
+            .map(|&i| {
+                conn.node_cells
+                    .entries(i)
+                    .map(|c| cell_height::<D>(conn.cells.kinds[c], &conn.cells.cell(c), coords))
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .collect();
         let unprojected = frames.project_diagonal::<D>(&mut blocks.diag);
         self.factor_diag::<D>(&mut blocks, &order)?;
         Ok(Built {
@@ -307,6 +332,7 @@ impl<'c> Sweeper<'c> {
             blocks,
             unprojected,
             dofs: total,
+            heights,
         })
     }
 
@@ -356,20 +382,73 @@ impl<'c> Sweeper<'c> {
             info.converged = true;
             return Ok(info);
         }
+        // Under escalation a stage that diverges or runs out of sweeps is
+        // followed by sweeps with ω = 1 (Stage::SafeSweeps), from the initial
+        // guess after a divergence, from the last iterate otherwise.
+        let initial = work.clone();
+        let omegas: &[f64] = if params.escalate {
+            &[params.omega, 1.0]
+        } else {
+            &[params.omega]
+        };
+        for (k, &omega) in omegas.iter().enumerate() {
+            if k > 0 {
+                info.stages.push(Stage::SafeSweeps);
+            }
+            match self.sweeps::<D>(b, &constant, &mut work, omega, threshold, params, &mut info) {
+                Swept::Accepted => {
+                    info.converged = true;
+                    break;
+                }
+                Swept::Exhausted => {}
+                Swept::Diverged { value, first } => {
+                    if !params.escalate {
+                        return Err(Error::InvalidSetting(format!(
+                            "the sweeps diverged (eq.-8 value {value:.3e} at sweep {}, \
+                             {first:.3e} at the first); omega {omega} is too large for this mesh",
+                            info.iterations
+                        )));
+                    }
+                    work.copy_from_slice(&initial);
+                }
+            }
+        }
+        for (p, &i) in b.order.iter().enumerate() {
+            displacement[D * i..D * (i + 1)].copy_from_slice(&work[D * p..D * (p + 1)]);
+        }
+        Ok(info)
+    }
+
+    /// Sweeps of `work` with `omega` until the eq.-8 value falls below
+    /// `threshold` and, under escalation, every node's estimated error is
+    /// within [`ERROR_FRACTION`] of its cell height (the eq.-8 stop is not
+    /// the error, docs/method.md, "Accepting a step": the threshold is cut
+    /// tenfold until it is), at most `params.max_iterations` sweeps
+    /// (collective: every rank decides alike on all-reduced values).
+    #[allow(clippy::too_many_arguments)]
+    fn sweeps<const D: usize>(
+        &self,
+        b: &Built,
+        constant: &[f64],
+        work: &mut [f64],
+        omega: f64,
+        mut threshold: f64,
+        params: &SolveParams,
+        info: &mut SolveInfo,
+    ) -> Swept {
         let mut first = None;
-        while info.iterations < params.max_iterations {
+        for _ in 0..params.max_iterations {
             let mut local = 0.0;
             for c in 0..b.colour_starts.len() - 1 {
                 for p in b.colour_starts[c]..b.colour_starts[c + 1] {
-                    let (value, change) = self.update::<D>(b, &constant, params.omega, p, &work);
+                    let (value, change) = self.update::<D>(b, constant, omega, p, work);
                     work[D * p..D * (p + 1)].copy_from_slice(&value);
                     local += change;
                 }
                 let (send, recv) = &b.exchanges[c];
-                swap(self.comm, &self.halo.ranks, send, recv, &mut work, D);
+                swap(self.comm, &self.halo.ranks, send, recv, work, D);
             }
-            let sum = self.comm.sum(local);
-            let value = sum / b.dofs as f64;
+            let value = self.comm.sum(local) / b.dofs as f64;
             info.iterations += 1;
             info.residual = value;
             if params.record_history {
@@ -377,21 +456,51 @@ impl<'c> Sweeper<'c> {
             }
             let first = *first.get_or_insert(value);
             if !value.is_finite() || value > 1e6 * first {
-                return Err(Error::InvalidSetting(format!(
-                    "the sweeps diverged (eq.-8 value {value:.3e} at sweep {}, {first:.3e} at \
-                     the first); omega {} is too large for this mesh",
-                    info.iterations, params.omega
-                )));
+                return Swept::Diverged { value, first };
             }
             if value < threshold {
-                info.converged = true;
-                break;
+                if !params.escalate {
+                    return Swept::Accepted;
+                }
+                info.error_ratio = self.error_ratio::<D>(b, constant, work);
+                if info.error_ratio <= ERROR_FRACTION {
+                    return Swept::Accepted;
+                }
+                threshold /= 10.0;
             }
         }
-        for (p, &i) in b.order.iter().enumerate() {
-            displacement[D * i..D * (i + 1)].copy_from_slice(&work[D * p..D * (p + 1)]);
-        }
-        Ok(info)
+        Swept::Exhausted
+    }
+
+    /// `max_p |e_p| / h_p` over every rank's owned unknowns (collective),
+    /// `e_p = K_pp⁻¹ (c_p + Σ_j B_pj u_j) − u_p` the Jacobi step that puts
+    /// position `p` where its springs hold it given its neighbours (in its
+    /// frame when it slides), `h_p` its local size.
+    fn error_ratio<const D: usize>(&self, b: &Built, constant: &[f64], work: &[f64]) -> f64 {
+        let worst = (0..b.frames.len())
+            .map(|p| {
+                let old = point::<D>(work, p);
+                let (jacobi, _) = relax::<D>(
+                    &b.blocks.diag[packed_len(D) * p..],
+                    &coupled::<D>(&b.blocks, constant, p, work),
+                    &old,
+                    b.frames.get::<D>(p),
+                    1.0,
+                );
+                let error = (0..D)
+                    .map(|k| (jacobi[k] - old[k]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                if error == 0.0 {
+                    0.0
+                } else if b.heights[p] > 0.0 {
+                    error / b.heights[p]
+                } else {
+                    f64::INFINITY
+                }
+            })
+            .fold(0.0, f64::max);
+        self.comm.max(worst)
     }
 
     /// The owned prescribed nodes.

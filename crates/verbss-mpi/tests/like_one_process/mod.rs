@@ -1,6 +1,7 @@
 //! What the tests of `verbss-mpi deform` with a `.pvtu` output share: the
 //! run under `mpirun`, the single-process run it is compared with, and the
-//! comparison.
+//! comparison. Each test file uses what it needs of it.
+#![allow(dead_code)]
 
 use std::collections::HashMap;
 use std::path::Path;

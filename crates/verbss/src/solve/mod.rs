@@ -96,6 +96,7 @@ pub use self::params::{
 use self::pass::{gather, prescribed_scale, run};
 pub use self::spring_solver::{SolverSetup, SpringSolver};
 pub use self::verbss::relax;
+pub use self::verify::cell_height;
 pub(crate) use sweep::{chunked_dot, chunked_sum, sweep};
 
 use crate::error::{Error, Result};

@@ -35,7 +35,7 @@ pub(crate) struct Check {
 /// `|det(e₁, e₂)| / max |e_k|` in 2D and `|det(e₁, e₂, e₃)| / max |e_k × e_l|`
 /// in 3D, with `e_k` the corner's edges. For a rectangle (box) this is its
 /// shortest side; for a simplex, a height over one of its largest facets.
-pub(crate) fn cell_height<const D: usize>(kind: CellKind, nodes: &[usize], coords: &[f64]) -> f64 {
+pub fn cell_height<const D: usize>(kind: CellKind, nodes: &[usize], coords: &[f64]) -> f64 {
     let mut height = f64::INFINITY;
     for corner in kind.table().corners {
         let x0 = point::<D>(coords, nodes[corner[0]]);
