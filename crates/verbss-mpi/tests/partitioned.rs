@@ -28,7 +28,7 @@ use verbss_mpi::share::partitions_of;
 mod common;
 mod like_one_process;
 
-use like_one_process::{deforms_like_one_process, verbss_mpi_with};
+use like_one_process::{deforms_like_one_process, node_index, verbss_mpi_with};
 
 /// `mpirun -np NP verbss-mpi ARGS…`.
 fn verbss_mpi(np: usize, args: &[&str], session: &Path) -> std::process::Output {
@@ -142,12 +142,7 @@ fn distributed(np: usize, name: &str, group: &str) -> Vec<Rank> {
 /// nodes and cells of its partitions, and of its part with ghosts.
 fn expected_counts(whole: &Mesh, name: &str, np: usize) -> Vec<[usize; 4]> {
     let path = fixture(name);
-    let index: HashMap<u64, usize> = whole
-        .node_tags
-        .iter()
-        .enumerate()
-        .map(|(i, &t)| (t, i))
-        .collect();
+    let index = node_index(whole);
     let cell_index: HashMap<u64, usize> = whole
         .cell_tags
         .iter()
@@ -440,12 +435,7 @@ fn deform_stops_at_an_inverted_cell_and_at_unconverged_sweeps() {
     let name = "channel_hole_part3_v41_ascii.msh";
     let whole = verbss::io::read(&fixture(name)).unwrap();
     let mesh = fixture(name);
-    let index: HashMap<u64, usize> = whole
-        .node_tags
-        .iter()
-        .enumerate()
-        .map(|(i, &t)| (t, i))
-        .collect();
+    let index = node_index(&whole);
     for (extra, code, message) in [
         (
             ["--translate", "0,0.45", "--max-iterations", "100000"],

@@ -14,22 +14,11 @@ use std::path::Path;
 use verbss::deform::Reference;
 use verbss::mesh::CellKind;
 use verbss::{io, Mesh};
-use verbss_testkit::needs;
 
 mod common;
 mod like_one_process;
 
-use like_one_process::{deforms_like_one_process, verbss_mpi_with};
-
-/// Whether MPI and PT-Scotch are here; otherwise the test skips.
-fn ready() -> bool {
-    common::mpi_ready()
-        && needs(
-            "PT-Scotch when verbss-mpi is built (Debian: libptscotch-dev \
-             libscotchparmetis-dev, then cargo clean -p verbss-mpi)",
-            verbss_mpi::ptscotch_missing().map_or(Ok(()), |why| Err(why.into())),
-        )
-}
+use like_one_process::{deforms_like_one_process, ptscotch_ready, verbss_mpi_with};
 
 fn asset(path: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -89,7 +78,7 @@ fn check_counts(stdouts: &[String], whole: &Mesh, chunks: usize) {
 
 #[test]
 fn a_2d_hybrid_su2_file_is_scattered_cut_and_deformed_on_one_to_three_ranks() {
-    if !ready() {
+    if !ptscotch_ready() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
@@ -143,7 +132,7 @@ fn a_2d_hybrid_su2_file_is_scattered_cut_and_deformed_on_one_to_three_ranks() {
 
 #[test]
 fn the_tetrahedral_brick_is_scattered_cut_and_deformed_on_one_to_three_ranks() {
-    if !ready() {
+    if !ptscotch_ready() {
         return;
     }
     let su2 = asset("su2/mesh_brick_tets_ffd.su2");
@@ -160,7 +149,7 @@ fn the_tetrahedral_brick_is_scattered_cut_and_deformed_on_one_to_three_ranks() {
 /// code 2.
 #[test]
 fn a_bad_su2_file_stops_every_rank_with_one_message() {
-    if !ready() {
+    if !ptscotch_ready() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();

@@ -5,25 +5,14 @@
 //! on with ω = 1 from the initial guess, and a step no stage solves stops
 //! the run with exit code 4.
 
-use std::collections::HashMap;
 use std::path::Path;
 
 use verbss::io;
-use verbss_testkit::needs;
 
 mod common;
 mod like_one_process;
 
-use like_one_process::verbss_mpi_with;
-
-fn ready() -> bool {
-    common::mpi_ready()
-        && needs(
-            "PT-Scotch when verbss-mpi is built (Debian: libptscotch-dev \
-             libscotchparmetis-dev, then cargo clean -p verbss-mpi)",
-            verbss_mpi::ptscotch_missing().map_or(Ok(()), |why| Err(why.into())),
-        )
-}
+use like_one_process::{node_index, ptscotch_ready, verbss_mpi_with};
 
 fn repo(path: &str) -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -55,12 +44,7 @@ fn run(
     if !o.status.success() {
         return (o, f64::INFINITY);
     }
-    let index: HashMap<u64, usize> = exact
-        .node_tags
-        .iter()
-        .enumerate()
-        .map(|(i, &t)| (t, i))
-        .collect();
+    let index = node_index(exact);
     let dim = exact.dim;
     let mut worst = 0.0f64;
     for r in 0..2 {
@@ -82,7 +66,7 @@ fn run(
 /// error is trusted, and the mesh is valid.
 #[test]
 fn a_loose_stop_is_not_accepted_until_the_error_is_trusted() {
-    if !ready() {
+    if !ptscotch_ready() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
@@ -137,7 +121,7 @@ fn a_loose_stop_is_not_accepted_until_the_error_is_trusted() {
 /// solve within the sweep limit is exit 4 with advice, never a mesh.
 #[test]
 fn diverging_sweeps_go_on_safely_and_an_unsolved_step_is_exit_4() {
-    if !ready() {
+    if !ptscotch_ready() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();

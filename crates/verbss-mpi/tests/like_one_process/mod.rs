@@ -56,6 +56,26 @@ pub fn single(
     d.mesh()
 }
 
+/// Whether MPI and PT-Scotch are here (an SU2 input's path needs both);
+/// otherwise the test skips.
+pub fn ptscotch_ready() -> bool {
+    common::mpi_ready()
+        && verbss_testkit::needs(
+            "PT-Scotch when verbss-mpi is built (Debian: libptscotch-dev \
+             libscotchparmetis-dev, then cargo clean -p verbss-mpi)",
+            verbss_mpi::ptscotch_missing().map_or(Ok(()), |why| Err(why.into())),
+        )
+}
+
+/// Each node's index in `mesh` by its tag (the pieces keep the tags).
+pub fn node_index(mesh: &Mesh) -> HashMap<u64, usize> {
+    mesh.node_tags
+        .iter()
+        .enumerate()
+        .map(|(i, &t)| (t, i))
+        .collect()
+}
+
 /// The eq.-8 tolerance of both runs.
 pub const TOLERANCE: f64 = 1e-12;
 
@@ -88,12 +108,7 @@ pub fn deforms_like_one_process(
         },
     };
     let one = single(&whole, group, motion_of, 2, reference);
-    let index: HashMap<u64, usize> = whole
-        .node_tags
-        .iter()
-        .enumerate()
-        .map(|(i, &t)| (t, i))
-        .collect();
+    let index = node_index(&whole);
     let dim = whole.dim;
     let reference = match reference {
         Reference::Fixed => "fixed",
