@@ -25,6 +25,8 @@
 #[cfg(with_mpi)]
 mod run;
 #[cfg(with_mpi)]
+mod share_report;
+#[cfg(with_mpi)]
 mod share_run;
 #[cfg(with_mpi)]
 mod su2;

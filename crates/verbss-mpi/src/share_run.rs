@@ -18,6 +18,7 @@
 
 use std::path::Path;
 use std::process::ExitCode;
+use std::time::Instant;
 
 use anyhow::bail;
 use verbss::deform::Reference;
@@ -25,14 +26,18 @@ use verbss::io::gmsh::partitioned::{partition_count, Share};
 use verbss::mesh::Mesh;
 use verbss::motion::{Clock, Frame, Motion};
 use verbss::quality;
+use verbss::solve::Stage;
 use verbss_cli::deform::DeformArgs;
+use verbss_cli::progress::Progress;
 use verbss_cli::run::{file_stem, output_dir};
 use verbss_mpi::coupled::LocalSolver;
 use verbss_mpi::pieces::write_local_piece;
 use verbss_mpi::share::{global_numbers, partitions_of, prescribe, read_rank_share};
+use verbss_mpi::step_quality::step_quality;
 use verbss_mpi::Comm;
 
 use crate::run::join_pieces;
+use crate::share_report::StepLog;
 use crate::su2;
 
 /// Whether `verbss-mpi deform` takes this path: a `.pvtu` output, which
@@ -122,8 +127,11 @@ pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
     }
     let orientation = quality::orientation(mesh);
     let mut coords = mesh.coords.clone();
+    let mut report = StepLog::new(&world, &job, mesh, solver.part(), &orientation);
+    let progress = Progress::new(steps, job.quiet || !root);
     let mut sweeps = 0;
     for step in 1..=steps {
+        let start = Instant::now();
         let (_, target) = at(step)?;
         let (springs, mut u) = match job.settings.reference {
             Reference::Fixed => (mesh.coords.clone(), target.clone()),
@@ -134,39 +142,54 @@ pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
         };
         before = target;
         let info = solver.solve(&springs, &mut u, &job.settings.solve)?;
-        if !info.converged {
-            if root {
-                eprintln!(
-                    "error: step {step}: the sweeps did not converge in {} sweeps (eq.-8 value \
-                     {:e}); a partitioned input has no exact solve to escalate to: raise \
-                     --max-iterations, or take more --steps",
-                    info.iterations, info.residual
-                );
-            }
-            write(&world, &job.output, mesh, &coords, &orientation)?;
-            return Ok(ExitCode::from(4));
-        }
         let moved: Vec<f64> = springs.iter().zip(&u).map(|(x, du)| x + du).collect();
-        let inverted = quality::inverted_cells(mesh, &moved, &orientation).len() as u64;
-        let inverted = world.sum(inverted);
-        if inverted > 0 {
-            if root {
-                eprintln!(
-                    "error: step {step} inverts {inverted} cells; {} holds step {}",
-                    job.output.display(),
-                    step - 1
-                );
-            }
-            write(&world, &job.output, mesh, &coords, &orientation)?;
-            return Ok(ExitCode::from(3));
+        let check = Instant::now();
+        let mut r = step_quality(&world, mesh, &moved, &orientation);
+        r.check_seconds = check.elapsed().as_secs_f64();
+        r.step = step;
+        r.substeps = 1;
+        r.iterations = info.iterations;
+        r.residual = info.residual;
+        r.converged = info.converged;
+        r.form_seconds = info.form_seconds;
+        r.solve_seconds = info.solve_seconds;
+        r.springs_seconds = info.springs_seconds;
+        r.stages = vec![Stage::Sweeps];
+        r.true_residual = f64::NAN;
+        r.error_ratio = f64::NAN;
+        r.seconds = start.elapsed().as_secs_f64();
+        let inverted = r.inverted;
+        report.push(r);
+        if !info.converged {
+            progress.finish();
+            let message = format!(
+                "step {step}: the sweeps did not converge in {} sweeps (eq.-8 value {:e}); a \
+                 partitioned input has no exact solve to escalate to: raise --max-iterations, \
+                 or take more --steps",
+                info.iterations, info.residual
+            );
+            return report.stop(&world, &message, 4, || {
+                write(&world, &job.output, mesh, &coords, &orientation)
+            });
         }
+        if inverted > 0 {
+            progress.finish();
+            let message = format!(
+                "step {step} inverts {inverted} cells; {} holds step {}",
+                job.output.display(),
+                step - 1
+            );
+            return report.stop(&world, &message, 3, || {
+                write(&world, &job.output, mesh, &coords, &orientation)
+            });
+        }
+        progress.step(report.last());
         coords = moved;
         sweeps += info.iterations;
-        if root && !job.quiet {
-            println!("step {step}/{steps}: {} sweeps", info.iterations);
-        }
     }
+    progress.finish();
     write(&world, &job.output, mesh, &coords, &orientation)?;
+    report.finish(&world, "completed")?;
     if root && !job.quiet {
         println!(
             "wrote {} ({} pieces, {sweeps} sweeps in all)",

@@ -431,7 +431,8 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
 
 /// A step that inverts a cell (the hole pushed through the top wall) stops
 /// with exit code 3, sweeps that do not converge with exit code 4: one
-/// message each, and the pieces hold the last valid mesh, the input.
+/// message each, the report ends with the failed step, and the pieces hold
+/// the last valid mesh, the input.
 #[test]
 fn deform_stops_at_an_inverted_cell_and_at_unconverged_sweeps() {
     if !common::mpi_ready() {
@@ -460,6 +461,7 @@ fn deform_stops_at_an_inverted_cell_and_at_unconverged_sweeps() {
     ] {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("moved.pvtu");
+        let report = dir.path().join("report.json");
         let mut args = vec![
             "deform",
             mesh.to_str().unwrap(),
@@ -469,12 +471,26 @@ fn deform_stops_at_an_inverted_cell_and_at_unconverged_sweeps() {
             "wall",
             "--method",
             "verbss",
+            "--report",
+            report.to_str().unwrap(),
         ];
         args.extend_from_slice(&extra);
         let o = verbss_mpi(2, &args, dir.path());
         assert_eq!(o.status.code(), Some(code));
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert_eq!(stderr.matches(message).count(), 1, "{stderr}");
+        // The report ends with the failed step, its message the outcome.
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        let outcome = report["outcome"].as_str().unwrap();
+        assert!(stderr.contains(&format!("error: {outcome}\n")), "{stderr}");
+        let failed = &report["steps"][1];
+        assert_eq!(report["steps"].as_array().unwrap().len(), 2);
+        assert_eq!(failed["converged"], code == 3);
+        let inverted = failed["inverted"].as_u64().unwrap();
+        if code == 3 {
+            assert!(outcome.starts_with(&format!("step 1 inverts {inverted} cells")));
+        }
         for r in 0..2 {
             let piece = verbss::io::read(&dir.path().join(format!("moved_{r}.vtu"))).unwrap();
             for (i, t) in piece.node_tags.iter().enumerate() {
