@@ -14,7 +14,10 @@
 //! displacement. A step that inverts a cell stops the run with exit code 3
 //! (the pieces hold the last valid mesh), sweeps that do not converge with
 //! exit code 4: without the whole mesh there is no exact solve to escalate
-//! to. Unless `--quiet`, every rank says what it holds.
+//! to. Unless `--quiet`, every rank says what it holds and rank 0 prints
+//! the single-process progress line of each step, its quality reduced over
+//! the ranks ([`verbss_mpi::step_quality`]); `--report` writes the
+//! single-process report from rank 0 (`share_report`).
 
 use std::path::Path;
 use std::process::ExitCode;
