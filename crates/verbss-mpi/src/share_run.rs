@@ -17,9 +17,10 @@
 //! to. Unless `--quiet`, every rank says what it holds and rank 0 prints
 //! the single-process progress line of each step, its quality reduced over
 //! the ranks ([`verbss_mpi::step_quality`]); `--report` writes the
-//! single-process report from rank 0 (`share_report`).
+//! single-process report from rank 0 (`share_report`), `--gather` the
+//! whole moved mesh as one `.vtu` from rank 0 (`gather`).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -39,6 +40,7 @@ use verbss_mpi::share::{global_numbers, partitions_of, prescribe, read_rank_shar
 use verbss_mpi::step_quality::step_quality;
 use verbss_mpi::Comm;
 
+use crate::gather;
 use crate::run::join_pieces;
 use crate::share_report::StepLog;
 use crate::su2;
@@ -100,10 +102,17 @@ fn displacement(motion: &Motion, p: &[f64], step: usize, steps: usize) -> verbss
     Ok(x.iter().zip(p).map(|(a, b)| a - b).collect())
 }
 
-/// Runs the job on every rank (see the module documentation).
-pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
+/// Runs the job on every rank (see the module documentation); with
+/// `gather`, rank 0 also writes the whole moved mesh there ([`gather`]).
+pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<ExitCode> {
     let world = Comm::world();
     let root = world.rank() == 0;
+    if let Some(path) = gather.as_ref().filter(|p| !has_extension(p, "vtu")) {
+        bail!(
+            "--gather {}: the gathered mesh is written as one .vtu file",
+            path.display()
+        );
+    }
     let (share, from) = read_input(&world, args.mesh(), args.output())?;
     let job = args.share_job(share.mesh.dim)?;
     let mesh = &share.mesh;
@@ -192,6 +201,9 @@ pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
     }
     progress.finish();
     write(&world, &job.output, mesh, &coords, &orientation)?;
+    if let Some(path) = &gather {
+        gather::gather(&world, path, &share, solver.part(), &coords)?;
+    }
     report.finish(&world, "completed")?;
     if root && !job.quiet {
         println!(

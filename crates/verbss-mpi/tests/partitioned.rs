@@ -332,7 +332,8 @@ fn deform_a_partitioned_box_on_one_to_three_ranks() {
 
 /// Refused with exit code 2 and one message: more ranks than partitions,
 /// an input that is not partitioned, an error only rank 1 reads, the
-/// near-wall treatments, an option that needs the whole mesh, no steps, an
+/// near-wall treatments, an option that needs the whole mesh, `--gather`
+/// to another format than `.vtu` or with a whole-mesh output, no steps, an
 /// output folder that does not exist.
 #[test]
 fn deform_refuses_a_partitioned_input_it_cannot_run() {
@@ -374,6 +375,33 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
     );
     let slide = ["--method", "verbss", "--slide", "sides"];
     refused(2, &fixture(name), &slide, "where --slide is not available");
+    let gather = ["--method", "verbss", "--gather", "all.msh"];
+    refused(
+        2,
+        &fixture(name),
+        &gather,
+        "--gather all.msh: the gathered mesh is written as one .vtu file",
+    );
+    // The whole-mesh path writes the whole mesh already.
+    let plain = fixture("channel_hole_v41_ascii.msh");
+    let whole_out = dir.path().join("moved.msh");
+    let args = [
+        "deform",
+        plain.to_str().unwrap(),
+        "-o",
+        whole_out.to_str().unwrap(),
+        "--moving",
+        "wall",
+        "--translate",
+        "0.02,0.01",
+        "--gather",
+        "all.vtu",
+    ];
+    let o = verbss_mpi(2, &args, dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let message = "--gather all.vtu: only a .pvtu output";
+    assert_eq!(stderr.matches(message).count(), 1, "{stderr}");
     // Pieces that cannot be written: every rank stops, rank 0 says why.
     let nowhere = dir.path().join("missing/moved.pvtu");
     let mesh = fixture(name);

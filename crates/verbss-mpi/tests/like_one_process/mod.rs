@@ -58,6 +58,59 @@ pub fn single(
     (d.mesh(), reports)
 }
 
+/// The `--gather` file of a distributed run holds every node once, at the
+/// single-process coordinates to 1e-10 of the largest displacement
+/// `scale`, and every cell once, on the nodes of the same tags.
+fn gathered_like_one_process(
+    path: &Path,
+    whole: &Mesh,
+    one: &Mesh,
+    index: &HashMap<u64, usize>,
+    scale: f64,
+    np: usize,
+) {
+    let all = verbss::io::read(path).unwrap();
+    let dim = whole.dim;
+    let mut tags = all.node_tags.clone();
+    tags.sort_unstable();
+    let mut want = whole.node_tags.clone();
+    want.sort_unstable();
+    assert_eq!(tags, want, "{np} ranks");
+    let mut worst = 0.0f64;
+    for (i, t) in all.node_tags.iter().enumerate() {
+        let g = index[t];
+        for d in 0..dim {
+            worst = worst.max((all.coords[dim * i + d] - one.coords[dim * g + d]).abs());
+        }
+    }
+    assert!(worst < 1e-10 * scale, "{np} ranks: {worst:e}");
+    let cells: HashMap<u64, Vec<u64>> = all
+        .cell_tags
+        .iter()
+        .enumerate()
+        .map(|(c, &t)| {
+            (
+                t,
+                all.cells
+                    .cell(c)
+                    .iter()
+                    .map(|&v| all.node_tags[v])
+                    .collect(),
+            )
+        })
+        .collect();
+    assert_eq!(cells.len(), whole.cell_count(), "{np} ranks");
+    for (c, t) in whole.cell_tags.iter().enumerate() {
+        let nodes: Vec<u64> = whole
+            .cells
+            .cell(c)
+            .iter()
+            .map(|&v| whole.node_tags[v])
+            .collect();
+        assert_eq!(cells[t], nodes, "{np} ranks, cell {t}");
+    }
+}
+
 /// The `--report` of a distributed run states the single-process steps'
 /// quality: per step the cell count (the sum of the bins), the bins and the
 /// inverted count exactly, the minimum quality to 1e-10, the mean to
@@ -107,8 +160,9 @@ pub const TOLERANCE: f64 = 1e-12;
 /// `verbss-mpi deform` on `mesh` with a `.pvtu` output on 1, 2 and 3 ranks
 /// (the environment variables `env` set on every rank): the pieces hold
 /// every cell of the file once, at the single-process run's coordinates to
-/// 1e-10 of the largest displacement `scale`, and its `--report` states the
-/// single-process steps' quality. The standard output of each run, 1 to 3
+/// 1e-10 of the largest displacement `scale`, its `--report` states the
+/// single-process steps' quality and its `--gather` file is the
+/// single-process mesh. The standard output of each run, 1 to 3
 /// ranks.
 pub fn deforms_like_one_process(
     mesh: &Path,
@@ -150,6 +204,7 @@ pub fn deforms_like_one_process(
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("moved.pvtu");
         let report = dir.path().join("report.json");
+        let gathered = dir.path().join("all.vtu");
         let tolerance = TOLERANCE.to_string();
         let mut args = vec![
             "deform",
@@ -170,6 +225,8 @@ pub fn deforms_like_one_process(
             "100000",
             "--report",
             report.to_str().unwrap(),
+            "--gather",
+            gathered.to_str().unwrap(),
         ];
         args.extend_from_slice(motion);
         let o = verbss_mpi_with(np, &args, dir.path(), env);
@@ -194,6 +251,7 @@ pub fn deforms_like_one_process(
         let pvtu = std::fs::read_to_string(&out).unwrap();
         assert_eq!(pvtu.matches("<Piece ").count(), np);
         reports_like_one_process(&report, &whole, &reports, np);
+        gathered_like_one_process(&gathered, &whole, &one, &index, scale, np);
         let stderr = String::from_utf8_lossy(&o.stderr);
         for step in ["step 1/2: sweeps (", "step 2/2: sweeps ("] {
             assert_eq!(stderr.matches(step).count(), 1, "{stderr}");
