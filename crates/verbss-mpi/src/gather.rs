@@ -20,6 +20,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use verbss::io::gmsh::partitioned::Share;
 use verbss::io::temp_path;
+use verbss::Mesh;
 use verbss_mpi::part::Part;
 use verbss_mpi::share::global_numbers;
 use verbss_mpi::Comm;
@@ -27,9 +28,30 @@ use verbss_mpi::Comm;
 /// The most numbers in one message to rank 0.
 pub const CHUNK: usize = 1 << 16;
 
+/// The largest tag that travels exactly as a double, `2^53`; positions in
+/// the file are below the node count, far below it.
+const EXACT: u64 = 1 << 53;
+
+/// Fails on every rank when a node or cell tag of any rank's `mesh` is
+/// above 2^53, which would not travel exactly (collective; `path` the
+/// `--gather` file, for the message).
+pub fn check_tags(world: &Comm, path: &Path, mesh: &Mesh) -> anyhow::Result<()> {
+    let exact = |t: &u64| *t <= EXACT;
+    let inexact = !(mesh.node_tags.iter().all(exact) && mesh.cell_tags.iter().all(exact));
+    if world.sum(u64::from(inexact)) > 0 {
+        anyhow::bail!(
+            "--gather {}: a node or cell tag above 2^53 cannot be gathered (the numbers \
+             travel as doubles)",
+            path.display()
+        );
+    }
+    Ok(())
+}
+
 /// Writes every rank's `share` at its nodes' `coords` as one `.vtu` at
 /// `path` on rank 0 (collective; `part` is this rank's part with the ghost
-/// layer, for the owners). Every rank learns of a failure to write.
+/// layer, for the owners; its tags passed [`check_tags`]). Every rank
+/// learns of a failure to write.
 pub fn gather(
     world: &Comm,
     path: &Path,

@@ -115,6 +115,9 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
     }
     let (share, from) = read_input(&world, args.mesh(), args.output())?;
     let job = args.share_job(share.mesh.dim)?;
+    if let Some(path) = &gather {
+        gather::check_tags(&world, path, &share.mesh)?;
+    }
     let mesh = &share.mesh;
     job.settings.validate()?;
     let steps = job.settings.steps;

@@ -382,6 +382,24 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
         &gather,
         "--gather all.msh: the gathered mesh is written as one .vtu file",
     );
+    // An element tag above 2^53 (the last element's, rank 1's of 2) does
+    // not travel exactly as a double.
+    let text = std::fs::read_to_string(fixture(name)).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let end = lines.iter().position(|l| l == "$EndElements").unwrap();
+    let last = lines[end - 1].split_once(' ').unwrap().1.to_string();
+    lines[end - 1] = format!("9007199254740993 {last}");
+    let header = lines.iter().position(|l| l == "$Elements").unwrap() + 1;
+    let blocks = lines[header]
+        .split(' ')
+        .take(3)
+        .collect::<Vec<_>>()
+        .join(" ");
+    lines[header] = format!("{blocks} 9007199254740993");
+    let huge = dir.path().join("huge_tag.msh");
+    std::fs::write(&huge, lines.join("\n") + "\n").unwrap();
+    let gather = ["--method", "verbss", "--gather", "all.vtu"];
+    refused(2, &huge, &gather, "above 2^53 cannot be gathered");
     // The whole-mesh path writes the whole mesh already.
     let plain = fixture("channel_hole_v41_ascii.msh");
     let whole_out = dir.path().join("moved.msh");
