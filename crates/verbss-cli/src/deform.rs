@@ -356,7 +356,6 @@ impl DeformArgs {
             (self.predictor != Predictor::Previous, "--predictor"),
             (self.zone.zone.is_some(), "--zone"),
             (self.every.is_some(), "--every"),
-            (self.report.is_some(), "--report"),
             (self.pictures.html.is_some(), "--html"),
             (self.pictures.gif.is_some(), "--gif"),
         ];
@@ -382,6 +381,8 @@ impl DeformArgs {
             moving: self.moving.clone(),
             settings: self.settings(&motion),
             motion,
+            report: self.report.clone(),
+            source: self.mesh.display().to_string(),
             quiet: self.quiet,
         })
     }
@@ -397,6 +398,10 @@ pub struct ShareJob {
     pub motion: Motion,
     /// The settings (method verbss or spring, no near-wall treatment).
     pub settings: Settings,
+    /// Where rank 0 writes the per-step report (JSON), if anywhere.
+    pub report: Option<PathBuf>,
+    /// The input mesh as named by the user (the report's `mesh`).
+    pub source: String,
     /// No progress output.
     pub quiet: bool,
 }

@@ -16,10 +16,11 @@
 //! * [`scatter`] reads an SU2 file on rank 0 in one pass and scatters it in
 //!   blocks, and `repartition` (built with PT-Scotch) cuts it with PT-Scotch
 //!   and gives each rank its part's share, again without any rank holding
-//!   the whole mesh.
+//!   the whole mesh;
+//! * [`step_quality`] reduces a step's quality report over the ranks.
 //!
 //! The MPI parts ([`Comm`], [`coupled`], [`halo`], [`partition`],
-//! [`scatter`], [`stepper`], [`sweeper`]) are built when `build.rs` finds
+//! [`scatter`], [`step_quality`], [`stepper`], [`sweeper`]) are built when `build.rs` finds
 //! MPI and METIS ([`missing`] says why they were not), `repartition` when it
 //! also finds PT-Scotch ([`ptscotch_missing`]); [`colouring`], [`cost`], [`part`],
 //! [`pieces`] and [`share`] (except [`share::read_rank_share`]) need neither. The crate's only `unsafe` code calls MPI and
@@ -45,6 +46,8 @@ pub mod repartition;
 #[cfg(with_mpi)]
 pub mod scatter;
 pub mod share;
+#[cfg(with_mpi)]
+pub mod step_quality;
 #[cfg(with_mpi)]
 pub mod stepper;
 #[cfg(with_mpi)]

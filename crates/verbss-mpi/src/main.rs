@@ -23,7 +23,11 @@
 #![forbid(unsafe_code)]
 
 #[cfg(with_mpi)]
+mod gather;
+#[cfg(with_mpi)]
 mod run;
+#[cfg(with_mpi)]
+mod share_report;
 #[cfg(with_mpi)]
 mod share_run;
 #[cfg(with_mpi)]
@@ -32,7 +36,10 @@ mod su2;
 use std::process::ExitCode;
 
 #[cfg(with_mpi)]
-use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+#[cfg(with_mpi)]
+use clap::{Args, Parser, Subcommand};
 #[cfg(with_mpi)]
 use verbss_cli::deform;
 
@@ -49,7 +56,20 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Move groups by a translation, a rotation or given positions, in N steps.
-    Deform(Box<deform::DeformArgs>),
+    Deform(Box<MpiDeformArgs>),
+}
+
+/// The arguments of `verbss deform`, and what only `verbss-mpi deform` has.
+#[cfg(with_mpi)]
+#[derive(Args)]
+struct MpiDeformArgs {
+    #[command(flatten)]
+    deform: deform::DeformArgs,
+    /// With a .pvtu output from a partitioned MSH 4.1 or an SU2 input: rank
+    /// 0 also writes the whole moved mesh here as one .vtu, received rank by
+    /// rank in bounded messages.
+    #[arg(long, value_name = "FILE.vtu")]
+    gather: Option<PathBuf>,
 }
 
 #[cfg(with_mpi)]
@@ -60,8 +80,17 @@ fn main() -> ExitCode {
     };
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Deform(args) if share_run::applies(&args) => share_run::run_shares(*args),
-        Command::Deform(args) => deform::prepare(*args).and_then(run::run_distributed),
+        Command::Deform(args) if share_run::applies(&args.deform) => {
+            share_run::run_shares(args.deform, args.gather)
+        }
+        Command::Deform(args) => match args.gather {
+            Some(path) => Err(anyhow::anyhow!(
+                "--gather {}: only a .pvtu output (from a partitioned MSH 4.1 or an SU2 \
+                 input) is gathered; this output is already the whole mesh",
+                path.display()
+            )),
+            None => deform::prepare(args.deform).and_then(run::run_distributed),
+        },
     };
     let code = match result {
         Ok(code) => code,

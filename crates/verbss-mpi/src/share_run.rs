@@ -14,10 +14,15 @@
 //! displacement. A step that inverts a cell stops the run with exit code 3
 //! (the pieces hold the last valid mesh), sweeps that do not converge with
 //! exit code 4: without the whole mesh there is no exact solve to escalate
-//! to. Unless `--quiet`, every rank says what it holds.
+//! to. Unless `--quiet`, every rank says what it holds and rank 0 prints
+//! the single-process progress line of each step, its quality reduced over
+//! the ranks ([`verbss_mpi::step_quality`]); `--report` writes the
+//! single-process report from rank 0 (`share_report`), `--gather` the
+//! whole moved mesh as one `.vtu` from rank 0 (`gather`).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::time::Instant;
 
 use anyhow::bail;
 use verbss::deform::Reference;
@@ -25,14 +30,19 @@ use verbss::io::gmsh::partitioned::{partition_count, Share};
 use verbss::mesh::Mesh;
 use verbss::motion::{Clock, Frame, Motion};
 use verbss::quality;
+use verbss::solve::Stage;
 use verbss_cli::deform::DeformArgs;
+use verbss_cli::progress::Progress;
 use verbss_cli::run::{file_stem, output_dir};
 use verbss_mpi::coupled::LocalSolver;
 use verbss_mpi::pieces::write_local_piece;
 use verbss_mpi::share::{global_numbers, partitions_of, prescribe, read_rank_share};
+use verbss_mpi::step_quality::step_quality;
 use verbss_mpi::Comm;
 
+use crate::gather;
 use crate::run::join_pieces;
+use crate::share_report::StepLog;
 use crate::su2;
 
 /// Whether `verbss-mpi deform` takes this path: a `.pvtu` output, which
@@ -92,12 +102,22 @@ fn displacement(motion: &Motion, p: &[f64], step: usize, steps: usize) -> verbss
     Ok(x.iter().zip(p).map(|(a, b)| a - b).collect())
 }
 
-/// Runs the job on every rank (see the module documentation).
-pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
+/// Runs the job on every rank (see the module documentation); with
+/// `gather`, rank 0 also writes the whole moved mesh there ([`gather`]).
+pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<ExitCode> {
     let world = Comm::world();
     let root = world.rank() == 0;
+    if let Some(path) = gather.as_ref().filter(|p| !has_extension(p, "vtu")) {
+        bail!(
+            "--gather {}: the gathered mesh is written as one .vtu file",
+            path.display()
+        );
+    }
     let (share, from) = read_input(&world, args.mesh(), args.output())?;
     let job = args.share_job(share.mesh.dim)?;
+    if let Some(path) = &gather {
+        gather::check_tags(&world, path, &share.mesh)?;
+    }
     let mesh = &share.mesh;
     job.settings.validate()?;
     let steps = job.settings.steps;
@@ -122,8 +142,11 @@ pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
     }
     let orientation = quality::orientation(mesh);
     let mut coords = mesh.coords.clone();
+    let mut report = StepLog::new(&world, &job, mesh, solver.part(), &orientation);
+    let progress = Progress::new(steps, job.quiet || !root);
     let mut sweeps = 0;
     for step in 1..=steps {
+        let start = Instant::now();
         let (_, target) = at(step)?;
         let (springs, mut u) = match job.settings.reference {
             Reference::Fixed => (mesh.coords.clone(), target.clone()),
@@ -134,39 +157,62 @@ pub fn run_shares(args: DeformArgs) -> anyhow::Result<ExitCode> {
         };
         before = target;
         let info = solver.solve(&springs, &mut u, &job.settings.solve)?;
-        if !info.converged {
-            if root {
-                eprintln!(
-                    "error: step {step}: the sweeps did not converge in {} sweeps (eq.-8 value \
-                     {:e}); a partitioned input has no exact solve to escalate to: raise \
-                     --max-iterations, or take more --steps",
-                    info.iterations, info.residual
-                );
-            }
-            write(&world, &job.output, mesh, &coords, &orientation)?;
-            return Ok(ExitCode::from(4));
-        }
         let moved: Vec<f64> = springs.iter().zip(&u).map(|(x, du)| x + du).collect();
-        let inverted = quality::inverted_cells(mesh, &moved, &orientation).len() as u64;
-        let inverted = world.sum(inverted);
-        if inverted > 0 {
-            if root {
-                eprintln!(
-                    "error: step {step} inverts {inverted} cells; {} holds step {}",
-                    job.output.display(),
-                    step - 1
-                );
-            }
-            write(&world, &job.output, mesh, &coords, &orientation)?;
-            return Ok(ExitCode::from(3));
+        let check = Instant::now();
+        let mut r = step_quality(&world, mesh, &moved, &orientation);
+        r.check_seconds = check.elapsed().as_secs_f64();
+        r.step = step;
+        r.substeps = 1;
+        r.iterations = info.iterations;
+        r.residual = info.residual;
+        r.converged = info.converged;
+        r.form_seconds = info.form_seconds;
+        r.solve_seconds = info.solve_seconds;
+        r.springs_seconds = info.springs_seconds;
+        r.stages = [Stage::Sweeps].into_iter().chain(info.stages).collect();
+        r.true_residual = f64::NAN;
+        // Estimated only where an escalating solve accepted the step.
+        r.error_ratio = if job.settings.solve.escalate && info.converged {
+            info.error_ratio
+        } else {
+            f64::NAN
+        };
+        r.seconds = start.elapsed().as_secs_f64();
+        let inverted = r.inverted;
+        report.push(r);
+        if !info.converged {
+            progress.finish();
+            let message = format!(
+                "step {step}: the sweeps did not converge in {} sweeps (eq.-8 value {:e}); a \
+                 partitioned input has no exact solve to escalate to: raise --max-iterations, \
+                 or take more --steps",
+                info.iterations, info.residual
+            );
+            return report.stop(&world, &message, 4, || {
+                write(&world, &job.output, mesh, &coords, &orientation)
+            });
         }
+        if inverted > 0 {
+            progress.finish();
+            let message = format!(
+                "step {step} inverts {inverted} cells; {} holds step {}",
+                job.output.display(),
+                step - 1
+            );
+            return report.stop(&world, &message, 3, || {
+                write(&world, &job.output, mesh, &coords, &orientation)
+            });
+        }
+        progress.step(report.last());
         coords = moved;
         sweeps += info.iterations;
-        if root && !job.quiet {
-            println!("step {step}/{steps}: {} sweeps", info.iterations);
-        }
     }
+    progress.finish();
     write(&world, &job.output, mesh, &coords, &orientation)?;
+    if let Some(path) = &gather {
+        gather::gather(&world, path, &share, solver.part(), &coords)?;
+    }
+    report.finish(&world, "completed")?;
     if root && !job.quiet {
         println!(
             "wrote {} ({} pieces, {sweeps} sweeps in all)",

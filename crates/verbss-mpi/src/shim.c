@@ -62,10 +62,11 @@ int verbss_mpi_size(int comm, int *size) { return MPI_Comm_size(MPI_Comm_f2c(com
 
 int verbss_mpi_barrier(int comm) { return MPI_Barrier(MPI_Comm_f2c(comm)); }
 
-/* One value, reduced over the ranks: `op` 0 is MPI_SUM, 1 MPI_MAX. */
-int verbss_mpi_allreduce(int comm, const void *in, void *out, int type, int op) {
-    return MPI_Allreduce(in, out, 1, datatype(type), op == 0 ? MPI_SUM : MPI_MAX,
-                         MPI_Comm_f2c(comm));
+/* `count` values, each reduced over the ranks: `op` 0 is MPI_SUM, 1
+ * MPI_MAX, 2 MPI_MIN. */
+int verbss_mpi_allreduce(int comm, const void *in, void *out, int count, int type, int op) {
+    MPI_Op reduction = op == 0 ? MPI_SUM : (op == 1 ? MPI_MAX : MPI_MIN);
+    return MPI_Allreduce(in, out, count, datatype(type), reduction, MPI_Comm_f2c(comm));
 }
 
 int verbss_mpi_bcast(int comm, void *data, int count, int type, int root) {

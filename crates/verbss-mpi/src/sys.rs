@@ -27,6 +27,7 @@ mod ffi {
             comm: c_int,
             input: *const c_void,
             output: *mut c_void,
+            count: c_int,
             kind: c_int,
             op: c_int,
         ) -> c_int;
@@ -269,15 +270,20 @@ impl Comm {
         );
     }
 
-    fn reduce<T: Scalar>(&self, value: T, op: c_int) -> T {
-        let mut out = T::default();
-        // SAFETY: one value of type T read and one written.
+    /// Each of `values` reduced over the ranks by `op` (0 sum, 1 max, 2 min).
+    fn reduce<T: Scalar>(&self, values: &[T], op: c_int) -> Vec<T> {
+        let mut out = vec![T::default(); values.len()];
+        if values.is_empty() {
+            return out;
+        }
+        // SAFETY: values.len() values of type T read and as many written.
         check(
             unsafe {
                 ffi::verbss_mpi_allreduce(
                     self.handle,
-                    (&value as *const T).cast(),
-                    (&mut out as *mut T).cast(),
+                    values.as_ptr().cast(),
+                    out.as_mut_ptr().cast(),
+                    count(values.len()),
                     T::CODE,
                     op,
                 )
@@ -289,12 +295,23 @@ impl Comm {
 
     /// The sum of `value` over the ranks (collective).
     pub fn sum<T: Scalar>(&self, value: T) -> T {
-        self.reduce(value, 0)
+        self.reduce(&[value], 0)[0]
+    }
+
+    /// The sums over the ranks of each of `values`, of the same length on
+    /// every rank (collective).
+    pub fn sums<T: Scalar>(&self, values: &[T]) -> Vec<T> {
+        self.reduce(values, 0)
     }
 
     /// The largest `value` of the ranks (collective).
     pub fn max<T: Scalar>(&self, value: T) -> T {
-        self.reduce(value, 1)
+        self.reduce(&[value], 1)[0]
+    }
+
+    /// The smallest `value` of the ranks (collective).
+    pub fn min<T: Scalar>(&self, value: T) -> T {
+        self.reduce(&[value], 2)[0]
     }
 
     /// Rank `root`'s `data` into every rank's `data`, of the same length
@@ -552,6 +569,9 @@ mod tests {
         assert_eq!(world.max(-3i32), -3);
         assert_eq!(world.sum(u64::MAX), u64::MAX);
         assert_eq!(world.max(9u32), 9);
+        assert_eq!(world.min(-1.5f64), -1.5);
+        assert_eq!(world.sums(&[1u64, 2, 3]), [1, 2, 3]);
+        assert_eq!(world.sums::<u64>(&[]), Vec::<u64>::new());
         let mut data = [1, 2, 3i32];
         world.broadcast(0, &mut data);
         assert_eq!(data, [1, 2, 3]);

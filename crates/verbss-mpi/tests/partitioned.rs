@@ -327,7 +327,8 @@ fn deform_a_partitioned_box_on_one_to_three_ranks() {
 
 /// Refused with exit code 2 and one message: more ranks than partitions,
 /// an input that is not partitioned, an error only rank 1 reads, the
-/// near-wall treatments, an option that needs the whole mesh, no steps, an
+/// near-wall treatments, an option that needs the whole mesh, `--gather`
+/// to another format than `.vtu` or with a whole-mesh output, no steps, an
 /// output folder that does not exist.
 #[test]
 fn deform_refuses_a_partitioned_input_it_cannot_run() {
@@ -369,6 +370,51 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
     );
     let slide = ["--method", "verbss", "--slide", "sides"];
     refused(2, &fixture(name), &slide, "where --slide is not available");
+    let gather = ["--method", "verbss", "--gather", "all.msh"];
+    refused(
+        2,
+        &fixture(name),
+        &gather,
+        "--gather all.msh: the gathered mesh is written as one .vtu file",
+    );
+    // An element tag above 2^53 (the last element's, rank 1's of 2) does
+    // not travel exactly as a double.
+    let text = std::fs::read_to_string(fixture(name)).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let end = lines.iter().position(|l| l == "$EndElements").unwrap();
+    let last = lines[end - 1].split_once(' ').unwrap().1.to_string();
+    lines[end - 1] = format!("9007199254740993 {last}");
+    let header = lines.iter().position(|l| l == "$Elements").unwrap() + 1;
+    let blocks = lines[header]
+        .split(' ')
+        .take(3)
+        .collect::<Vec<_>>()
+        .join(" ");
+    lines[header] = format!("{blocks} 9007199254740993");
+    let huge = dir.path().join("huge_tag.msh");
+    std::fs::write(&huge, lines.join("\n") + "\n").unwrap();
+    let gather = ["--method", "verbss", "--gather", "all.vtu"];
+    refused(2, &huge, &gather, "above 2^53 cannot be gathered");
+    // The whole-mesh path writes the whole mesh already.
+    let plain = fixture("channel_hole_v41_ascii.msh");
+    let whole_out = dir.path().join("moved.msh");
+    let args = [
+        "deform",
+        plain.to_str().unwrap(),
+        "-o",
+        whole_out.to_str().unwrap(),
+        "--moving",
+        "wall",
+        "--translate",
+        "0.02,0.01",
+        "--gather",
+        "all.vtu",
+    ];
+    let o = verbss_mpi(2, &args, dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    let message = "--gather all.vtu: only a .pvtu output";
+    assert_eq!(stderr.matches(message).count(), 1, "{stderr}");
     // Pieces that cannot be written: every rank stops, rank 0 says why.
     let nowhere = dir.path().join("missing/moved.pvtu");
     let mesh = fixture(name);
@@ -426,7 +472,8 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
 
 /// A step that inverts a cell (the hole pushed through the top wall) stops
 /// with exit code 3, sweeps that do not converge with exit code 4: one
-/// message each, and the pieces hold the last valid mesh, the input.
+/// message each, the report ends with the failed step, and the pieces hold
+/// the last valid mesh, the input.
 #[test]
 fn deform_stops_at_an_inverted_cell_and_at_unconverged_sweeps() {
     if !common::mpi_ready() {
@@ -451,6 +498,7 @@ fn deform_stops_at_an_inverted_cell_and_at_unconverged_sweeps() {
     ] {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("moved.pvtu");
+        let report = dir.path().join("report.json");
         let mut args = vec![
             "deform",
             mesh.to_str().unwrap(),
@@ -460,12 +508,26 @@ fn deform_stops_at_an_inverted_cell_and_at_unconverged_sweeps() {
             "wall",
             "--method",
             "verbss",
+            "--report",
+            report.to_str().unwrap(),
         ];
         args.extend_from_slice(&extra);
         let o = verbss_mpi(2, &args, dir.path());
         assert_eq!(o.status.code(), Some(code));
         let stderr = String::from_utf8_lossy(&o.stderr);
         assert_eq!(stderr.matches(message).count(), 1, "{stderr}");
+        // The report ends with the failed step, its message the outcome.
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        let outcome = report["outcome"].as_str().unwrap();
+        assert!(stderr.contains(&format!("error: {outcome}\n")), "{stderr}");
+        let failed = &report["steps"][1];
+        assert_eq!(report["steps"].as_array().unwrap().len(), 2);
+        assert_eq!(failed["converged"], code == 3);
+        let inverted = failed["inverted"].as_u64().unwrap();
+        if code == 3 {
+            assert!(outcome.starts_with(&format!("step 1 inverts {inverted} cells")));
+        }
         for r in 0..2 {
             let piece = verbss::io::read(&dir.path().join(format!("moved_{r}.vtu"))).unwrap();
             for (i, t) in piece.node_tags.iter().enumerate() {

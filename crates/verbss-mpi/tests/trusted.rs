@@ -77,7 +77,7 @@ fn a_loose_stop_is_not_accepted_until_the_error_is_trusted() {
         axis: [0.0, 0.0, 1.0],
         angle: 2f64.to_radians(),
     };
-    let exact = like_one_process::single(
+    let (exact, _) = like_one_process::single(
         &whole,
         "airfoil",
         motion,

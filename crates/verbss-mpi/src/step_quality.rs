@@ -1,0 +1,43 @@
+//! The quality of a step over all ranks, each cell counted on one rank: the
+//! numbers of the single-process step report (`min_quality`, `inverted`,
+//! `bins`, `mean_quality`; docs/method.md for the quality measure) from
+//! each rank's own cells and four all-reduces.
+
+use verbss::deform::StepReport;
+use verbss::quality::{qualities_and_inversions, Summary};
+use verbss::Mesh;
+
+use crate::Comm;
+
+/// The quality of the cells of every rank's `mesh` at its `coords`,
+/// against the orientations `orientation` (collective): `min_quality`
+/// (`min_r min_c q_c`), `inverted` and the paper's five `bins` (sums over
+/// the ranks) and `mean_quality` (`Σ_r Σ_c q_c / Σ_r n_r`: the
+/// single-process mean up to the order of the sum). The other fields are
+/// the defaults. With no cell on any rank, the minimum and the mean are
+/// NaN, as [`Summary::new`] gives them.
+pub fn step_quality(comm: &Comm, mesh: &Mesh, coords: &[f64], orientation: &[i8]) -> StepReport {
+    let (quality, inversions) = qualities_and_inversions(mesh, coords, orientation);
+    let summary = Summary::new(&quality);
+    let mut counts: Vec<u64> = summary.bins.iter().map(|b| b.count as u64).collect();
+    counts.push(inversions.len() as u64);
+    let counts = comm.sums(&counts);
+    let min = comm.min(quality.iter().copied().fold(f64::INFINITY, f64::min));
+    let sum = comm.sum(quality.iter().sum::<f64>());
+    let mut bins = [0; 5];
+    for (bin, &count) in bins.iter_mut().zip(&counts) {
+        *bin = count as usize;
+    }
+    let cells: usize = bins.iter().sum();
+    let (min_quality, mean_quality) = if cells == 0 {
+        (f64::NAN, f64::NAN)
+    } else {
+        (min, sum / cells as f64)
+    };
+    let mut report = StepReport::default();
+    report.min_quality = min_quality;
+    report.mean_quality = mean_quality;
+    report.inverted = counts[bins.len()] as usize;
+    report.bins = bins;
+    report
+}
