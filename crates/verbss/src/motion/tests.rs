@@ -88,15 +88,20 @@ fn undulation_follows_eq_11() {
     }
 }
 
-#[test]
-fn bending_deflects_the_tip_and_turns_its_section() {
-    let m = Motion::Bending {
+/// The paper's wing: span 2 along y from the origin, tip deflection 0.8 in z.
+fn wing() -> Motion {
+    Motion::Bending {
         root: [0.0; 3],
         span_axis: [0.0, 1.0, 0.0],
         direction: [0.0, 0.0, 1.0],
         span: 2.0,
         tip: 0.8,
-    };
+    }
+}
+
+#[test]
+fn bending_deflects_the_tip_and_turns_its_section() {
+    let m = wing();
     // The clamped root and inboard points do not move.
     close(
         &moved(&m, &[0.3, 0.0, 0.1], clock(40, 40)),
@@ -134,13 +139,7 @@ fn bending_deflects_the_tip_and_turns_its_section() {
 /// tip keeps its distance to the tip section's points (a rigid motion).
 #[test]
 fn beyond_the_tip_points_move_rigidly_with_the_tip_section() {
-    let m = Motion::Bending {
-        root: [0.0; 3],
-        span_axis: [0.0, 1.0, 0.0],
-        direction: [0.0, 0.0, 1.0],
-        span: 2.0,
-        tip: 0.8,
-    };
+    let m = wing();
     let phi = 0.8f64.atan();
     // 0.3 beyond the tip on the axis: along the tip section's turned axis.
     close(
