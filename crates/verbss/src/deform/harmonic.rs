@@ -18,7 +18,7 @@ const MAX_ITERATIONS: usize = 4000;
 /// `[a, b]` with `a < b`, sorted) and as a graph for the distances.
 pub(super) struct Laplace {
     dim: usize,
-    edges: Vec<[usize; 2]>,
+    edges: Vec<[u32; 2]>,
     graph: Csr,
 }
 
@@ -28,7 +28,7 @@ impl Laplace {
         let node_cells = topology::node_cells(&mesh.cells, mesh.node_count());
         let graph = topology::edge_graph_from(&mesh.cells, &node_cells);
         let mut edges = Vec::with_capacity(graph.targets.len() / 2);
-        edges.extend(topology::upper_edges(&graph));
+        edges.extend(topology::upper_edges(&graph).map(|[a, b]| [a as u32, b as u32]));
         Laplace {
             dim: mesh.dim,
             edges,
@@ -55,6 +55,7 @@ impl Laplace {
             .edges
             .iter()
             .map(|&[a, b]| {
+                let (a, b) = (a as usize, b as usize);
                 let squared: f64 = (0..dim)
                     .map(|d| (coords[dim * a + d] - coords[dim * b + d]).powi(2))
                     .sum();
@@ -64,13 +65,14 @@ impl Laplace {
         let n = w.len();
         let mut diag = vec![0.0; n];
         for (&[a, b], &ke) in self.edges.iter().zip(&k) {
-            diag[a] += ke;
-            diag[b] += ke;
+            diag[a as usize] += ke;
+            diag[b as usize] += ke;
         }
         // A x over the unknowns, prescribed entries of x taken as they are.
         let apply = |x: &[f64], y: &mut [f64]| {
             y.fill(0.0);
             for (&[a, b], &ke) in self.edges.iter().zip(&k) {
+                let (a, b) = (a as usize, b as usize);
                 let f = ke * (x[a] - x[b]);
                 y[a] += f;
                 y[b] -= f;
