@@ -23,9 +23,10 @@
 use std::time::Instant;
 
 use verbss::geometry::{ldlt_factor, morton_keys, packed_len, point};
+use verbss::solve::verify::{block_estimate, check, heights};
 use verbss::solve::{
-    cell_height, coupled, relax, unit_directions, Accel, Frames, Method, NodeRole, SolveInfo,
-    SolveParams, Stage, ERROR_FRACTION,
+    coupled, relax, unit_directions, Accel, Frames, Method, NodeRole, SolveInfo, SolveParams,
+    Stage, ERROR_FRACTION,
 };
 use verbss::springs::{self, Connectivity, NodeBlocks, Springs};
 use verbss::topology;
@@ -70,7 +71,7 @@ struct Built {
     /// Unknown components of all ranks.
     dofs: u64,
     /// Each owned position's local size `h_p`, the smallest height of its
-    /// cells ([`cell_height`]).
+    /// cells ([`heights`]).
     heights: Vec<f64>,
 }
 
@@ -309,16 +310,7 @@ impl<'c> Sweeper<'c> {
             Springs::BallVertex
         };
         let mut blocks = springs::assemble(&self.conn, coords, &order[..owned], &position, kind)?;
-        let conn = &self.conn;
-        let heights = order[..owned]
-            .iter()
-            .map(|&i| {
-                conn.node_cells
-                    .entries(i)
-                    .map(|c| cell_height::<D>(conn.cells.kinds[c], &conn.cells.cell(c), coords))
-                    .fold(f64::INFINITY, f64::min)
-            })
-            .collect();
+        let heights = heights::<D>(&self.conn, coords, &order[..owned]);
         let unprojected = frames.project_diagonal::<D>(&mut blocks.diag);
         self.factor_diag::<D>(&mut blocks, &order)?;
         Ok(Built {
@@ -472,35 +464,17 @@ impl<'c> Sweeper<'c> {
         Swept::Exhausted
     }
 
-    /// `max_p |e_p| / h_p` over every rank's owned unknowns (collective),
-    /// `e_p = K_pp⁻¹ (c_p + Σ_j B_pj u_j) − u_p` the Jacobi step that puts
-    /// position `p` where its springs hold it given its neighbours (in its
-    /// frame when it slides), `h_p` its local size.
+    /// `max_p |e_p| / h_p` over every rank's owned unknowns (collective):
+    /// the single process's [`check`] with its [`block_estimate`], the
+    /// Jacobi step that puts position `p` where its springs hold it given
+    /// its neighbours, over `h_p` its local size.
     fn error_ratio<const D: usize>(&self, b: &Built, constant: &[f64], work: &[f64]) -> f64 {
-        let worst = (0..b.frames.len())
-            .map(|p| {
-                let old = point::<D>(work, p);
-                let (jacobi, _) = relax::<D>(
-                    &b.blocks.diag[packed_len(D) * p..],
-                    &coupled::<D>(&b.blocks, constant, p, work),
-                    &old,
-                    b.frames.get::<D>(p),
-                    1.0,
-                );
-                let error = (0..D)
-                    .map(|k| (jacobi[k] - old[k]).powi(2))
-                    .sum::<f64>()
-                    .sqrt();
-                if error == 0.0 {
-                    0.0
-                } else if b.heights[p] > 0.0 {
-                    error / b.heights[p]
-                } else {
-                    f64::INFINITY
-                }
-            })
-            .fold(0.0, f64::max);
-        self.comm.max(worst)
+        let local = check::<D, _>(work, &b.heights, |p, w| {
+            let rhs = coupled::<D>(&b.blocks, constant, p, w);
+            let factor = &b.blocks.diag[packed_len(D) * p..packed_len(D) * (p + 1)];
+            block_estimate::<D>(factor, &rhs, &point::<D>(w, p), b.frames.get::<D>(p))
+        });
+        self.comm.max(local.error_ratio)
     }
 
     /// The owned prescribed nodes.

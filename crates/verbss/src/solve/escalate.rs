@@ -26,7 +26,7 @@ use super::{
     System, ERROR_FRACTION,
 };
 use crate::error::{Error, Result};
-use crate::geometry::{ldlt_factor, ldlt_mul, packed_len, point};
+use crate::geometry::{ldlt_factor, packed_len, point};
 
 /// The direct solve is tried on 2D systems of at most this many unknown nodes.
 pub const DIRECT_NODES_2D: usize = 400_000;
@@ -386,15 +386,7 @@ fn check<const D: usize>(built: &mut super::Built, displacement: &[f64]) -> veri
                 } else if !ldlt_factor::<D>(f, &mut factor[..s]) {
                     return ([f64::INFINITY; D], f64::INFINITY);
                 }
-                let old = point::<D>(w, p);
-                let (new, _) =
-                    super::verbss::relax::<D>(&factor, &rhs, &old, layout.frame::<D>(p), 1.0);
-                let e: [f64; D] = std::array::from_fn(|k| new[k] - old[k]);
-                let r = match layout.frame::<D>(p) {
-                    None => ldlt_mul::<D>(&factor, &e),
-                    Some(frame) => frame.unrotate(&ldlt_mul::<D>(&factor, &frame.rotate(&e))),
-                };
-                (e, r.iter().map(|v| v * v).sum())
+                verify::block_estimate::<D>(&factor, &rhs, &point::<D>(w, p), layout.frame::<D>(p))
             })
         }
         System::Laplacian(weights) => verify::check::<D, _>(work, heights, |p, w| {

@@ -86,7 +86,7 @@ mod sor;
 mod spring_solver;
 mod sweep;
 mod verbss;
-mod verify;
+pub mod verify;
 pub use self::escalate::{DIRECT_NODES_2D, DIRECT_NODES_3D};
 pub use self::frame::{unit_directions, Frame, Frames};
 pub use self::params::{
@@ -96,7 +96,6 @@ pub use self::params::{
 use self::pass::{gather, prescribed_scale, run};
 pub use self::spring_solver::{SolverSetup, SpringSolver};
 pub use self::verbss::relax;
-pub use self::verify::cell_height;
 pub(crate) use sweep::{chunked_dot, chunked_sum, sweep};
 
 use crate::error::{Error, Result};
@@ -428,7 +427,7 @@ impl Engine {
         };
         let m = layout.len();
         let chunks = *layout.chunk_starts.last().unwrap_or(&0);
-        let heights = verify::heights::<D>(&self.conn, coords, &layout);
+        let heights = verify::heights::<D>(&self.conn, coords, &layout.order);
         Ok(Built {
             heights,
             springs_seconds,

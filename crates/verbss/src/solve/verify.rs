@@ -14,20 +14,20 @@
 
 use rayon::prelude::*;
 
-use super::{Layout, CHUNK};
-use crate::geometry::{cross, det, norm, point, sub};
+use super::{relax, Frame, CHUNK};
+use crate::geometry::{cross, det, ldlt_mul, norm, point, sub};
 use crate::mesh::CellKind;
 use crate::springs::Connectivity;
 
 /// The result of [`check`].
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Check {
+pub struct Check {
     /// Root-mean-square of `|r_i|` over the unknown nodes.
-    pub(crate) true_residual: f64,
+    pub true_residual: f64,
     /// `max_i |e_i| / h_i`.
-    pub(crate) error_ratio: f64,
+    pub error_ratio: f64,
     /// The position where the ratio is largest.
-    pub(crate) worst: usize,
+    pub worst: usize,
 }
 
 /// The smallest height of a cell at `coords`: over its corners, the
@@ -55,19 +55,14 @@ pub fn cell_height<const D: usize>(kind: CellKind, nodes: &[usize], coords: &[f6
     height
 }
 
-/// The local size `h_i` of each unknown position: the smallest
-/// [`cell_height`] of the node's cells at `coords`.
-pub(crate) fn heights<const D: usize>(
-    conn: &Connectivity,
-    coords: &[f64],
-    layout: &Layout,
-) -> Vec<f64> {
+/// The local size `h_i` of each node of `order` (an unknown position's
+/// node): the smallest [`cell_height`] of the node's cells at `coords`.
+pub fn heights<const D: usize>(conn: &Connectivity, coords: &[f64], order: &[usize]) -> Vec<f64> {
     let cells: Vec<f64> = (0..conn.cells.len())
         .into_par_iter()
         .map(|c| cell_height::<D>(conn.cells.kinds[c], &conn.cells.cell(c), coords))
         .collect();
-    layout
-        .order
+    order
         .par_iter()
         .map(|&i| {
             conn.node_cells
@@ -78,10 +73,30 @@ pub(crate) fn heights<const D: usize>(
         .collect()
 }
 
+/// Position `p`'s error estimate and squared true residual for [`check`],
+/// from its factored block `factor` (LDLᵀ of `K_pp`, projected for a
+/// sliding node), `rhs = c_p + Σ_j B_pj u_j` and its value `old`: the
+/// Jacobi step `e_p = K_pp⁻¹ rhs − u_p` (in its `frame` when it slides)
+/// and `|r_p|² = |K_pp e_p|²`.
+pub fn block_estimate<const D: usize>(
+    factor: &[f64],
+    rhs: &[f64; D],
+    old: &[f64; D],
+    frame: Option<Frame<D>>,
+) -> ([f64; D], f64) {
+    let (new, _) = relax::<D>(factor, rhs, old, frame, 1.0);
+    let e: [f64; D] = std::array::from_fn(|k| new[k] - old[k]);
+    let r = match frame {
+        None => ldlt_mul::<D>(factor, &e),
+        Some(frame) => frame.unrotate(&ldlt_mul::<D>(factor, &frame.rotate(&e))),
+    };
+    (e, r.iter().map(|v| v * v).sum())
+}
+
 /// Checks the unknowns `work` against their local sizes `heights`.
 /// `estimate(p, work)` gives position `p`'s error estimate `e_p` and the
 /// squared norm of its true residual `|r_p|²`.
-pub(crate) fn check<const D: usize, F>(work: &[f64], heights: &[f64], estimate: F) -> Check
+pub fn check<const D: usize, F>(work: &[f64], heights: &[f64], estimate: F) -> Check
 where
     F: Fn(usize, &[f64]) -> ([f64; D], f64) + Sync,
 {
