@@ -163,13 +163,9 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
         r.check_seconds = check.elapsed().as_secs_f64();
         r.step = step;
         r.substeps = 1;
-        r.iterations = info.iterations;
-        r.residual = info.residual;
+        r.stages.push(Stage::Sweeps);
+        r.add(&info);
         r.converged = info.converged;
-        r.form_seconds = info.form_seconds;
-        r.solve_seconds = info.solve_seconds;
-        r.springs_seconds = info.springs_seconds;
-        r.stages = [Stage::Sweeps].into_iter().chain(info.stages).collect();
         r.true_residual = f64::NAN;
         // Estimated only where an escalating solve accepted the step.
         r.error_ratio = if job.settings.solve.escalate && info.converged {

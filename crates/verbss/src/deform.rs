@@ -100,7 +100,7 @@ pub struct StepReport {
 impl StepReport {
     /// Adds one solve's account: sweeps, seconds, stages; the residuals and
     /// the error ratio are the last solve's.
-    fn add(&mut self, info: &SolveInfo) {
+    pub fn add(&mut self, info: &SolveInfo) {
         self.iterations += info.iterations;
         self.residual = info.residual;
         self.true_residual = info.true_residual;
