@@ -21,6 +21,7 @@ use anyhow::Context;
 use verbss::io::gmsh::partitioned::Share;
 use verbss::io::temp_path;
 use verbss::Mesh;
+use verbss_mpi::directory;
 use verbss_mpi::part::Part;
 use verbss_mpi::share::global_numbers;
 use verbss_mpi::Comm;
@@ -143,48 +144,32 @@ pub fn gather(
 
 /// The position in the gathered file of each node of the share (`global`
 /// its global numbers, `owned` whether this rank owns it, `first` the
-/// position of its first owned node), owned or not (collective).
+/// position of its first owned node), owned or not (collective: each owner
+/// posts its nodes' positions to their [`directory`] ranks, which answer
+/// the other holders).
 fn positions(world: &Comm, global: &[u64], owned: &[bool], first: u64) -> Vec<u64> {
     let size = world.size() as u64;
     let mut position = vec![u64::MAX; global.len()];
     let mut posts = vec![Vec::new(); size as usize];
-    let mut asks = vec![Vec::new(); size as usize];
-    let mut next = first;
-    for (i, &g) in global.iter().enumerate() {
-        if owned[i] {
-            position[i] = next;
-            posts[(g % size) as usize].extend([g, next]);
-            next += 1;
-        } else {
-            asks[(g % size) as usize].push(g);
-        }
+    let owned_nodes = global.iter().enumerate().filter(|&(i, _)| owned[i]);
+    for (next, (i, &g)) in (first..).zip(owned_nodes) {
+        position[i] = next;
+        posts[(g % size) as usize].extend([g, next]);
     }
-    let mut directory: Vec<(u64, u64)> = world
+    let mut posted: Vec<(u64, u64)> = world
         .all_to_all(&posts)
         .iter()
         .flat_map(|list| list.chunks(2).map(|p| (p[0], p[1])))
         .collect();
-    directory.sort_unstable();
-    let answers: Vec<Vec<u64>> = world
-        .all_to_all(&asks)
-        .iter()
-        .map(|list| {
-            list.iter()
-                .map(|g| {
-                    let k = directory.binary_search_by_key(g, |p| p.0);
-                    directory[k.expect("every node has an owner")].1
-                })
-                .collect()
-        })
-        .collect();
-    let replies = world.all_to_all(&answers);
-    let mut read = vec![0; size as usize];
-    for (i, &g) in global.iter().enumerate() {
-        if !owned[i] {
-            let d = (g % size) as usize;
-            position[i] = replies[d][read[d]];
-            read[d] += 1;
-        }
+    posted.sort_unstable();
+    let others: Vec<usize> = (0..global.len()).filter(|&i| !owned[i]).collect();
+    let asked: Vec<u64> = others.iter().map(|&i| global[i]).collect();
+    let answers = directory::ask(world, &asked, |g| {
+        let k = posted.binary_search_by_key(&g, |p| p.0);
+        vec![posted[k.expect("every node has an owner")].1]
+    });
+    for (&i, answer) in others.iter().zip(answers) {
+        position[i] = answer[0];
     }
     position
 }

@@ -36,6 +36,8 @@ pub mod cost;
 #[cfg(with_mpi)]
 pub mod coupled;
 #[cfg(with_mpi)]
+pub mod directory;
+#[cfg(with_mpi)]
 pub mod halo;
 pub mod part;
 #[cfg(with_mpi)]

@@ -60,7 +60,6 @@ impl StepLog {
     /// report with `message` as its outcome; exit code `code`.
     pub fn stop(
         &mut self,
-        world: &Comm,
         message: &str,
         code: u8,
         write: impl FnOnce() -> anyhow::Result<()>,
@@ -69,15 +68,15 @@ impl StepLog {
             eprintln!("error: {message}");
         }
         write()?;
-        self.finish(world, message)?;
+        self.finish(message)?;
         Ok(ExitCode::from(code))
     }
 
     /// Rank 0 writes the report with `outcome`, when one was asked for.
-    pub fn finish(&mut self, world: &Comm, outcome: &str) -> anyhow::Result<()> {
+    pub fn finish(&mut self, outcome: &str) -> anyhow::Result<()> {
         self.report.outcome = outcome.to_string();
         match &self.path {
-            Some(path) if world.rank() == 0 => Ok(self.report.write(path)?),
+            Some(path) if self.root => Ok(self.report.write(path)?),
             _ => Ok(()),
         }
     }

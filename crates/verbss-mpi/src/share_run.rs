@@ -184,7 +184,7 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
                  or take more --steps",
                 info.iterations, info.residual
             );
-            return report.stop(&world, &message, 4, || {
+            return report.stop(&message, 4, || {
                 write(&world, &job.output, mesh, &coords, &orientation)
             });
         }
@@ -195,7 +195,7 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
                 job.output.display(),
                 step - 1
             );
-            return report.stop(&world, &message, 3, || {
+            return report.stop(&message, 3, || {
                 write(&world, &job.output, mesh, &coords, &orientation)
             });
         }
@@ -208,7 +208,7 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
     if let Some(path) = &gather {
         gather::gather(&world, path, &share, solver.part(), &coords)?;
     }
-    report.finish(&world, "completed")?;
+    report.finish("completed")?;
     if root && !job.quiet {
         println!(
             "wrote {} ({} pieces, {sweeps} sweeps in all)",
