@@ -221,9 +221,10 @@ impl Recorder {
         width: u32,
         view: Option<[f64; 4]>,
     ) -> anyhow::Result<(Image, [f64; 4])> {
+        let quality = s.qualities(&self.mesh);
         let state = State {
             coords: &s.coords,
-            quality: &s.quality,
+            quality: &quality,
             inverted: &s.inverted,
         };
         let scene = Scene::new(&self.mesh, state, &Section::All, Camera::default())?;

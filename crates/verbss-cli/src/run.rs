@@ -295,7 +295,7 @@ pub fn execute<S: SpringSolver>(
     let steps = job.settings.steps;
     let mut report = Report::new(&job.source, &job.mesh, &job.settings);
     let mut series = Vec::new();
-    let initial = deformer.current().clone();
+    let initial = deformer.current();
     report.steps.push(initial.report.clone());
     if writer {
         // Outcome "running" until this run ends: an earlier run's report never
@@ -303,9 +303,9 @@ pub fn execute<S: SpringSolver>(
         if let Some(path) = job.report.as_ref().filter(|p| p.is_file()) {
             report.write(path)?;
         }
-        recorder.step(&initial);
+        recorder.step(initial);
         if job.series {
-            write_step(job, &initial, &mut series)?;
+            write_step(job, initial, &mut series)?;
         }
     }
     let progress = Progress::new(steps, quiet);
@@ -390,7 +390,7 @@ fn fields(mesh: &Mesh, s: &Snapshot) -> vtu::Fields {
     }
     let mut f = vtu::Fields::default();
     f.point.push(("displacement".into(), 3, displacement));
-    f.cell.push(("quality".into(), 1, s.quality.clone()));
+    f.cell.push(("quality".into(), 1, s.qualities(mesh)));
     f.cell.push((
         "inverted".into(),
         1,

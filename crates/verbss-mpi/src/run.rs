@@ -42,7 +42,7 @@ pub fn run_distributed(mut prepared: Prepared) -> anyhow::Result<ExitCode> {
             stepper.solver().part(),
             &job.mesh,
             &current.coords,
-            &current.quality,
+            &current.qualities(&job.mesh),
         );
         join_pieces(&world, &job.dir, &job.name, written)?;
     }

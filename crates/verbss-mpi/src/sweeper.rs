@@ -108,10 +108,11 @@ impl<'c> Sweeper<'c> {
         let unit = unit_directions(dim, &roles, normals, |i| part.node_tags[i])?;
         let n = part.node_count();
         let node_cells = topology::node_cells(&part.cells, n);
+        let (graph, edge_graph) = Connectivity::graphs(&part.cells, &node_cells, None);
         let conn = Connectivity {
             dim,
-            graph: topology::node_graph_from(&part.cells, &node_cells),
-            edge_graph: topology::edge_graph_from(&part.cells, &node_cells),
+            graph,
+            edge_graph,
             node_cells,
             cells: CompactCells::ordered(&part.cells, 0..part.cells.len()),
             node_tags: part.node_tags.clone(),

@@ -42,9 +42,10 @@ pub fn write(
             None,
         ),
     };
+    let quality = state.qualities(mesh);
     let view = State {
         coords: &state.coords,
-        quality: &state.quality,
+        quality: &quality,
         inverted: &state.inverted,
     };
     let scene = Scene::new(mesh, view, &section, camera)?;

@@ -38,6 +38,7 @@ use crate::motion::{Attachment, Clock, Motion};
 use crate::quality::{self, Inversion, Summary};
 use crate::robust;
 use crate::solve::{Engine, NodeRole, SolveInfo, SolverSetup, SpringSolver, Stage};
+use crate::topology;
 
 mod attempt;
 mod blend;
@@ -123,17 +124,25 @@ fn stage_names(stages: &[Stage]) -> String {
     names.join(", ")
 }
 
-/// A configuration of the mesh with its check.
+/// A configuration of the mesh with its check. The quality of each cell is
+/// not kept (8 bytes a cell for the whole run): [`Snapshot::qualities`]
+/// measures it again, as the check did.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Snapshot {
     /// Node coordinates (D·N).
     pub coords: Vec<f64>,
-    /// Quality of each cell.
-    pub quality: Vec<f64>,
     /// Whether each cell is inverted relative to the input mesh.
     pub inverted: Vec<bool>,
     /// The step's report.
     pub report: StepReport,
+}
+
+impl Snapshot {
+    /// The quality of each cell of `mesh`, the input mesh this configuration
+    /// moves, relative to its orientation ([`quality::qualities`]).
+    pub fn qualities(&self, mesh: &Mesh) -> Vec<f64> {
+        quality::qualities(mesh, &self.coords, &quality::orientation(mesh))
+    }
 }
 
 /// A mesh in motion (see the module documentation), its springs solved
@@ -231,9 +240,12 @@ impl<S: SpringSolver> Deformer<S> {
                 (i, k, role)
             })
             .collect();
-        let blend = if settings.robust.blend && !plan.moving.is_empty() {
+        let edge_graph = (settings.robust.blend && !plan.moving.is_empty())
+            .then(|| Arc::new(topology::edge_graph(&mesh.cells, mesh.node_count())));
+        let blend = if let Some(edge_graph) = &edge_graph {
             Some(Blend::new(
                 mesh,
+                Arc::clone(edge_graph),
                 &plan.roles,
                 &plan.normals,
                 blend::bodies(&plan.moving, &rigid.nodes),
@@ -246,6 +258,7 @@ impl<S: SpringSolver> Deformer<S> {
             roles: &plan.roles,
             normals: &plan.normals,
             stiffness: &rigid.stiffness,
+            edge_graph: edge_graph.as_ref(),
         })?;
         let orientation = quality::orientation(mesh);
         let start = Instant::now();
@@ -266,7 +279,6 @@ impl<S: SpringSolver> Deformer<S> {
         let current = Snapshot {
             coords: mesh.coords.clone(),
             inverted: vec![false; quality.len()],
-            quality,
             report,
         };
         Ok(Deformer {
@@ -441,7 +453,7 @@ impl<S: SpringSolver> Deformer<S> {
                         }),
                     },
                 };
-                self.failed = Some(self.snapshot(trial, quality, &inversions, report, start));
+                self.failed = Some(self.snapshot(trial, &quality, &inversions, report, start));
                 return Err(err);
             }
             report.substeps += 1;
@@ -458,7 +470,7 @@ impl<S: SpringSolver> Deformer<S> {
             coords = trial;
             done = end;
             if done >= 1.0 {
-                self.current = self.snapshot(coords, quality, &inversions, report, start);
+                self.current = self.snapshot(coords, &quality, &inversions, report, start);
                 return Ok(self.current.report.clone());
             }
             h = (2.0 * h).min(1.0 - done);
@@ -513,12 +525,12 @@ impl<S: SpringSolver> Deformer<S> {
     fn snapshot(
         &self,
         coords: Vec<f64>,
-        quality: Vec<f64>,
+        quality: &[f64],
         inversions: &[Inversion],
         mut report: StepReport,
         start: Instant,
     ) -> Snapshot {
-        let summary = summarize(&quality, inversions);
+        let summary = summarize(quality, inversions);
         report.min_quality = summary.min_quality;
         report.mean_quality = summary.mean_quality;
         report.inverted = summary.inverted;
@@ -530,7 +542,6 @@ impl<S: SpringSolver> Deformer<S> {
         }
         Snapshot {
             coords,
-            quality,
             inverted,
             report,
         }

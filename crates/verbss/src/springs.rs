@@ -21,6 +21,8 @@
 //! couplings to prescribed nodes are kept apart, since they only enter the
 //! right-hand side, once per solve.
 
+use std::sync::Arc;
+
 use crate::error::{Error, Result};
 use rayon::prelude::*;
 
@@ -28,7 +30,7 @@ use crate::geometry::{
     add_outer, morton_keys, nearest_on_quad, nearest_on_segment, nearest_on_triangle, norm,
     packed_len, packed_mul, point, sub,
 };
-use crate::mesh::{CompactCells, Mesh};
+use crate::mesh::{Cells, CompactCells, Mesh};
 use crate::topology::{self, Csr};
 
 mod refill;
@@ -54,9 +56,11 @@ pub struct Connectivity {
     /// Node → cells incidence.
     pub node_cells: Csr,
     /// Node-coupling graph: nodes sharing a cell.
-    pub graph: Csr,
-    /// Edge graph: nodes joined by an element edge.
-    pub edge_graph: Csr,
+    pub graph: Arc<Csr>,
+    /// Edge graph: nodes joined by an element edge (the node-coupling graph
+    /// itself on a mesh of simplices, and shared with the blended rigid
+    /// motion when it has one).
+    pub edge_graph: Arc<Csr>,
     /// The file's node numbers (for messages).
     pub node_tags: Vec<u64>,
     /// The file's cell numbers (for messages).
@@ -79,10 +83,15 @@ impl Connectivity {
     /// lie close together in memory; each node's incident cells keep the
     /// file's order, so sums over them are the same as in the file's order.
     pub fn new(mesh: &Mesh) -> Connectivity {
+        Connectivity::with_edge_graph(mesh, None)
+    }
+
+    /// [`Connectivity::new`] with the mesh's edge graph when the caller
+    /// has it already ([`topology::edge_graph`]): shared, not built again.
+    pub fn with_edge_graph(mesh: &Mesh, edge_graph: Option<Arc<Csr>>) -> Connectivity {
         let n = mesh.node_count();
         let mut node_cells = topology::node_cells(&mesh.cells, n);
-        let graph = topology::node_graph_from(&mesh.cells, &node_cells);
-        let edge_graph = topology::edge_graph_from(&mesh.cells, &node_cells);
+        let (graph, edge_graph) = Connectivity::graphs(&mesh.cells, &node_cells, edge_graph);
         let by_curve = curve_order(mesh);
         let mut rank = vec![0; by_curve.len()];
         for (r, &c) in by_curve.iter().enumerate() {
@@ -103,6 +112,24 @@ impl Connectivity {
             stiffness: Vec::new(),
             locality: morton_keys(mesh.dim, &mesh.coords),
         }
+    }
+
+    /// The node-coupling and edge graphs of `cells` from their incidence
+    /// `node_cells`, the edge graph `edge_graph` when given: one graph
+    /// shared by both on a mesh of simplices, where they are equal.
+    pub fn graphs(
+        cells: &Cells,
+        node_cells: &Csr,
+        edge_graph: Option<Arc<Csr>>,
+    ) -> (Arc<Csr>, Arc<Csr>) {
+        let edge_graph =
+            edge_graph.unwrap_or_else(|| Arc::new(topology::edge_graph_from(cells, node_cells)));
+        let graph = if topology::all_simplices(cells) {
+            Arc::clone(&edge_graph)
+        } else {
+            Arc::new(topology::node_graph_from(cells, node_cells))
+        };
+        (graph, edge_graph)
     }
 }
 

@@ -122,6 +122,20 @@ pub fn node_graph_from(cells: &Cells, node_cells: &Csr) -> Csr {
     })
 }
 
+/// The element-edge graph of `cells` on `nodes` nodes ([`edge_graph_from`]).
+pub fn edge_graph(cells: &Cells, nodes: usize) -> Csr {
+    edge_graph_from(cells, &node_cells(cells, nodes))
+}
+
+/// Whether every two nodes of every cell are joined by an edge of it
+/// (triangles and tetrahedra): then the edge graph is the node graph.
+pub fn all_simplices(cells: &Cells) -> bool {
+    cells.kinds.iter().all(|kind| {
+        let n = kind.node_count();
+        kind.table().edges.len() == n * (n - 1) / 2
+    })
+}
+
 /// The element-edge graph: `j` is a neighbour of `i` when an edge of a cell
 /// joins them (never face or cell diagonals), from the node → cells
 /// incidence `node_cells` ([`node_cells`]).
@@ -154,7 +168,7 @@ pub fn upper_edges(graph: &Csr) -> impl Iterator<Item = [usize; 2]> + '_ {
 
 /// The unique element edges `(i, j)` with `i < j`, sorted (never face or cell diagonals).
 pub fn edges(cells: &Cells, nodes: usize) -> Vec<[usize; 2]> {
-    let graph = edge_graph_from(cells, &node_cells(cells, nodes));
+    let graph = edge_graph(cells, nodes);
     let mut edges = Vec::with_capacity(graph.targets.len() / 2);
     edges.extend(upper_edges(&graph));
     edges
@@ -355,6 +369,31 @@ mod tests {
             by_rows.targets.len() < all_pairs.targets.len(),
             "diagonals excluded"
         );
+    }
+
+    /// On triangles and tetrahedra every two nodes of a cell are joined by
+    /// an edge, so the edge graph is the node graph (and the springs keep
+    /// one of them); on any other kind it is not.
+    #[test]
+    fn the_edge_graph_is_the_node_graph_exactly_on_simplices() {
+        use crate::mesh::samples::jittered_grid;
+        for (dim, kind, simplices) in [(2, 0, true), (3, 2, true), (2, 1, false), (3, 0, false)] {
+            let m = jittered_grid(dim, 4, kind, || 0.0).expect("grid");
+            let n = m.node_count();
+            assert_eq!(all_simplices(&m.cells), simplices, "{dim}D kind {kind}");
+            let same = node_graph(&m.cells, n) == edge_graph(&m.cells, n);
+            assert_eq!(same, simplices, "{dim}D kind {kind}");
+            let conn = crate::springs::Connectivity::new(&m);
+            assert_eq!(
+                std::sync::Arc::ptr_eq(&conn.graph, &conn.edge_graph),
+                simplices
+            );
+            assert_eq!(*conn.graph, node_graph(&m.cells, n));
+            assert_eq!(*conn.edge_graph, edge_graph(&m.cells, n));
+        }
+        assert!(!all_simplices(
+            &crate::mesh::samples::hex_wedge_pyramid_tet().cells
+        ));
     }
 
     /// The facets found through the incidence are those that one cell

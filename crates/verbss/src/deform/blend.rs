@@ -31,6 +31,8 @@
 //! The springs then solve only for what the blend leaves: nothing for a
 //! rigid body, its deformation otherwise.
 
+use std::sync::Arc;
+
 use super::harmonic::Laplace;
 use crate::geometry::{cross, dot, norm};
 use crate::mesh::Mesh;
@@ -92,15 +94,17 @@ struct Rigid {
 
 impl Blend {
     /// The blend for bodies given as `(targets fitted, nodes held)`;
-    /// `roles` are the deformer's (rigid-layer nodes prescribed).
+    /// `roles` are the deformer's (rigid-layer nodes prescribed),
+    /// `edge_graph` the mesh's ([`crate::topology::edge_graph`]).
     pub(super) fn new(
         mesh: &Mesh,
+        edge_graph: Arc<Csr>,
         roles: &[NodeRole],
         normals: &[[f64; 3]],
         bodies: Vec<(Vec<usize>, Vec<usize>)>,
     ) -> Blend {
         let n = mesh.node_count();
-        let laplace = Laplace::new(mesh);
+        let laplace = Laplace::new(mesh.dim, edge_graph);
         let slide_along = common_slide_directions(roles, normals);
         let extent = robust::size(mesh, &(0..n).collect::<Vec<_>>());
         let bodies = bodies

@@ -6,7 +6,8 @@
 //! gradients with a Jacobi preconditioner, from the previous increment's
 //! weights.
 
-use crate::mesh::Mesh;
+use std::sync::Arc;
+
 use crate::topology::{self, Csr};
 
 /// Conjugate gradients stop at this reduction of the residual…
@@ -19,21 +20,16 @@ const MAX_ITERATIONS: usize = 4000;
 pub(super) struct Laplace {
     dim: usize,
     edges: Vec<[u32; 2]>,
-    graph: Csr,
+    graph: Arc<Csr>,
 }
 
 impl Laplace {
-    /// The problem on the edges of `mesh`.
-    pub(super) fn new(mesh: &Mesh) -> Laplace {
-        let node_cells = topology::node_cells(&mesh.cells, mesh.node_count());
-        let graph = topology::edge_graph_from(&mesh.cells, &node_cells);
+    /// The problem on the edges of a mesh in `dim` dimensions, its edge
+    /// graph `graph` ([`topology::edge_graph`]).
+    pub(super) fn new(dim: usize, graph: Arc<Csr>) -> Laplace {
         let mut edges = Vec::with_capacity(graph.targets.len() / 2);
         edges.extend(topology::upper_edges(&graph).map(|[a, b]| [a as u32, b as u32]));
-        Laplace {
-            dim: mesh.dim,
-            edges,
-            graph,
-        }
+        Laplace { dim, edges, graph }
     }
 
     /// The edges as a graph (both directions).

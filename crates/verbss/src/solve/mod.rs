@@ -244,6 +244,16 @@ impl Engine {
     /// is not connected (through cells) to any [`NodeRole::Fixed`] node, which
     /// would leave its displacement undetermined.
     pub fn new(mesh: &Mesh, roles: &[NodeRole], normals: &[[f64; 3]]) -> Result<Engine> {
+        Engine::with_connectivity(Connectivity::new(mesh), mesh, roles, normals)
+    }
+
+    /// [`Engine::new`] on the connectivity `conn` of `mesh`.
+    pub(crate) fn with_connectivity(
+        conn: Connectivity,
+        mesh: &Mesh,
+        roles: &[NodeRole],
+        normals: &[[f64; 3]],
+    ) -> Result<Engine> {
         let n = mesh.node_count();
         let dim = mesh.dim;
         if roles.len() != n {
@@ -253,7 +263,6 @@ impl Engine {
             )));
         }
         let unit = unit_directions(dim, roles, normals, |i| mesh.node_tags[i])?;
-        let conn = Connectivity::new(mesh);
         let accel = accel::AccelState::new(&conn.cells.kinds);
         let fixed: Vec<usize> = (0..n).filter(|&i| roles[i] == NodeRole::Fixed).collect();
         let reach = topology::bfs_layers(&conn.graph, &fixed);

@@ -3,8 +3,12 @@
 //! and whoever solves the spring system — the [`Engine`] in one process,
 //! a distributed sweeper over MPI ranks.
 
+use std::sync::Arc;
+
 use crate::error::Result;
 use crate::mesh::Mesh;
+use crate::springs::Connectivity;
+use crate::topology::Csr;
 
 use super::{Engine, NodeRole, SolveInfo, SolveParams};
 
@@ -47,12 +51,16 @@ pub struct SolverSetup<'a> {
     pub normals: &'a [[f64; 3]],
     /// Per-node spring stiffness factors (empty: none).
     pub stiffness: &'a [f64],
+    /// The mesh's edge graph when the deformer built it already (for the
+    /// blended rigid motion): shared, not built again.
+    pub edge_graph: Option<&'a Arc<Csr>>,
 }
 
 impl Engine {
     /// The engine of `setup`: its topology, with the stiffness factors set.
     pub fn from_setup(setup: &SolverSetup) -> Result<Engine> {
-        let mut engine = Engine::new(setup.mesh, setup.roles, setup.normals)?;
+        let conn = Connectivity::with_edge_graph(setup.mesh, setup.edge_graph.cloned());
+        let mut engine = Engine::with_connectivity(conn, setup.mesh, setup.roles, setup.normals)?;
         engine.set_stiffness(setup.stiffness.to_vec());
         Ok(engine)
     }
