@@ -28,7 +28,7 @@ use verbss::solve::{
     coupled, relax, unit_directions, Accel, Frames, Method, NodeRole, SolveInfo, SolveParams,
     Stage, ERROR_FRACTION,
 };
-use verbss::springs::{self, Connectivity, NodeBlocks, Springs};
+use verbss::springs::{self, CellTags, Connectivity, NodeBlocks, Springs};
 use verbss::topology;
 use verbss::{CompactCells, Error, Result};
 
@@ -116,7 +116,7 @@ impl<'c> Sweeper<'c> {
             node_cells,
             cells: CompactCells::ordered(&part.cells, 0..part.cells.len()),
             node_tags: part.node_tags.clone(),
-            cell_tags: part.cell_tags.clone(),
+            cell_tags: CellTags::ordered(&part.cell_tags, 0..part.cells.len()),
             stiffness: Vec::new(),
             locality: morton_keys(dim, &part.coords),
         };

@@ -64,7 +64,7 @@ pub struct Connectivity {
     /// The file's node numbers (for messages).
     pub node_tags: Vec<u64>,
     /// The file's cell numbers (for messages).
-    pub cell_tags: Vec<u64>,
+    pub cell_tags: CellTags,
     /// Per-node stiffness factors `φ` (empty: all 1): an edge spring is
     /// scaled by `(φ_i + φ_j)/2`, the ball-vertex springs of a cell by the
     /// mean `φ` of its nodes. Scaling keeps `Σ_j B_ij = K_ii`.
@@ -108,7 +108,7 @@ impl Connectivity {
             edge_graph,
             cells,
             node_tags: mesh.node_tags.clone(),
-            cell_tags: by_curve.iter().map(|&c| mesh.cell_tags[c]).collect(),
+            cell_tags: CellTags::ordered(&mesh.cell_tags, by_curve.iter().copied()),
             stiffness: Vec::new(),
             locality: morton_keys(mesh.dim, &mesh.coords),
         }
@@ -130,6 +130,49 @@ impl Connectivity {
             Arc::new(topology::node_graph_from(cells, node_cells))
         };
         (graph, edge_graph)
+    }
+}
+
+/// The file's number of each cell of a [`Connectivity`], in its order.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum CellTags {
+    /// Cell `c` is the file's cell `first + file_index[c]`: the files that
+    /// number their cells consecutively (4 bytes a cell, not 8).
+    Consecutive {
+        /// The number of the file's first cell.
+        first: u64,
+        /// Each cell's index in the file.
+        file_index: Vec<u32>,
+    },
+    /// Any other numbering: each cell's number.
+    Listed(Vec<u64>),
+}
+
+impl CellTags {
+    /// The numbers `tags` (in the file's order) of the cells `order`.
+    pub fn ordered(tags: &[u64], order: impl Iterator<Item = usize>) -> CellTags {
+        let first = tags.first().copied().unwrap_or(0);
+        let consecutive = u32::try_from(tags.len()).is_ok()
+            && tags
+                .iter()
+                .zip(first..)
+                .all(|(&tag, expected)| tag == expected);
+        if consecutive {
+            CellTags::Consecutive {
+                first,
+                file_index: order.map(|c| c as u32).collect(),
+            }
+        } else {
+            CellTags::Listed(order.map(|c| tags[c]).collect())
+        }
+    }
+
+    /// The file's number of cell `c`.
+    pub fn tag(&self, c: usize) -> u64 {
+        match self {
+            CellTags::Consecutive { first, file_index } => first + u64::from(file_index[c]),
+            CellTags::Listed(tags) => tags[c],
+        }
     }
 }
 
@@ -377,7 +420,7 @@ fn row<const D: usize>(
             let (p, w, m) = nearest::<D>(coords, &xi, &nodes, facet).ok_or_else(|| {
                 Error::InvalidMesh(format!(
                     "cell {} has a degenerate quadrilateral face",
-                    conn.cell_tags[c]
+                    conn.cell_tags.tag(c)
                 ))
             })?;
             let d = sub(&p, &xi);
@@ -386,7 +429,8 @@ fn row<const D: usize>(
                 return Err(Error::InvalidMesh(format!(
                     "node {} lies on a facet of cell {} (a collapsed cell: \
                      zero ball-vertex spring length)",
-                    conn.node_tags[i], conn.cell_tags[c]
+                    conn.node_tags[i],
+                    conn.cell_tags.tag(c)
                 )));
             }
             let n = d.map(|v| v / h);

@@ -98,6 +98,8 @@ pub use self::spring_solver::{SolverSetup, SpringSolver};
 pub use self::verbss::relax;
 pub(crate) use sweep::{chunked_dot, chunked_sum, sweep};
 
+use std::sync::Arc;
+
 use crate::error::{Error, Result};
 use crate::geometry::{ldlt_factor, packed_len, packed_mul, point};
 use crate::mesh::Mesh;
@@ -127,7 +129,7 @@ pub struct Engine {
     accel: accel::AccelState,
     /// The last layout and the moving nodes it was ordered from: a rebuild
     /// with the same moving nodes (every step of a run) reuses it.
-    layout: Option<(Vec<usize>, Layout)>,
+    layout: Option<(Vec<usize>, Arc<Layout>)>,
     /// The method of the last escalated solve and the index, in its chain
     /// of stages, of the stage that solved it (`escalate.rs`).
     escalation: Option<(Method, usize)>,
@@ -137,7 +139,7 @@ pub struct Engine {
 struct Built {
     coords: Vec<f64>,
     method: Method,
-    layout: Layout,
+    layout: Arc<Layout>,
     system: System,
     lu: Option<direct::Lu>,
     scratch: Scratch,
@@ -397,10 +399,10 @@ impl Engine {
     ) -> Result<Built> {
         let seeds = self.moving::<D>(displacement);
         let (layout, kept) = match &self.layout {
-            Some((same, layout)) if *same == seeds => (layout.clone(), kept),
+            Some((same, layout)) if *same == seeds => (Arc::clone(layout), kept),
             _ => {
-                let layout = self.layout::<D>(&seeds);
-                self.layout = Some((seeds, layout.clone()));
+                let layout = Arc::new(self.layout::<D>(&seeds));
+                self.layout = Some((seeds, Arc::clone(&layout)));
                 (layout, None)
             }
         };

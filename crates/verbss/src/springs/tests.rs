@@ -59,6 +59,31 @@ fn collapsed_cells_are_reported() {
     );
 }
 
+/// The cells' numbers follow the springs' order of the cells: as an offset
+/// and a 32-bit index when the file numbers its cells consecutively, listed
+/// otherwise, and the message of a collapsed cell names the file's number.
+#[test]
+fn cell_numbers_follow_the_order_of_the_cells() {
+    let order = [2, 0, 1];
+    let consecutive = CellTags::ordered(&[7, 8, 9], order.iter().copied());
+    assert!(matches!(consecutive, CellTags::Consecutive { first: 7, .. }));
+    let listed = CellTags::ordered(&[10, 4, 11], order.iter().copied());
+    assert!(matches!(listed, CellTags::Listed(_)));
+    for (tags, expected) in [(&consecutive, [9, 7, 8]), (&listed, [11, 10, 4])] {
+        let got: Vec<u64> = (0..3).map(|c| tags.tag(c)).collect();
+        assert_eq!(got, expected);
+    }
+    let mut cells = Cells::new();
+    cells.push(CellKind::Triangle, &[0, 1, 2]);
+    let coords = vec![0.0, 0.0, 2.0, 0.0, 0.5, 0.0];
+    let mut mesh = Mesh::new(2, coords.clone(), cells, vec![]).unwrap();
+    mesh.cell_tags = vec![42];
+    let conn = Connectivity::new(&mesh);
+    let position = [u32::MAX, u32::MAX, 0];
+    let e = assemble(&conn, &coords, &[2], &position, Springs::BallVertex).unwrap_err();
+    assert!(e.to_string().contains("of cell 42 "), "{e}");
+}
+
 /// A deterministic jitter in `[-amount, amount)`.
 fn jitter(seed: u64, amount: f64) -> impl FnMut() -> f64 {
     let mut state = seed;
