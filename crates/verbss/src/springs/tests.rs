@@ -66,7 +66,10 @@ fn collapsed_cells_are_reported() {
 fn cell_numbers_follow_the_order_of_the_cells() {
     let order = [2, 0, 1];
     let consecutive = CellTags::ordered(&[7, 8, 9], order.iter().copied());
-    assert!(matches!(consecutive, CellTags::Consecutive { first: 7, .. }));
+    assert!(matches!(
+        consecutive,
+        CellTags::Consecutive { first: 7, .. }
+    ));
     let listed = CellTags::ordered(&[10, 4, 11], order.iter().copied());
     assert!(matches!(listed, CellTags::Listed(_)));
     for (tags, expected) in [(&consecutive, [9, 7, 8]), (&listed, [11, 10, 4])] {

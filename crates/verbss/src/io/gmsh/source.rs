@@ -9,10 +9,12 @@
 
 use std::collections::hash_map::DefaultHasher;
 use std::fmt;
+use std::fs::File;
 use std::hash::{Hash, Hasher};
-use std::io::{self, Write};
+use std::io::{self, BufReader, Read, Seek, SeekFrom, Write};
 use std::ops::Range;
-use std::sync::Arc;
+use std::path::Path;
+use std::sync::{Arc, Mutex};
 
 use super::model::Structure;
 use crate::io::MshVersion;
@@ -23,7 +25,7 @@ use crate::mesh::{Cells, Mesh};
 pub struct Source {
     version: MshVersion,
     binary: bool,
-    bytes: Arc<[u8]>,
+    bytes: Bytes,
     /// Byte range of `x y z` of each node, in the mesh's node order.
     coords: Vec<Range<usize>>,
     /// [`fingerprint`] of the mesh read from the file.
@@ -32,12 +34,25 @@ pub struct Source {
     structure: Structure,
 }
 
+/// Where a [`Source`] keeps the file's bytes.
+enum Bytes {
+    /// In memory.
+    Held(Arc<[u8]>),
+    /// In an unnamed temporary file ([`Source::spill`]), deleted with it;
+    /// locked while a copy is written from it.
+    Spilled(Mutex<File>),
+}
+
 impl fmt::Debug for Source {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let bytes = match &self.bytes {
+            Bytes::Held(bytes) => format!("{} in memory", bytes.len()),
+            Bytes::Spilled(_) => "in a temporary file".to_string(),
+        };
         f.debug_struct("Source")
             .field("version", &self.version)
             .field("binary", &self.binary)
-            .field("bytes", &self.bytes.len())
+            .field("bytes", &bytes)
             .finish()
     }
 }
@@ -56,7 +71,7 @@ impl Source {
         Source {
             version,
             binary,
-            bytes: bytes.into(),
+            bytes: Bytes::Held(bytes.into()),
             coords,
             fingerprint: fingerprint(mesh),
             structure,
@@ -96,24 +111,61 @@ impl Source {
             && self.fingerprint == fingerprint(mesh)
     }
 
+    /// Moves the file's bytes out of memory into an unnamed temporary file
+    /// in the folder `dir` (deleted when the source is dropped, or when the
+    /// process ends): a long run that writes its mesh back as this file
+    /// then holds none of it in memory, and a change of the input file
+    /// during the run changes nothing in what is written.
+    pub fn spill(&mut self, dir: &Path) -> io::Result<()> {
+        if let Bytes::Held(bytes) = &self.bytes {
+            let mut file = tempfile::tempfile_in(dir)?;
+            file.write_all(bytes)?;
+            self.bytes = Bytes::Spilled(Mutex::new(file));
+        }
+        Ok(())
+    }
+
     /// Writes the file with `coords` (`dim` numbers per node) in place of
     /// its own (`z = 0` in 2D): ASCII in shortest round-trip form (a node
     /// that did not move keeps its text), binary as little-endian doubles.
     pub(super) fn write(&self, w: &mut dyn Write, dim: usize, coords: &[f64]) -> io::Result<()> {
+        match &self.bytes {
+            Bytes::Held(bytes) => self.write_from(&mut &bytes[..], w, dim, coords),
+            Bytes::Spilled(file) => {
+                let file = file.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+                let mut file: &File = &file;
+                file.seek(SeekFrom::Start(0))?;
+                let mut file = BufReader::with_capacity(1 << 16, file);
+                self.write_from(&mut file, w, dim, coords)
+            }
+        }
+    }
+
+    /// [`Source::write`] from `file`, a reader of the file's bytes from the start.
+    fn write_from(
+        &self,
+        file: &mut dyn Read,
+        w: &mut dyn Write,
+        dim: usize,
+        coords: &[f64],
+    ) -> io::Result<()> {
         const CHUNK: usize = 1 << 16;
         let mut buf = Vec::with_capacity(CHUNK + 256);
+        let mut text = Vec::new();
         let mut copied = 0;
         for (i, span) in self.coords.iter().enumerate() {
-            buf.extend_from_slice(&self.bytes[copied..span.start]);
+            file.take((span.start - copied) as u64)
+                .read_to_end(&mut buf)?;
+            text.resize(span.len(), 0);
+            file.read_exact(&mut text)?;
             let p = &coords[dim * i..dim * (i + 1)];
             let xyz = [p[0], p[1], p.get(2).copied().unwrap_or(0.0)];
-            let text = &self.bytes[span.clone()];
             if self.binary {
                 for v in xyz {
                     buf.extend_from_slice(&v.to_le_bytes());
                 }
-            } else if parse_xyz(text) == Some(xyz) {
-                buf.extend_from_slice(text);
+            } else if parse_xyz(&text) == Some(xyz) {
+                buf.extend_from_slice(&text);
             } else {
                 write!(buf, "{:?} {:?} {:?}", xyz[0], xyz[1], xyz[2])?;
             }
@@ -124,7 +176,7 @@ impl Source {
             }
         }
         w.write_all(&buf)?;
-        w.write_all(&self.bytes[copied..])?;
+        io::copy(file, w)?;
         w.flush()
     }
 }

@@ -80,3 +80,21 @@ fn a_changed_mesh_or_another_encoding_is_written_anew() {
         assert!(!out.ends_with(COMMENTS), "{encoding:?}");
     }
 }
+
+/// With its bytes moved to a temporary file, the source writes the same
+/// file as with them in memory, and again on a second write.
+#[test]
+fn a_spilled_source_writes_the_same_file() {
+    let dir = tempfile::tempdir().unwrap();
+    for encoding in ENCODINGS {
+        let (_, mut read) = file_and_mesh(&mixed_3d(), encoding);
+        read.coords[0] += 0.5;
+        read.coords[5] = 1.0 / 7.0;
+        let held = written(&read, encoding.0, encoding.1);
+        let source = read.origin.gmsh.as_mut().unwrap();
+        std::sync::Arc::get_mut(source).unwrap().spill(dir.path()).unwrap();
+        assert!(format!("{source:?}").contains("temporary file"));
+        assert!(written(&read, encoding.0, encoding.1) == held, "{encoding:?}");
+        assert!(written(&read, encoding.0, encoding.1) == held, "{encoding:?}");
+    }
+}
