@@ -1,12 +1,18 @@
-//! Per-rank `.vtu` pieces and the `.pvtu` that joins them for ParaView.
+//! Per-rank `.vtu` pieces and the `.pvtu` that joins them for ParaView, and
+//! per-rank MSH 4.1 pieces.
 //!
 //! Rank `r` writes `NAME_r.vtu`: the cells it owns (those whose first node
 //! it owns, [`Part::own_cells`]) with their nodes, point data
 //! `displacement` and `node_tag`, cell data `quality`, `rank`, `cell_tag`
-//! and `group`. Rank 0 writes `NAME.pvtu` listing the pieces.
+//! and `group`. Rank 0 writes `NAME.pvtu` listing the pieces. Or, where no
+//! rank holds the whole mesh, rank `r` writes its share as `NAME_r.msh`
+//! ([`write_msh_piece`]).
 
-use std::path::Path;
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
 
+use verbss::io::gmsh::partitioned::Share;
+use verbss::io::gmsh::{write_piece_to, PieceLabels};
 use verbss::io::{vtu, write_atomic};
 use verbss::mesh::FileOrigin;
 use verbss::{Cells, Mesh, Result};
@@ -98,8 +104,66 @@ pub fn write_local_piece(
 }
 
 /// `dir/NAME_RANK.vtu`.
-pub fn piece_path(dir: &Path, name: &str, rank: i32) -> std::path::PathBuf {
+pub fn piece_path(dir: &Path, name: &str, rank: i32) -> PathBuf {
     dir.join(format!("{name}_{rank}.vtu"))
+}
+
+/// Writes rank `rank`'s piece `dir/NAME_RANK.msh`, MSH 4.1 (binary or
+/// ASCII as the input): `share`'s cells and group facets, its nodes at
+/// `coords`, with the input's node and cell tags, the facet tags of
+/// [`msh_facet_tags`] from `fresh` on, and the input's physical groups
+/// ([`verbss::io::gmsh::write_piece_to`]); Gmsh merges the ranks' pieces
+/// into the whole mesh (a node on several pieces has one tag).
+pub fn write_msh_piece(
+    dir: &Path,
+    name: &str,
+    rank: i32,
+    share: &Share,
+    fresh: u64,
+    coords: &[f64],
+) -> Result<PathBuf> {
+    let path = dir.join(format!("{name}_{rank}.msh"));
+    let labels = PieceLabels {
+        facet_tags: Some(msh_facet_tags(share, fresh)),
+        domain: share.labels.domain.clone(),
+    };
+    write_atomic(&path, |w| {
+        write_piece_to(w, &share.mesh, coords, &labels, share.binary)
+    })?;
+    Ok(path)
+}
+
+/// The element tags of the group facets of `share` in its MSH piece: the
+/// file's, except that a facet in several groups (an element written once
+/// per group) and every facet of a file that gave none (SU2) take fresh
+/// tags `fresh`, `fresh + 1`, …: at most one per facet.
+pub fn msh_facet_tags(share: &Share, fresh: u64) -> Vec<Vec<u64>> {
+    let groups = &share.mesh.groups;
+    let file = share.labels.facet_tags.as_ref().filter(|tags| {
+        tags.len() == groups.len()
+            && tags
+                .iter()
+                .zip(groups)
+                .all(|(t, g)| t.len() == g.facets.len())
+    });
+    let mut taken: HashSet<u64> = share.mesh.cell_tags.iter().copied().collect();
+    let mut next = fresh;
+    let mut tag = |file_tag: Option<u64>| match file_tag {
+        Some(t) if taken.insert(t) => t,
+        _ => {
+            next += 1;
+            next - 1
+        }
+    };
+    groups
+        .iter()
+        .enumerate()
+        .map(|(k, g)| {
+            (0..g.facets.len())
+                .map(|f| tag(file.map(|tags| tags[k][f])))
+                .collect()
+        })
+        .collect()
 }
 
 /// Writes `dir/NAME.pvtu` joining the pieces of ranks `0..ranks`.
