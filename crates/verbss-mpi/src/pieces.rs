@@ -201,3 +201,57 @@ pub fn write_pvtu(dir: &Path, name: &str, ranks: i32) -> Result<()> {
         writeln!(w, "</VTKFile>")
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use verbss::mesh::{CellKind, Group};
+
+    /// Two triangles; the edge 0–1 in two groups, the edge 1–2 in one.
+    fn share(labels: PieceLabels) -> Share {
+        let mut cells = Cells::new();
+        cells.push(CellKind::Triangle, &[0, 1, 2]);
+        cells.push(CellKind::Triangle, &[1, 3, 2]);
+        let edge = |a: usize, b: usize| {
+            let mut facets = Cells::new();
+            facets.push(CellKind::Line, &[a, b]);
+            facets
+        };
+        let group = |name: &str, tag: i32, facets: Cells| Group {
+            name: name.into(),
+            tag: Some(tag),
+            facets,
+        };
+        let mut both = edge(0, 1);
+        both.push(CellKind::Line, &[1, 3]);
+        Share {
+            mesh: Mesh {
+                dim: 2,
+                coords: vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+                node_tags: vec![1, 2, 3, 4],
+                cells,
+                cell_tags: vec![20, 21],
+                groups: vec![group("wall", 1, edge(0, 1)), group("all", 2, both)],
+                origin: FileOrigin::default(),
+            },
+            boundary: vec![true; 4],
+            partitions: 1,
+            group_nodes: Vec::new(),
+            binary: false,
+            labels,
+        }
+    }
+
+    /// The file's facet tags are kept; a facet written a second time (in a
+    /// second group) and facets the file gave no tag take fresh ones.
+    #[test]
+    fn repeated_and_untagged_facets_take_fresh_tags() {
+        let file = PieceLabels {
+            facet_tags: Some(vec![vec![7], vec![7, 9]]),
+            domain: None,
+        };
+        assert_eq!(msh_facet_tags(&share(file), 100), [vec![7], vec![100, 9]]);
+        let none = share(PieceLabels::default());
+        assert_eq!(msh_facet_tags(&none, 100), [vec![100], vec![101, 102]]);
+    }
+}

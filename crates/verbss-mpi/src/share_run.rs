@@ -245,18 +245,18 @@ fn first_fresh_tag(world: &Comm, share: &Share) -> anyhow::Result<u64> {
             .unwrap_or(0),
     );
     let facets: u64 = mesh.groups.iter().map(|g| g.facets.len() as u64).sum();
-    let counts = world.all_gather(&[facets]);
-    let below: u64 = counts[..world.rank() as usize].iter().map(|c| c[0]).sum();
-    match largest
-        .checked_add(1 + below)
-        .filter(|f| f.checked_add(facets).is_some())
+    let counts: Vec<u64> = world.all_gather(&[facets]).iter().map(|c| c[0]).collect();
+    // The same answer on every rank, so that all go on or all stop.
+    if largest
+        .checked_add(1 + counts.iter().sum::<u64>())
+        .is_none()
     {
-        Some(fresh) => Ok(fresh),
-        None => bail!(
+        bail!(
             "element tags up to {largest} leave no room for the tags of the group facets of \
              the MSH pieces"
-        ),
+        );
     }
+    Ok(largest + 1 + counts[..world.rank() as usize].iter().sum::<u64>())
 }
 
 /// Every rank writes its cells at `coords` as its piece beside `output`:

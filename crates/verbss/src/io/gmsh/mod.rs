@@ -44,7 +44,10 @@
 //! taken; then it gets a fresh one. In 2D, `z = 0` is written. ASCII floats use
 //! the shortest text that reads back to the same `f64`, so writing and reading
 //! back gives the same mesh, bit for bit, in all four encodings (empty groups
-//! excepted: they have no elements to carry them).
+//! excepted: they have no elements to carry them). A piece of a larger mesh
+//! (a rank's share of a partitioned file) is written anew in MSH 4.1 by
+//! [`write_piece_to`], keeping the file's facet tags and cells' physical
+//! group ([`PieceLabels`]).
 //!
 //! # Why a reader of our own
 //!
