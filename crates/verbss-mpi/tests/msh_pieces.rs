@@ -8,7 +8,8 @@
 //! with gmsh, else that part skips) opens each and merges them into the whole
 //! moved mesh. A piece one rank cannot write stops every rank with its
 //! message, once, and exit code 2; an output that is neither `.msh` nor
-//! `.pvtu` is refused.
+//! `.pvtu` is refused; a step that inverts a cell leaves the input in the
+//! pieces.
 
 use std::path::{Path, PathBuf};
 
@@ -134,4 +135,51 @@ fn a_piece_one_rank_cannot_write_stops_every_rank() {
     let message = "moved.su2: a partitioned input is written rank by rank: the output is a \
                    .pvtu file (one .vtu piece per rank beside it) or a .msh name";
     assert_eq!(stderr.matches(message).count(), 1, "{stderr}");
+}
+
+/// A step that inverts a cell (the hole pushed through the top wall) stops
+/// with exit code 3, and the MSH pieces hold the last valid mesh, the input.
+#[test]
+fn an_inverted_cell_leaves_the_input_in_the_pieces() {
+    if !common::mpi_ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = asset("gmsh/channel_hole_part3_v41_ascii.msh");
+    let whole = io::read(&mesh).unwrap();
+    let out = dir.path().join("moved.msh");
+    let args = [
+        "deform",
+        mesh.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--pieces",
+        "--moving",
+        "wall",
+        "--translate",
+        "0,0.45",
+        "--method",
+        "verbss",
+        "--max-iterations",
+        "100000",
+        "-q",
+    ];
+    let o = verbss_mpi_with(2, &args, dir.path(), &[]);
+    assert_eq!(o.status.code(), Some(3));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(
+        stderr.matches("error: step 1 inverts ").count(),
+        1,
+        "{stderr}"
+    );
+    let mut cells = 0;
+    for r in 0..2 {
+        let piece = io::read(&dir.path().join(format!("moved_{r}.msh"))).unwrap();
+        cells += piece.cell_count();
+        for (i, t) in piece.node_tags.iter().enumerate() {
+            let g = whole.node_tags.iter().position(|w| w == t).unwrap();
+            assert_eq!(piece.point(i), whole.point(g), "node {t}");
+        }
+    }
+    assert_eq!(cells, whole.cell_count());
 }
