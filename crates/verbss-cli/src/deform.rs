@@ -377,10 +377,15 @@ impl DeformArgs {
                 self.mesh.display()
             );
         }
-        if self.output.extension().is_none_or(|e| e != "pvtu") {
+        if self
+            .output
+            .extension()
+            .is_none_or(|e| e != "pvtu" && e != "msh")
+        {
             bail!(
                 "{}: a partitioned input is written rank by rank: the output is a .pvtu file \
-                 (one .vtu piece per rank beside it)",
+                 (one .vtu piece per rank beside it) or a .msh name (one MSH 4.1 piece per \
+                 rank beside it)",
                 self.output.display()
             );
         }
@@ -401,7 +406,7 @@ impl DeformArgs {
 
 /// A `verbss-mpi deform` job on a partitioned input ([`DeformArgs::share_job`]).
 pub struct ShareJob {
-    /// The `.pvtu` output.
+    /// The output: a `.pvtu` file, or a `.msh` name for MSH 4.1 pieces.
     pub output: PathBuf,
     /// The moving groups.
     pub moving: Vec<String>,

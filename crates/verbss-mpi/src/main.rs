@@ -10,11 +10,12 @@
 //! report; every rank writes its piece `OUT-STEM_RANK.vtu` beside OUT, and
 //! rank 0 the `OUT-STEM.pvtu` joining them.
 //!
-//! A `.pvtu` output, from a partitioned MSH 4.1 input or an SU2 input, goes
-//! another way ([`share_run::run_shares`]): every rank reads only its own
-//! partitions (MSH) or rank 0 streams the file to the others and PT-Scotch
-//! cuts it (SU2, [`su2`]); every rank writes only its own cells, and no rank
-//! holds the whole mesh.
+//! A `.pvtu` output or `--pieces`, from a partitioned MSH 4.1 input or an
+//! SU2 input, goes another way ([`share_run::run_shares`]): every rank
+//! reads only its own partitions (MSH) or rank 0 streams the file to the
+//! others and PT-Scotch cuts it (SU2, [`su2`]); every rank writes only its
+//! own cells (a `.vtu` or an MSH 4.1 piece), and no rank holds the whole
+//! mesh.
 //!
 //! Exit codes as `verbss`: 0 success, 2 bad input, 3 an inverted element,
 //! 4 a step no solver could solve. Built without MPI or METIS (see
@@ -70,6 +71,12 @@ struct MpiDeformArgs {
     /// rank in bounded messages.
     #[arg(long, value_name = "FILE.vtu")]
     gather: Option<PathBuf>,
+    /// From a partitioned MSH 4.1 or an SU2 input: no rank holds the whole
+    /// mesh, each writes its own cells as a piece beside OUT, OUT-STEM_RANK.msh
+    /// (MSH 4.1) for OUT.msh, OUT-STEM_RANK.vtu and OUT.pvtu for OUT.pvtu
+    /// (which implies --pieces).
+    #[arg(long)]
+    pieces: bool,
 }
 
 #[cfg(with_mpi)]
@@ -80,13 +87,13 @@ fn main() -> ExitCode {
     };
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Deform(args) if share_run::applies(&args.deform) => {
+        Command::Deform(args) if args.pieces || share_run::applies(&args.deform) => {
             share_run::run_shares(args.deform, args.gather)
         }
         Command::Deform(args) => match args.gather {
             Some(path) => Err(anyhow::anyhow!(
-                "--gather {}: only a .pvtu output (from a partitioned MSH 4.1 or an SU2 \
-                 input) is gathered; this output is already the whole mesh",
+                "--gather {}: only a .pvtu output or --pieces (from a partitioned MSH 4.1 or \
+                 an SU2 input) is gathered; this output is already the whole mesh",
                 path.display()
             )),
             None => deform::prepare(args.deform).and_then(run::run_distributed),

@@ -1,12 +1,18 @@
-//! Per-rank `.vtu` pieces and the `.pvtu` that joins them for ParaView.
+//! Per-rank `.vtu` pieces and the `.pvtu` that joins them for ParaView, and
+//! per-rank MSH 4.1 pieces.
 //!
 //! Rank `r` writes `NAME_r.vtu`: the cells it owns (those whose first node
 //! it owns, [`Part::own_cells`]) with their nodes, point data
 //! `displacement` and `node_tag`, cell data `quality`, `rank`, `cell_tag`
-//! and `group`. Rank 0 writes `NAME.pvtu` listing the pieces.
+//! and `group`. Rank 0 writes `NAME.pvtu` listing the pieces. Or, where no
+//! rank holds the whole mesh, rank `r` writes its share as `NAME_r.msh`
+//! ([`write_msh_piece`]).
 
-use std::path::Path;
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
 
+use verbss::io::gmsh::partitioned::Share;
+use verbss::io::gmsh::{write_piece_to, PieceLabels};
 use verbss::io::{vtu, write_atomic};
 use verbss::mesh::FileOrigin;
 use verbss::{Cells, Mesh, Result};
@@ -98,8 +104,66 @@ pub fn write_local_piece(
 }
 
 /// `dir/NAME_RANK.vtu`.
-pub fn piece_path(dir: &Path, name: &str, rank: i32) -> std::path::PathBuf {
+pub fn piece_path(dir: &Path, name: &str, rank: i32) -> PathBuf {
     dir.join(format!("{name}_{rank}.vtu"))
+}
+
+/// Writes rank `rank`'s piece `dir/NAME_RANK.msh`, MSH 4.1 (binary or
+/// ASCII as the input): `share`'s cells and group facets, its nodes at
+/// `coords`, with the input's node and cell tags, the facet tags of
+/// [`msh_facet_tags`] from `fresh` on, and the input's physical groups
+/// ([`verbss::io::gmsh::write_piece_to`]); Gmsh merges the ranks' pieces
+/// into the whole mesh (a node on several pieces has one tag).
+pub fn write_msh_piece(
+    dir: &Path,
+    name: &str,
+    rank: i32,
+    share: &Share,
+    fresh: u64,
+    coords: &[f64],
+) -> Result<PathBuf> {
+    let path = dir.join(format!("{name}_{rank}.msh"));
+    let labels = PieceLabels {
+        facet_tags: Some(msh_facet_tags(share, fresh)),
+        domain: share.labels.domain.clone(),
+    };
+    write_atomic(&path, |w| {
+        write_piece_to(w, &share.mesh, coords, &labels, share.binary)
+    })?;
+    Ok(path)
+}
+
+/// The element tags of the group facets of `share` in its MSH piece: the
+/// file's, except that a facet in several groups (an element written once
+/// per group) and every facet of a file that gave none (SU2) take fresh
+/// tags `fresh`, `fresh + 1`, …: at most one per facet.
+pub fn msh_facet_tags(share: &Share, fresh: u64) -> Vec<Vec<u64>> {
+    let groups = &share.mesh.groups;
+    let file = share.labels.facet_tags.as_ref().filter(|tags| {
+        tags.len() == groups.len()
+            && tags
+                .iter()
+                .zip(groups)
+                .all(|(t, g)| t.len() == g.facets.len())
+    });
+    let mut taken: HashSet<u64> = share.mesh.cell_tags.iter().copied().collect();
+    let mut next = fresh;
+    let mut tag = |file_tag: Option<u64>| match file_tag {
+        Some(t) if taken.insert(t) => t,
+        _ => {
+            next += 1;
+            next - 1
+        }
+    };
+    groups
+        .iter()
+        .enumerate()
+        .map(|(k, g)| {
+            (0..g.facets.len())
+                .map(|f| tag(file.map(|tags| tags[k][f])))
+                .collect()
+        })
+        .collect()
 }
 
 /// Writes `dir/NAME.pvtu` joining the pieces of ranks `0..ranks`.
@@ -136,4 +200,58 @@ pub fn write_pvtu(dir: &Path, name: &str, ranks: i32) -> Result<()> {
         writeln!(w, "  </PUnstructuredGrid>")?;
         writeln!(w, "</VTKFile>")
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use verbss::mesh::{CellKind, Group};
+
+    /// Two triangles; the edge 0–1 in two groups, the edge 1–2 in one.
+    fn share(labels: PieceLabels) -> Share {
+        let mut cells = Cells::new();
+        cells.push(CellKind::Triangle, &[0, 1, 2]);
+        cells.push(CellKind::Triangle, &[1, 3, 2]);
+        let edge = |a: usize, b: usize| {
+            let mut facets = Cells::new();
+            facets.push(CellKind::Line, &[a, b]);
+            facets
+        };
+        let group = |name: &str, tag: i32, facets: Cells| Group {
+            name: name.into(),
+            tag: Some(tag),
+            facets,
+        };
+        let mut both = edge(0, 1);
+        both.push(CellKind::Line, &[1, 3]);
+        Share {
+            mesh: Mesh {
+                dim: 2,
+                coords: vec![0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+                node_tags: vec![1, 2, 3, 4],
+                cells,
+                cell_tags: vec![20, 21],
+                groups: vec![group("wall", 1, edge(0, 1)), group("all", 2, both)],
+                origin: FileOrigin::default(),
+            },
+            boundary: vec![true; 4],
+            partitions: 1,
+            group_nodes: Vec::new(),
+            binary: false,
+            labels,
+        }
+    }
+
+    /// The file's facet tags are kept; a facet written a second time (in a
+    /// second group) and facets the file gave no tag take fresh ones.
+    #[test]
+    fn repeated_and_untagged_facets_take_fresh_tags() {
+        let file = PieceLabels {
+            facet_tags: Some(vec![vec![7], vec![7, 9]]),
+            domain: None,
+        };
+        assert_eq!(msh_facet_tags(&share(file), 100), [vec![7], vec![100, 9]]);
+        let none = share(PieceLabels::default());
+        assert_eq!(msh_facet_tags(&none, 100), [vec![100], vec![101, 102]]);
+    }
 }

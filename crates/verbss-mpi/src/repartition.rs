@@ -24,6 +24,7 @@
 use std::collections::HashMap;
 
 use verbss::io::gmsh::partitioned::Share;
+use verbss::io::gmsh::PieceLabels;
 use verbss::io::su2::validate_at;
 use verbss::mesh::{CellKind, Cells, FileOrigin};
 use verbss::{Error, Mesh, Result};
@@ -184,6 +185,8 @@ pub fn repartition(comm: &Comm, scattered: &Scattered) -> Result<Share> {
         boundary: markers.iter().map(|on| !on.is_empty()).collect(),
         partitions: size,
         group_nodes,
+        binary: false,
+        labels: PieceLabels::default(),
     })
 }
 

@@ -94,10 +94,8 @@ pub fn prescribe(
     Ok((roles, u))
 }
 
-#[cfg(with_ptscotch)]
-pub(crate) use with_mpi::agree;
 #[cfg(with_mpi)]
-pub use with_mpi::read_rank_share;
+pub use with_mpi::{agree, read_rank_share};
 
 #[cfg(with_mpi)]
 mod with_mpi {
@@ -129,7 +127,7 @@ mod with_mpi {
     /// otherwise every rank returns an error: the failing ranks their own,
     /// the others the lowest failing rank's, as `rank R WHAT: MESSAGE`. So
     /// that no rank goes on to wait for the others.
-    pub(crate) fn agree<T>(comm: &Comm, result: Result<T>, what: &str) -> Result<T> {
+    pub fn agree<T>(comm: &Comm, result: Result<T>, what: &str) -> Result<T> {
         let message = result
             .as_ref()
             .err()

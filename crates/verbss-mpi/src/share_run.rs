@@ -1,11 +1,12 @@
-//! `verbss-mpi deform` with a `.pvtu` output, from a partitioned MSH 4.1
-//! input, where every rank reads only its own partitions
+//! `verbss-mpi deform` with a `.pvtu` output or `--pieces`, from a
+//! partitioned MSH 4.1 input, where every rank reads only its own partitions
 //! ([`verbss_mpi::share::read_rank_share`]), or from a single-zone SU2
 //! input, which rank 0 reads in one pass and scatters and PT-Scotch cuts
 //! ([`verbss_mpi::scatter`], `verbss_mpi::repartition`). Then the flow-solver entry
 //! ([`verbss_mpi::coupled::LocalSolver`]) adds the ghost layer and sweeps,
-//! and every rank checks and writes its own cells — no rank holds the whole
-//! mesh (docs/distributed.md).
+//! and every rank checks and writes its own cells, as a `.vtu` piece (rank 0
+//! the `.pvtu` joining them) or as an MSH 4.1 piece — no rank holds the
+//! whole mesh (docs/distributed.md).
 //!
 //! Step `n` of `N` prescribes the moving nodes where the motion puts their
 //! input positions at `n/N`, the other boundary nodes where they are; with
@@ -27,7 +28,6 @@ use std::time::Instant;
 use anyhow::bail;
 use verbss::deform::Reference;
 use verbss::io::gmsh::partitioned::{partition_count, Share};
-use verbss::mesh::Mesh;
 use verbss::motion::{Clock, Frame, Motion};
 use verbss::quality;
 use verbss::solve::Stage;
@@ -35,8 +35,8 @@ use verbss_cli::deform::DeformArgs;
 use verbss_cli::progress::Progress;
 use verbss_cli::run::{file_stem, output_dir};
 use verbss_mpi::coupled::LocalSolver;
-use verbss_mpi::pieces::write_local_piece;
-use verbss_mpi::share::{global_numbers, partitions_of, prescribe, read_rank_share};
+use verbss_mpi::pieces::{write_local_piece, write_msh_piece};
+use verbss_mpi::share::{agree, global_numbers, partitions_of, prescribe, read_rank_share};
 use verbss_mpi::step_quality::step_quality;
 use verbss_mpi::Comm;
 
@@ -45,8 +45,9 @@ use crate::run::join_pieces;
 use crate::share_report::StepLog;
 use crate::su2;
 
-/// Whether `verbss-mpi deform` takes this path: a `.pvtu` output, which
-/// only a partitioned MSH 4.1 or an SU2 input is written to.
+/// Whether `verbss-mpi deform` takes this path without `--pieces`: a
+/// `.pvtu` output, which only a partitioned MSH 4.1 or an SU2 input is
+/// written to.
 pub fn applies(args: &DeformArgs) -> bool {
     args.output().extension().is_some_and(|e| e == "pvtu")
 }
@@ -63,9 +64,9 @@ fn check_partitioned(input: &Path, output: &Path) -> anyhow::Result<()> {
         return Ok(());
     }
     bail!(
-        "{}: a .pvtu output is written rank by rank, from a partitioned MSH 4.1 input \
-         (`gmsh -part N -format msh41`) or an SU2 input, and {} is neither: give another \
-         output format, or partition the mesh",
+        "{}: a .pvtu output or --pieces is written rank by rank, from a partitioned MSH \
+         4.1 input (`gmsh -part N -format msh41`) or an SU2 input, and {} is neither: give \
+         another output format, or partition the mesh",
         output.display(),
         input.display()
     )
@@ -185,7 +186,7 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
                 info.iterations, info.residual
             );
             return report.stop(&message, 4, || {
-                write(&world, &job.output, mesh, &coords, &orientation)
+                write(&world, &job.output, &share, &coords, &orientation)
             });
         }
         if inverted > 0 {
@@ -196,7 +197,7 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
                 step - 1
             );
             return report.stop(&message, 3, || {
-                write(&world, &job.output, mesh, &coords, &orientation)
+                write(&world, &job.output, &share, &coords, &orientation)
             });
         }
         progress.step(report.last());
@@ -204,7 +205,7 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
         sweeps += info.iterations;
     }
     progress.finish();
-    write(&world, &job.output, mesh, &coords, &orientation)?;
+    write(&world, &job.output, &share, &coords, &orientation)?;
     if let Some(path) = &gather {
         gather::gather(&world, path, &share, solver.part(), &coords)?;
     }
@@ -212,25 +213,76 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
     if root && !job.quiet {
         println!(
             "wrote {} ({} pieces, {sweeps} sweeps in all)",
-            job.output.display(),
+            written_name(&job.output).display(),
             world.size()
         );
     }
     Ok(ExitCode::SUCCESS)
 }
 
-/// Every rank writes its cells at `coords` as its piece beside `output`,
-/// rank 0 the `.pvtu` joining them.
+/// What the output line names: `output`, or for MSH pieces their pattern
+/// `OUT-STEM_RANK.msh`.
+fn written_name(output: &Path) -> PathBuf {
+    if has_extension(output, "pvtu") {
+        return output.to_path_buf();
+    }
+    output_dir(output).join(format!("{}_RANK.msh", file_stem(output)))
+}
+
+/// The first fresh element tag of this rank's MSH piece (collective): above
+/// every element tag of every share, after the group facets of the lower
+/// ranks, so that no two pieces give one tag to different elements
+/// ([`verbss_mpi::pieces::msh_facet_tags`] takes at most one per facet).
+fn first_fresh_tag(world: &Comm, share: &Share) -> anyhow::Result<u64> {
+    let mesh = &share.mesh;
+    let file_facets = share.labels.facet_tags.iter().flatten().flatten();
+    let largest = world.max(
+        mesh.cell_tags
+            .iter()
+            .chain(file_facets)
+            .copied()
+            .max()
+            .unwrap_or(0),
+    );
+    let facets: u64 = mesh.groups.iter().map(|g| g.facets.len() as u64).sum();
+    let counts: Vec<u64> = world.all_gather(&[facets]).iter().map(|c| c[0]).collect();
+    // The same answer on every rank, so that all go on or all stop.
+    if largest
+        .checked_add(1 + counts.iter().sum::<u64>())
+        .is_none()
+    {
+        bail!(
+            "element tags up to {largest} leave no room for the tags of the group facets of \
+             the MSH pieces"
+        );
+    }
+    Ok(largest + 1 + counts[..world.rank() as usize].iter().sum::<u64>())
+}
+
+/// Every rank writes its cells at `coords` as its piece beside `output`:
+/// an MSH 4.1 piece for a `.msh` output, else a `.vtu` piece and rank 0 the
+/// `.pvtu` joining them. Where a rank fails, every rank stops with the
+/// lowest failing rank's message.
 fn write(
     world: &Comm,
     output: &Path,
-    mesh: &Mesh,
+    share: &Share,
     coords: &[f64],
     orientation: &[i8],
 ) -> anyhow::Result<()> {
+    let mesh = &share.mesh;
     let dim = mesh.dim;
     let dir = output_dir(output);
     let name = file_stem(output);
+    if has_extension(output, "msh") {
+        let fresh = first_fresh_tag(world, share)?;
+        let written = write_msh_piece(&dir, &name, world.rank(), share, fresh, coords).map(drop);
+        return agree(world, written, "could not write its piece").map_err(|e| match e {
+            // Another rank's failure, told as it is: not a mesh error.
+            verbss::Error::InvalidMesh(told) => anyhow::anyhow!(told),
+            own => own.into(),
+        });
+    }
     let mut moved = mesh.clone();
     moved.coords = coords.to_vec();
     let mut displacement = vec![0.0; 3 * mesh.node_count()];

@@ -3,8 +3,8 @@
 //! comparison. Each test file uses what it needs of it.
 #![allow(dead_code)]
 
-use std::collections::HashMap;
-use std::path::Path;
+use std::collections::{BTreeSet, HashMap};
+use std::path::{Path, PathBuf};
 
 use verbss::deform::{Deformer, Preset, Reference, StepReport};
 use verbss::motion::{Attachment, Motion};
@@ -57,6 +57,229 @@ pub fn single(
         reports.push(d.step(n).unwrap());
     }
     (d.mesh(), reports)
+}
+
+/// The motion of the arguments `motion`: `--translate D` or `--rotate A`
+/// (about the axis z through (0.5, 0.5, 0.5), as the tests give it).
+fn motion_of(motion: &[&str]) -> Motion {
+    match motion[0] {
+        "--translate" => {
+            let d: Vec<f64> = motion[1].split(',').map(|x| x.parse().unwrap()).collect();
+            Motion::Translation {
+                displacement: [d[0], d[1], d.get(2).copied().unwrap_or(0.0)],
+            }
+        }
+        _ => Motion::Rotation {
+            center: [0.5, 0.5, 0.5],
+            axis: [0.0, 0.0, 1.0],
+            angle: motion[1].parse::<f64>().unwrap().to_radians(),
+        },
+    }
+}
+
+/// `verbss-mpi deform MESH -o OUT --moving GROUP --method verbss --steps 2
+/// --reference REFERENCE` on `np` ranks with the tests' tolerance and
+/// `extra` arguments; asserts that it succeeds.
+fn run(
+    np: usize,
+    mesh: &Path,
+    out: &Path,
+    group: &str,
+    reference: Reference,
+    extra: &[&str],
+    env: &[(&str, &str)],
+) -> std::process::Output {
+    let reference = match reference {
+        Reference::Fixed => "fixed",
+        _ => "updated",
+    };
+    let tolerance = TOLERANCE.to_string();
+    let mut args = vec![
+        "deform",
+        mesh.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        group,
+        "--method",
+        "verbss",
+        "--steps",
+        "2",
+        "--reference",
+        reference,
+        "--tolerance",
+        &tolerance,
+        "--max-iterations",
+        "100000",
+    ];
+    args.extend_from_slice(extra);
+    let session = out.parent().unwrap();
+    let o = verbss_mpi_with(np, &args, session, env);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    o
+}
+
+/// The pieces `dir/moved_RANK.EXT` of a run on `np` ranks hold every cell
+/// of `whole` once, with its tag and on the nodes of the same tags, and
+/// their nodes the single-process coordinates `one` to 1e-10 of the largest
+/// displacement `scale`; returns them.
+fn pieces_like_one_process(
+    dir: &Path,
+    ext: &str,
+    np: usize,
+    whole: &Mesh,
+    one: &Mesh,
+    scale: f64,
+) -> Vec<Mesh> {
+    let index = node_index(whole);
+    let dim = whole.dim;
+    let pieces: Vec<Mesh> = (0..np)
+        .map(|r| verbss::io::read(&dir.join(format!("moved_{r}.{ext}"))).unwrap())
+        .collect();
+    let cell_index: HashMap<u64, usize> = whole
+        .cell_tags
+        .iter()
+        .enumerate()
+        .map(|(c, &t)| (t, c))
+        .collect();
+    let node_tags = |mesh: &Mesh, c: usize| -> Vec<u64> {
+        mesh.cells
+            .cell(c)
+            .iter()
+            .map(|&v| mesh.node_tags[v])
+            .collect()
+    };
+    let mut cells = Vec::new();
+    let mut worst = 0.0f64;
+    for piece in &pieces {
+        cells.extend_from_slice(&piece.cell_tags);
+        for (c, t) in piece.cell_tags.iter().enumerate() {
+            assert_eq!(node_tags(piece, c), node_tags(whole, cell_index[t]));
+        }
+        for (i, t) in piece.node_tags.iter().enumerate() {
+            let g = index[t];
+            for d in 0..dim {
+                worst = worst.max((piece.coords[dim * i + d] - one.coords[dim * g + d]).abs());
+            }
+        }
+    }
+    cells.sort_unstable();
+    let mut all = whole.cell_tags.clone();
+    all.sort_unstable();
+    assert_eq!(cells, all, "{ext}: {np} ranks");
+    assert!(worst < 1e-10 * scale, "{ext}: {np} ranks: {worst:e}");
+    pieces
+}
+
+/// Opens each MSH piece given, then merges them all: prints, as JSON, the
+/// node count of each piece alone, and of the merged mesh every node entry
+/// (tag and x y z, a node of several pieces once per piece) and, for its
+/// elements of the top dimension and for those below, how many there are
+/// and how many distinct tags they have.
+const GMSH_MERGE: &str = r#"
+import json, sys
+import gmsh
+gmsh.initialize()
+gmsh.option.setNumber("General.Terminal", 0)
+alone = []
+for piece in sys.argv[1:]:
+    gmsh.open(piece)
+    alone.append(len(gmsh.model.mesh.getNodes()[0]))
+gmsh.open(sys.argv[1])
+for piece in sys.argv[2:]:
+    gmsh.merge(piece)
+tags, xyz, _ = gmsh.model.mesh.getNodes()
+nodes = [[int(t)] + [float(x) for x in xyz[3 * i:3 * i + 3]] for i, t in enumerate(tags)]
+top = gmsh.model.getDimension()
+def tags(dims):
+    found = [int(t) for d in dims for block in gmsh.model.mesh.getElements(d)[1] for t in block]
+    return [len(found), len(set(found))]
+summary = {"alone": alone, "nodes": nodes, "cells": tags([top]), "facets": tags(range(top))}
+print(json.dumps(summary))
+gmsh.finalize()
+"#;
+
+/// Gmsh opens each of the MSH `pieces` (read by verbss as `read`) with
+/// their node counts, and merges them into the whole mesh: every node of
+/// `whole` (one node per tag) at the single-process coordinates `one` to
+/// 1e-10 of `scale`, every cell once, no two facets with one tag.
+fn gmsh_merges(pieces: &[PathBuf], read: &[Mesh], whole: &Mesh, one: &Mesh, scale: f64) {
+    let o = std::process::Command::new("python3")
+        .args(["-c", GMSH_MERGE])
+        .args(pieces)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let merged: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let alone: Vec<u64> = merged["alone"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| n.as_u64().unwrap())
+        .collect();
+    let counts: Vec<u64> = read.iter().map(|p| p.node_count() as u64).collect();
+    assert_eq!(alone, counts);
+    let index = node_index(whole);
+    let dim = whole.dim;
+    let mut tags = BTreeSet::new();
+    let mut worst = 0.0f64;
+    for node in merged["nodes"].as_array().unwrap() {
+        let t = node[0].as_u64().unwrap();
+        let g = index[&t];
+        for d in 0..dim {
+            let x = node[1 + d].as_f64().unwrap();
+            worst = worst.max((x - one.coords[dim * g + d]).abs());
+        }
+        tags.insert(t);
+    }
+    assert_eq!(tags.len(), whole.node_count());
+    assert!(worst < 1e-10 * scale, "Gmsh's merge: {worst:e}");
+    let cells = whole.cell_count();
+    assert_eq!(merged["cells"], serde_json::json!([cells, cells]));
+    assert_eq!(merged["facets"][0], merged["facets"][1]);
+}
+
+/// `verbss-mpi deform --pieces -o moved.msh` on `mesh` on 1, 2 and 3 ranks
+/// (the environment variables `env` set on every rank): the MSH pieces,
+/// binary exactly when `binary`, hold every cell of the file once, at the
+/// single-process run's coordinates to 1e-10 of the largest displacement
+/// `scale`; with python3 and gmsh, Gmsh opens each piece and merges them
+/// into the whole moved mesh.
+pub fn msh_pieces_like_one_process(
+    mesh: &Path,
+    group: &str,
+    motion: &[&str],
+    reference: Reference,
+    scale: f64,
+    binary: bool,
+    env: &[(&str, &str)],
+) {
+    let whole = verbss::io::read(mesh).unwrap();
+    let (one, _) = single(&whole, group, motion_of(motion), 2, reference);
+    let gmsh = verbss_testkit::needs(
+        "python3 with gmsh (pip install gmsh)",
+        verbss_testkit::python(&["gmsh"]),
+    );
+    for np in 1..=3 {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("moved.msh");
+        let mut args = vec!["--pieces", "-q"];
+        args.extend_from_slice(motion);
+        run(np, mesh, &out, group, reference, &args, env);
+        assert!(!out.exists(), "{}", out.display());
+        let read = pieces_like_one_process(dir.path(), "msh", np, &whole, &one, scale);
+        let paths: Vec<PathBuf> = (0..np)
+            .map(|r| dir.path().join(format!("moved_{r}.msh")))
+            .collect();
+        for path in &paths {
+            let head = std::fs::read(path).unwrap();
+            let format = format!("$MeshFormat\n4.1 {} 8\n", u8::from(binary));
+            assert!(head.starts_with(format.as_bytes()), "{}", path.display());
+        }
+        if gmsh {
+            gmsh_merges(&paths, &read, &whole, &one, scale);
+        }
+    }
 }
 
 /// The `--gather` file of a distributed run holds every node once, at the
@@ -200,76 +423,23 @@ pub fn deforms_like_one_process(
     env: &[(&str, &str)],
 ) -> Vec<String> {
     let whole = verbss::io::read(mesh).unwrap();
-    let name = mesh.display();
-    let motion_of = match motion[0] {
-        "--translate" => {
-            let d: Vec<f64> = motion[1].split(',').map(|x| x.parse().unwrap()).collect();
-            Motion::Translation {
-                displacement: [d[0], d[1], d.get(2).copied().unwrap_or(0.0)],
-            }
-        }
-        _ => Motion::Rotation {
-            center: [0.5, 0.5, 0.5],
-            axis: [0.0, 0.0, 1.0],
-            angle: motion[1].parse::<f64>().unwrap().to_radians(),
-        },
-    };
-    let (one, reports) = single(&whole, group, motion_of, 2, reference);
+    let (one, reports) = single(&whole, group, motion_of(motion), 2, reference);
     let index = node_index(&whole);
-    let dim = whole.dim;
-    let reference = match reference {
-        Reference::Fixed => "fixed",
-        _ => "updated",
-    };
     let mut stdouts = Vec::new();
     for np in 1..=3 {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("moved.pvtu");
         let report = dir.path().join("report.json");
         let gathered = dir.path().join("all.vtu");
-        let tolerance = TOLERANCE.to_string();
         let mut args = vec![
-            "deform",
-            mesh.to_str().unwrap(),
-            "-o",
-            out.to_str().unwrap(),
-            "--moving",
-            group,
-            "--method",
-            "verbss",
-            "--steps",
-            "2",
-            "--reference",
-            reference,
-            "--tolerance",
-            &tolerance,
-            "--max-iterations",
-            "100000",
             "--report",
             report.to_str().unwrap(),
             "--gather",
             gathered.to_str().unwrap(),
         ];
         args.extend_from_slice(motion);
-        let o = verbss_mpi_with(np, &args, dir.path(), env);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let mut cells = Vec::new();
-        let mut worst = 0.0f64;
-        for r in 0..np {
-            let piece = verbss::io::read(&dir.path().join(format!("moved_{r}.vtu"))).unwrap();
-            cells.extend_from_slice(&piece.cell_tags);
-            for (i, t) in piece.node_tags.iter().enumerate() {
-                let g = index[t];
-                for d in 0..dim {
-                    worst = worst.max((piece.coords[dim * i + d] - one.coords[dim * g + d]).abs());
-                }
-            }
-        }
-        cells.sort_unstable();
-        let mut all = whole.cell_tags.clone();
-        all.sort_unstable();
-        assert_eq!(cells, all, "{name}: {np} ranks");
-        assert!(worst < 1e-10 * scale, "{name}: {np} ranks: {worst:e}");
+        let o = run(np, mesh, &out, group, reference, &args, env);
+        pieces_like_one_process(dir.path(), "vtu", np, &whole, &one, scale);
         let pvtu = std::fs::read_to_string(&out).unwrap();
         assert_eq!(pvtu.matches("<Piece ").count(), np);
         reports_like_one_process(&report, &whole, &reports, np);

@@ -44,7 +44,10 @@
 //! taken; then it gets a fresh one. In 2D, `z = 0` is written. ASCII floats use
 //! the shortest text that reads back to the same `f64`, so writing and reading
 //! back gives the same mesh, bit for bit, in all four encodings (empty groups
-//! excepted: they have no elements to carry them).
+//! excepted: they have no elements to carry them). A piece of a larger mesh
+//! (a rank's share of a partitioned file) is written anew in MSH 4.1 by
+//! [`write_piece_to`], keeping the file's facet tags and cells' physical
+//! group ([`PieceLabels`]).
 //!
 //! # Why a reader of our own
 //!
@@ -193,6 +196,49 @@ pub fn write_moved_to(
         MshVersion::V22 => v22::write(&mut out, &plan)?,
         MshVersion::V41 => v41::write(&mut out, &plan)?,
     }
+    out.finish()
+}
+
+/// What a piece of a larger mesh keeps of the file it was read from, so
+/// that pieces written apart agree with each other and with the file.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PieceLabels {
+    /// The file's element tag of each facet of each group of the piece;
+    /// `None` numbers them on from the piece's largest cell tag.
+    pub facet_tags: Option<Vec<Vec<u64>>>,
+    /// The file's physical tag and name of the cells; `None` gives them a
+    /// fresh tag named `domain`.
+    pub domain: Option<(i32, String)>,
+}
+
+/// Writes `mesh`, a piece of a larger mesh (a rank's share), with its
+/// nodes at `coords` as MSH 4.1, ASCII or binary: written anew, as a mesh
+/// read from no file (see the module documentation), but with the facet
+/// tags and the cells' physical group of `labels` where they fit the mesh.
+/// Pieces of one mesh then share its node, element and physical tags, and
+/// Gmsh merges them into the mesh.
+pub fn write_piece_to(
+    w: &mut dyn Write,
+    mesh: &Mesh,
+    coords: &[f64],
+    labels: &PieceLabels,
+    binary: bool,
+) -> std::io::Result<()> {
+    if coords.len() != mesh.coords.len() {
+        return Err(write::invalid(format!(
+            "{} coordinates for the {} nodes of a {}D mesh",
+            coords.len(),
+            mesh.node_count(),
+            mesh.dim
+        )));
+    }
+    let labels = write::Labels {
+        facet_tags: labels.facet_tags.as_deref(),
+        domain: labels.domain.as_ref().map(|(t, n)| (*t, n.as_str())),
+    };
+    let plan = write::Plan::labelled(mesh, coords, labels)?;
+    let mut out = write::Out::new(w, binary);
+    v41::write(&mut out, &plan)?;
     out.finish()
 }
 

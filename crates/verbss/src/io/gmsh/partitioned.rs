@@ -44,7 +44,7 @@ use super::v41::{
     element_block_bytes, element_kind, next_block, node_block_bytes, node_parameters,
     read_element_block, read_node_block, section_header, start_element_block, BlockHeader,
 };
-use super::{read_format, read_names, MshVersion, Names};
+use super::{read_format, read_names, MshVersion, Names, PieceLabels};
 use crate::error::Result;
 use crate::mesh::Mesh;
 
@@ -64,6 +64,12 @@ pub struct Share {
     /// with the nodes of [`Share::mesh`] on it (increasing; see the module
     /// documentation).
     pub group_nodes: Vec<(String, Vec<usize>)>,
+    /// Whether the file is binary.
+    pub binary: bool,
+    /// The file's element tags of the group facets of [`Share::mesh`] and
+    /// the cells' physical group, for writing the share as a piece
+    /// ([`super::write_piece_to`]).
+    pub labels: PieceLabels,
 }
 
 /// What precedes `$Nodes`.
@@ -125,7 +131,7 @@ pub fn read_share(path: &Path, wanted: RangeInclusive<usize>) -> Result<Share> {
     let (elements, at) = read_elements(&mut s, &head, &index, &picked)?;
     let end = s.here();
     let c = Cursor::window(&[], path, end, head.binary);
-    let (mesh, _) = finish(&c, nodes, (elements, at), &head.names, false, end)?;
+    let (mesh, structure) = finish(&c, nodes, (elements, at), &head.names, false, end)?;
     let parents: Vec<(usize, i32)> = entity_of_node
         .iter()
         .map(|e| head.entities.partitioned[e].parent)
@@ -149,6 +155,11 @@ pub fn read_share(path: &Path, wanted: RangeInclusive<usize>) -> Result<Share> {
         boundary,
         partitions: count,
         group_nodes,
+        binary: head.binary,
+        labels: PieceLabels {
+            facet_tags: Some(structure.facet_tags),
+            domain: structure.domain,
+        },
     })
 }
 

@@ -19,6 +19,14 @@ pub(super) struct PlannedGroup<'a> {
     pub entity: i32,
 }
 
+/// What a plan takes from the file a mesh was read from, where it fits.
+pub(super) struct Labels<'a> {
+    /// The element tag of each facet of each group.
+    pub facet_tags: Option<&'a [Vec<u64>]>,
+    /// The cells' physical tag and name.
+    pub domain: Option<(i32, &'a str)>,
+}
+
 /// Everything the writers need beyond the mesh itself.
 pub(super) struct Plan<'a> {
     /// The mesh.
@@ -51,8 +59,20 @@ pub(super) fn invalid(message: String) -> io::Error {
 
 impl<'a> Plan<'a> {
     /// Checks the mesh and assigns physical tags and entities; the nodes are
-    /// written at `coords`.
+    /// written at `coords`, the facet tags and the cells' physical group are
+    /// those of the file the mesh was read from ([`super::Source`]), if any.
     pub fn new(mesh: &'a Mesh, coords: &'a [f64]) -> io::Result<Plan<'a>> {
+        let source = mesh.origin.gmsh.as_ref();
+        let labels = Labels {
+            facet_tags: source.and_then(|s| s.facet_tags(mesh)),
+            domain: source.and_then(|s| s.domain()),
+        };
+        Plan::labelled(mesh, coords, labels)
+    }
+
+    /// [`Plan::new`] with the facet tags and the cells' physical group of
+    /// `labels`, where they fit the mesh.
+    pub fn labelled(mesh: &'a Mesh, coords: &'a [f64], labels: Labels<'a>) -> io::Result<Plan<'a>> {
         mesh.validate().map_err(|e| invalid(e.to_string()))?;
         // Fresh physical tags: after the groups' own, from 1 when those reach
         // i32::MAX, never one a group has.
@@ -101,15 +121,18 @@ impl<'a> Plan<'a> {
                 entity: entities[dim],
             });
         }
-        let facet_tags = match mesh.origin.gmsh.as_ref().and_then(|s| s.facet_tags(mesh)) {
-            Some(tags) if distinct(mesh.cell_tags.iter().chain(tags.iter().flatten())) => {
+        let facet_tags = match labels.facet_tags {
+            Some(tags)
+                if fits(mesh, tags)
+                    && distinct(mesh.cell_tags.iter().chain(tags.iter().flatten())) =>
+            {
                 tags.to_vec()
             }
             _ => fresh_facet_tags(mesh)?,
         };
 
         // Groups have a lower dimension: the file's tag cannot clash.
-        let domain = match mesh.origin.gmsh.as_ref().and_then(|s| s.domain()) {
+        let domain = match labels.domain {
             Some((tag, name)) if tag > 0 && !name.contains(['"', '\n', '\r']) => (tag, name),
             _ => (fresh()?, DOMAIN),
         };
@@ -133,6 +156,15 @@ impl<'a> Plan<'a> {
         let p = &self.coords[d * i..d * (i + 1)];
         [p[0], p[1], p.get(2).copied().unwrap_or(0.0)]
     }
+}
+
+/// Whether `tags` holds one tag per facet of each group of `mesh`.
+fn fits(mesh: &Mesh, tags: &[Vec<u64>]) -> bool {
+    tags.len() == mesh.groups.len()
+        && tags
+            .iter()
+            .zip(&mesh.groups)
+            .all(|(t, g)| t.len() == g.facets.len())
 }
 
 /// Whether no two of `tags` are equal.
