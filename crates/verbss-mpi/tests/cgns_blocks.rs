@@ -1,0 +1,182 @@
+//! `verbss-mpi deform IN.cgns -o OUT.pvtu` on 1, 2 and 3 ranks: every rank
+//! reads its own blocks of the file, PT-Scotch cuts it, every rank holds and
+//! writes only its part (docs/distributed.md).
+//!
+//! Each run is held to the single-process stepper to 1e-10 of the largest
+//! displacement; the ranks' lines say how many cells each holds (all of them
+//! once in all, none all of them on 2 or 3 ranks) and how many nodes (none
+//! all of them on 2 or 3 ranks). A bad file stops every rank with one
+//! message and exit code 2.
+
+use std::path::{Path, PathBuf};
+
+use verbss::deform::Reference;
+use verbss::mesh::CellKind;
+use verbss::{io, Mesh};
+use verbss_testkit::needs;
+
+mod common;
+mod like_one_process;
+
+use like_one_process::{deforms_like_one_process, ptscotch_ready, verbss_mpi_with};
+
+fn asset(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/meshes")
+        .join(path)
+}
+
+/// Whether MPI, PT-Scotch and the CGNS library are here; otherwise the
+/// test skips.
+fn ready() -> bool {
+    ptscotch_ready()
+        && needs(
+            "the CGNS library (Debian: libcgns-dev)",
+            io::cgns::available(),
+        )
+}
+
+/// `mesh` written as a fresh CGNS file `dir/name`, read back whole.
+fn as_cgns(dir: &Path, name: &str, mesh: &Mesh) -> (PathBuf, Mesh) {
+    let path = dir.join(name);
+    io::write(&path, mesh, &io::WriteOptions::default()).unwrap();
+    let whole = io::read(&path).unwrap();
+    (path, whole)
+}
+
+/// From each `rank R: …` line of `stdout`: the rank, the file's cells, and
+/// the nodes and cells the rank holds.
+fn rank_lines(stdout: &str) -> Vec<(usize, usize, usize, usize)> {
+    let number = |line: &str, before: &str| -> usize {
+        let at = line
+            .find(before)
+            .unwrap_or_else(|| panic!("'{before}' in '{line}'"));
+        let head = &line[..at];
+        let start = head
+            .rfind(|c: char| !c.is_ascii_digit())
+            .map_or(0, |k| k + 1);
+        head[start..].parse().unwrap()
+    };
+    let mut ranks: Vec<_> = stdout
+        .lines()
+        .filter(|l| l.starts_with("rank "))
+        .map(|l| {
+            (
+                number(l, ": PT-Scotch part "),
+                number(l, " cells read in blocks by every rank"),
+                number(l, " nodes and "),
+                number(l, " cells read;"),
+            )
+        })
+        .collect();
+    ranks.sort_unstable();
+    ranks
+}
+
+/// Checks the ranks' lines of the runs on 1, 2 and 3 ranks of `whole`:
+/// every cell once, and on several ranks no rank with all the cells or all
+/// the nodes.
+fn check_counts(stdouts: &[String], whole: &Mesh) {
+    let (cells, nodes) = (whole.cell_count(), whole.node_count());
+    for (k, stdout) in stdouts.iter().enumerate() {
+        let np = k + 1;
+        let ranks = rank_lines(stdout);
+        assert_eq!(ranks.len(), np, "{stdout}");
+        let mut sum = 0;
+        for (r, &(rank, of, held_nodes, held_cells)) in ranks.iter().enumerate() {
+            assert_eq!(rank, r);
+            assert_eq!(of, cells);
+            assert!(np == 1 || held_cells < cells, "{np} ranks: rank {r}");
+            assert!(np == 1 || held_nodes < nodes, "{np} ranks: rank {r}");
+            assert!(np > 1 || held_nodes == nodes, "{stdout}");
+            sum += held_cells;
+        }
+        assert_eq!(sum, cells, "{np} ranks");
+    }
+}
+
+#[test]
+fn a_2d_hybrid_cgns_file_is_read_in_blocks_cut_and_deformed_on_one_to_three_ranks() {
+    if !ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let msh = io::read(&asset("gmsh/channel_hole_v41_ascii.msh")).unwrap();
+    // Triangles and quads: one MIXED section, read in blocks of it.
+    let (cgns, whole) = as_cgns(dir.path(), "channel.cgns", &msh);
+    for kind in [CellKind::Triangle, CellKind::Quad] {
+        assert!(whole.cells.kinds.contains(&kind), "{kind:?}");
+    }
+    let scale = (0.02f64 * 0.02 + 0.01 * 0.01).sqrt();
+    let motion = ["--translate", "0.02,0.01"];
+    let stdouts = deforms_like_one_process(&cgns, "wall", &motion, Reference::Updated, scale, &[]);
+    check_counts(&stdouts, &whole);
+}
+
+#[test]
+fn the_tetrahedral_brick_as_cgns_is_read_in_blocks_cut_and_deformed_on_one_to_three_ranks() {
+    if !ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let su2 = io::read(&asset("su2/mesh_brick_tets_ffd.su2")).unwrap();
+    let (cgns, whole) = as_cgns(dir.path(), "brick.cgns", &su2);
+    let motion = ["--translate", "0,0,0.05"];
+    let stdouts = deforms_like_one_process(&cgns, "z_p", &motion, Reference::Fixed, 0.05, &[]);
+    check_counts(&stdouts, &whole);
+}
+
+/// `verbss-mpi deform PATH -o moved.pvtu` on 3 ranks must fail with exit
+/// code 2 and one message, `expected` after the file's name.
+fn refused_on_three_ranks(path: &Path, expected: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("moved.pvtu");
+    let args = [
+        "deform",
+        path.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "wall",
+        "--translate",
+        "0.01,0",
+        "--method",
+        "verbss",
+    ];
+    let o = verbss_mpi_with(3, &args, dir.path(), &[]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{}: {stderr}", path.display());
+    let errors = stderr.lines().filter(|l| l.starts_with("error: ")).count();
+    assert_eq!(errors, 1, "{stderr}");
+    let said = format!("error: {}: {expected}", path.display());
+    assert_eq!(stderr.matches(&said).count(), 1, "{stderr}");
+}
+
+/// A structured zone, a polyhedral section, a condition naming elements
+/// no section holds (found by the rank whose block of the condition holds
+/// them) and a file that is not CGNS: the whole-file reader's message; a
+/// second zone, which the whole-file reader leaves out: refused.
+#[test]
+fn a_bad_cgns_file_stops_every_rank_with_one_message() {
+    if !ready() {
+        return;
+    }
+    for name in ["structured", "polyhedral", "condition_outside"] {
+        let path = asset(&format!("bad/{name}.cgns"));
+        let whole = io::read(&path).unwrap_err().to_string();
+        let expected = whole
+            .strip_prefix(&format!("{}: ", path.display()))
+            .unwrap_or_else(|| panic!("{whole}"));
+        refused_on_three_ranks(&path, expected);
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let text = dir.path().join("text.cgns");
+    std::fs::write(&text, "NDIME= 2\n").unwrap();
+    refused_on_three_ranks(&text, "cannot open as CGNS");
+    let two = asset("bad/two_zones.cgns");
+    assert_eq!(io::read(&two).unwrap().cell_count(), 2);
+    refused_on_three_ranks(
+        &two,
+        "base 'Base' holds 2 zones: a distributed read takes single-zone files",
+    );
+}

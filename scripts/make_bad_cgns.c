@@ -1,0 +1,56 @@
+/* Writes the broken CGNS fixtures under assets/meshes/bad/ (ADF files, the
+ * smallest the library writes), for the error tests of the distributed
+ * CGNS read (crates/verbss-mpi/tests/cgns_blocks.rs). Run from the
+ * repository root (needs libcgns-dev):
+ *   cc scripts/make_bad_cgns.c -o /tmp/make_bad_cgns -lcgns
+ *   (cd assets/meshes/bad && /tmp/make_bad_cgns)
+ */
+#include <stdio.h>
+#include <cgnslib.h>
+/* Stops with the library's message when a call fails. */
+#define OK(x) if (x) { printf("%s\n", cg_get_error()); return 1; }
+/* A unit square: two triangles (elements 1, 2) and the section `wall` of two
+ * edges (3, 4), with `extra`: 1 a condition over elements 3..9, of which
+ * no section holds 5..9; 2 a second zone; 3 a polyhedral section. */
+static int square(const char *name, int extra) {
+  int f, b, z, s, bc;
+  cgsize_t size[3] = {4, 2, 0};
+  double x[4] = {0, 1, 1, 0}, y[4] = {0, 0, 1, 1};
+  cgsize_t tri[6] = {1, 2, 3, 1, 3, 4}, bar[4] = {1, 2, 2, 3};
+  OK(cg_open(name, CG_MODE_WRITE, &f));
+  OK(cg_base_write(f, "Base", 2, 2, &b));
+  OK(cg_zone_write(f, b, "Zone", size, Unstructured, &z));
+  OK(cg_coord_write(f, b, z, RealDouble, "CoordinateX", x, &s));
+  OK(cg_coord_write(f, b, z, RealDouble, "CoordinateY", y, &s));
+  OK(cg_section_write(f, b, z, "Cells", TRI_3, 1, 2, 0, tri, &s));
+  OK(cg_section_write(f, b, z, "wall", BAR_2, 3, 4, 0, bar, &s));
+  if (extra == 1) { /* a condition naming element 9, which no section holds */
+    cgsize_t range[2] = {3, 9};
+    OK(cg_boco_write(f, b, z, "wall", BCWall, ElementRange, 2, range, &bc));
+  }
+  if (extra == 2) { /* a second zone */
+    cgsize_t size2[3] = {3, 1, 0};
+    double x2[3] = {5, 6, 5}, y2[3] = {5, 5, 6};
+    cgsize_t tri2[3] = {1, 2, 3};
+    OK(cg_zone_write(f, b, "Zone2", size2, Unstructured, &z));
+    OK(cg_coord_write(f, b, z, RealDouble, "CoordinateX", x2, &s));
+    OK(cg_coord_write(f, b, z, RealDouble, "CoordinateY", y2, &s));
+    OK(cg_section_write(f, b, z, "Cells", TRI_3, 1, 1, 0, tri2, &s));
+  }
+  if (extra == 3) { /* a polyhedral section */
+    cgsize_t ngon[3] = {2, 1, 2}, off[2] = {0, 3};
+    OK(cg_poly_section_write(f, b, z, "Faces", NGON_n, 5, 5, 0, ngon, off, &s));
+  }
+  OK(cg_close(f));
+  return 0;
+}
+int main(void) {
+  int f, b, z;
+  cgsize_t size[9] = {2, 2, 1, 1, 0, 0};
+  OK(cg_set_file_type(CG_FILE_ADF));
+  OK(cg_open("structured.cgns", CG_MODE_WRITE, &f));
+  OK(cg_base_write(f, "Grid", 2, 2, &b));
+  OK(cg_zone_write(f, b, "Block", size, Structured, &z));
+  OK(cg_close(f));
+  return square("condition_outside.cgns", 1) || square("two_zones.cgns", 2) || square("polyhedral.cgns", 3);
+}
