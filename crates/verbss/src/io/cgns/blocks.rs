@@ -126,7 +126,10 @@ impl SectionHead {
     }
 }
 
-/// Zone 1 of base 1 of a CGNS file, open for reading in blocks.
+/// Zone 1 of base 1 of a CGNS file, open for reading in blocks. While it
+/// is open it holds the library's process-wide lock (the library is not
+/// thread-safe): any other CGNS file of the process waits until it is
+/// dropped.
 pub struct Blocks {
     /// The file.
     pub path: PathBuf,

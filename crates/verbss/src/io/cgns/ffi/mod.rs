@@ -225,7 +225,8 @@ impl File {
     }
 
     /// Reads the values of the coordinate array `name` at the `count`
-    /// vertices from `first` (numbered from 0), as doubles.
+    /// vertices from `first` (numbered from 0), as doubles (none when
+    /// `count` is 0, which the library would refuse).
     pub fn read_coordinate(
         &self,
         b: c_int,
@@ -235,6 +236,9 @@ impl File {
     ) -> Result<Vec<f64>, String> {
         let c = c_name(name)?;
         let mut data = vec![0.0f64; count];
+        if count == 0 {
+            return Ok(data);
+        }
         let (min, max): (CgSize, CgSize) = (to_size(first + 1)?, to_size(first + count)?);
         // SAFETY: the buffer holds the `count` values of the range min..=max.
         check(unsafe {
