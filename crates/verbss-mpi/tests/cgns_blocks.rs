@@ -126,6 +126,45 @@ fn the_tetrahedral_brick_as_cgns_is_read_in_blocks_cut_and_deformed_on_one_to_th
     check_counts(&stdouts, &whole);
 }
 
+/// Gmsh's own CGNS files (`scripts/gmsh_channel_cgns.py`): a section per
+/// entity, boundary conditions over element lists at `CellCenter` in
+/// families under the physical groups' families, and the region `fluid`
+/// over the cells, which makes no group. Read in blocks, their groups and
+/// the moved meshes are the single process's, in 2D and 3D.
+#[test]
+fn files_written_by_gmsh_are_read_in_blocks_with_their_physical_groups() {
+    if !ready()
+        || !needs(
+            "python3 with gmsh (pip install gmsh)",
+            verbss_testkit::python(&["gmsh"]),
+        )
+    {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scripts/gmsh_channel_cgns.py");
+    let o = std::process::Command::new("python3")
+        .arg(&script)
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for (dim, motion) in [(2, "0.03,0.05"), (3, "0.03,0.05,0.02")] {
+        let cgns = dir.path().join(format!("channel{dim}.cgns"));
+        let whole = io::read(&cgns).unwrap();
+        assert_eq!(whole.dim, dim);
+        let scale = motion
+            .split(',')
+            .map(|x| x.parse::<f64>().unwrap().powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let motion = ["--translate", motion];
+        let stdouts =
+            deforms_like_one_process(&cgns, "cylinder", &motion, Reference::Updated, scale, &[]);
+        check_counts(&stdouts, &whole);
+    }
+}
+
 /// `verbss-mpi deform PATH -o moved.pvtu` on 3 ranks must fail with exit
 /// code 2 and one message, `expected` after the file's name.
 fn refused_on_three_ranks(path: &Path, expected: &str) {
