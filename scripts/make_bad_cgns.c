@@ -11,7 +11,8 @@
 #define OK(x) if (x) { printf("%s\n", cg_get_error()); return 1; }
 /* A unit square: two triangles (elements 1, 2) and the section `wall` of two
  * edges (3, 4), with `extra`: 1 a condition over elements 3..9, of which
- * no section holds 5..9; 2 a second zone; 3 a polyhedral section. */
+ * no section holds 5..9; 2 a second zone; 3 a polyhedral section; 4 no
+ * section of cells. */
 static int square(const char *name, int extra) {
   int f, b, z, s, bc;
   cgsize_t size[3] = {4, 2, 0};
@@ -22,7 +23,8 @@ static int square(const char *name, int extra) {
   OK(cg_zone_write(f, b, "Zone", size, Unstructured, &z));
   OK(cg_coord_write(f, b, z, RealDouble, "CoordinateX", x, &s));
   OK(cg_coord_write(f, b, z, RealDouble, "CoordinateY", y, &s));
-  OK(cg_section_write(f, b, z, "Cells", TRI_3, 1, 2, 0, tri, &s));
+  if (extra != 4) /* 4: no section of cells */
+    OK(cg_section_write(f, b, z, "Cells", TRI_3, 1, 2, 0, tri, &s));
   OK(cg_section_write(f, b, z, "wall", BAR_2, 3, 4, 0, bar, &s));
   if (extra == 1) { /* a condition naming element 9, which no section holds */
     cgsize_t range[2] = {3, 9};
@@ -52,5 +54,6 @@ int main(void) {
   OK(cg_base_write(f, "Grid", 2, 2, &b));
   OK(cg_zone_write(f, b, "Block", size, Structured, &z));
   OK(cg_close(f));
-  return square("condition_outside.cgns", 1) || square("two_zones.cgns", 2) || square("polyhedral.cgns", 3);
+  return square("condition_outside.cgns", 1) || square("two_zones.cgns", 2) || square("polyhedral.cgns", 3)
+      || square("no_cells.cgns", 4);
 }

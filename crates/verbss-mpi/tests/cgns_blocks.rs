@@ -194,7 +194,8 @@ fn refused_on_three_ranks(path: &Path, expected: &str) {
 /// A structured zone, a polyhedral section, a condition naming elements
 /// no section holds (found by the rank whose block of the condition holds
 /// them) and a file that is not CGNS: the whole-file reader's message; a
-/// second zone, which the whole-file reader leaves out: refused.
+/// second zone, which the whole-file reader leaves out, and a zone without
+/// cells: refused.
 #[test]
 fn a_bad_cgns_file_stops_every_rank_with_one_message() {
     if !ready() {
@@ -217,5 +218,10 @@ fn a_bad_cgns_file_stops_every_rank_with_one_message() {
     refused_on_three_ranks(
         &two,
         "base 'Base' holds 2 zones: a distributed read takes single-zone files",
+    );
+    // No section of cells: nothing to cut.
+    refused_on_three_ranks(
+        &asset("bad/no_cells.cgns"),
+        "zone 'Zone' (zone 1 of base 'Base') holds no cells of dimension 2",
     );
 }
