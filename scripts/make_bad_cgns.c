@@ -12,7 +12,7 @@
 /* A unit square: two triangles (elements 1, 2) and the section `wall` of two
  * edges (3, 4), with `extra`: 1 a condition over elements 3..9, of which
  * no section holds 5..9; 2 a second zone; 3 a polyhedral section; 4 no
- * section of cells. */
+ * section of cells; 5 a condition over elements 3..2000000002. */
 static int square(const char *name, int extra) {
   int f, b, z, s, bc;
   cgsize_t size[3] = {4, 2, 0};
@@ -28,6 +28,10 @@ static int square(const char *name, int extra) {
   OK(cg_section_write(f, b, z, "wall", BAR_2, 3, 4, 0, bar, &s));
   if (extra == 1) { /* a condition naming element 9, which no section holds */
     cgsize_t range[2] = {3, 9};
+    OK(cg_boco_write(f, b, z, "wall", BCWall, ElementRange, 2, range, &bc));
+  }
+  if (extra == 5) { /* a condition over two thousand million elements */
+    cgsize_t range[2] = {3, 2000000002};
     OK(cg_boco_write(f, b, z, "wall", BCWall, ElementRange, 2, range, &bc));
   }
   if (extra == 2) { /* a second zone */
@@ -55,5 +59,5 @@ int main(void) {
   OK(cg_zone_write(f, b, "Block", size, Structured, &z));
   OK(cg_close(f));
   return square("condition_outside.cgns", 1) || square("two_zones.cgns", 2) || square("polyhedral.cgns", 3)
-      || square("no_cells.cgns", 4);
+      || square("no_cells.cgns", 4) || square("huge_range.cgns", 5);
 }

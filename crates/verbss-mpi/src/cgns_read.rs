@@ -14,7 +14,9 @@
 //!   (read in runs of consecutive numbers) or its vertices. Whether it is a
 //!   region and whether every element is a facet are agreed over the ranks,
 //!   so every rank makes the same groups as the whole-file reader, and a
-//!   bad point is reported as that reader reports the first one;
+//!   bad point is reported as that reader reports the first one (of a
+//!   range longer than the zone's elements or vertices, only the first
+//!   of them and one more are looked at: one of them is bad);
 //! * block `r` of the elements of the sections that may hold cells or make
 //!   a group of their own (a section of facets that no condition holds):
 //!   the cells are its block of cells, the facets' nodes go to their group;
@@ -25,7 +27,7 @@
 
 use std::path::Path;
 
-use verbss::io::cgns::blocks::{Blocks, Condition};
+use verbss::io::cgns::blocks::{Blocks, Condition, Numbers};
 use verbss::mesh::{CellKind, Cells};
 use verbss::{Error, Result};
 
@@ -100,13 +102,24 @@ fn condition_block(
     (pairs, covered): (&mut OnGroups, &mut [u64]),
 ) -> Result<()> {
     let (size, rank) = (comm.size() as usize, comm.rank() as usize);
-    let numbers: Vec<i64> = block(c.numbers.len(), size, rank)
-        .map(|k| c.numbers.get(k))
-        .collect();
     let fail = |message: String| Error::Cgns {
         path: zone.path.clone(),
         message,
     };
+    // A range of distinct numbers longer than the `most` the zone holds
+    // names one it lacks within its first `most + 1`, where the checks
+    // below find the first bad one: the rest is never spelled out (nor is
+    // such a range a region).
+    let most = if c.of_elements {
+        zone.elements()
+    } else {
+        zone.vertices
+    };
+    let count = match c.numbers {
+        Numbers::Range(..) => c.numbers.len().min(most + 1),
+        Numbers::List(_) => c.numbers.len(),
+    };
+    let numbers: Vec<i64> = block(count, size, rank).map(|k| c.numbers.get(k)).collect();
     let dim = zone.dim;
     if !c.of_elements {
         let vertices = zone.vertices;

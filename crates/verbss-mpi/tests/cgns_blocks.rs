@@ -191,17 +191,23 @@ fn refused_on_three_ranks(path: &Path, expected: &str) {
     assert_eq!(stderr.matches(&said).count(), 1, "{stderr}");
 }
 
-/// A structured zone, a polyhedral section, a condition naming elements
-/// no section holds (found by the rank whose block of the condition holds
-/// them) and a file that is not CGNS: the whole-file reader's message; a
-/// second zone, which the whole-file reader leaves out, and a zone without
-/// cells: refused.
+/// A structured zone, a polyhedral section, conditions naming elements no
+/// section holds (a few, and two thousand million) and a file that is not
+/// CGNS: the whole-file reader's message; a second zone, which the
+/// whole-file reader leaves out, and a zone without cells: refused.
 #[test]
 fn a_bad_cgns_file_stops_every_rank_with_one_message() {
     if !ready() {
         return;
     }
-    for name in ["structured", "polyhedral", "condition_outside"] {
+    // `huge_range`: a condition over 2,000,000,000 elements, found bad
+    // without any rank spelling out its block of them.
+    for name in [
+        "structured",
+        "polyhedral",
+        "condition_outside",
+        "huge_range",
+    ] {
         let path = asset(&format!("bad/{name}.cgns"));
         let whole = io::read(&path).unwrap_err().to_string();
         let expected = whole
