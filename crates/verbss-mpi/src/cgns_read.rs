@@ -23,7 +23,7 @@
 //! * each `(node, group)` pair goes to the node's directory rank (one
 //!   all-to-all).
 //!
-//! An error on any rank stops every rank ([`agree`]).
+//! An error on any rank stops every rank, with one message (`share::agree`).
 
 use std::path::Path;
 
