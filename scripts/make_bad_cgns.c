@@ -12,7 +12,8 @@
 /* A unit square: two triangles (elements 1, 2) and the section `wall` of two
  * edges (3, 4), with `extra`: 1 a condition over elements 3..9, of which
  * no section holds 5..9; 2 a second zone; 3 a polyhedral section; 4 no
- * section of cells; 5 a condition over elements 3..2000000002. */
+ * section of cells; 5 a condition over elements 3..2000000002; 6 the
+ * first triangle twice (elements 1 and 3, the edges 4 and 5). */
 static int square(const char *name, int extra) {
   int f, b, z, s, bc;
   cgsize_t size[3] = {4, 2, 0};
@@ -23,9 +24,15 @@ static int square(const char *name, int extra) {
   OK(cg_zone_write(f, b, "Zone", size, Unstructured, &z));
   OK(cg_coord_write(f, b, z, RealDouble, "CoordinateX", x, &s));
   OK(cg_coord_write(f, b, z, RealDouble, "CoordinateY", y, &s));
-  if (extra != 4) /* 4: no section of cells */
-    OK(cg_section_write(f, b, z, "Cells", TRI_3, 1, 2, 0, tri, &s));
-  OK(cg_section_write(f, b, z, "wall", BAR_2, 3, 4, 0, bar, &s));
+  if (extra == 6) { /* 6: the first triangle twice */
+    cgsize_t twice[9] = {1, 2, 3, 1, 3, 4, 1, 2, 3};
+    OK(cg_section_write(f, b, z, "Cells", TRI_3, 1, 3, 0, twice, &s));
+    OK(cg_section_write(f, b, z, "wall", BAR_2, 4, 5, 0, bar, &s));
+  } else {
+    if (extra != 4) /* 4: no section of cells */
+      OK(cg_section_write(f, b, z, "Cells", TRI_3, 1, 2, 0, tri, &s));
+    OK(cg_section_write(f, b, z, "wall", BAR_2, 3, 4, 0, bar, &s));
+  }
   if (extra == 1) { /* a condition naming element 9, which no section holds */
     cgsize_t range[2] = {3, 9};
     OK(cg_boco_write(f, b, z, "wall", BCWall, ElementRange, 2, range, &bc));
@@ -59,5 +66,6 @@ int main(void) {
   OK(cg_zone_write(f, b, "Block", size, Structured, &z));
   OK(cg_close(f));
   return square("condition_outside.cgns", 1) || square("two_zones.cgns", 2) || square("polyhedral.cgns", 3)
-      || square("no_cells.cgns", 4) || square("huge_range.cgns", 5);
+      || square("no_cells.cgns", 4) || square("huge_range.cgns", 5)
+      || square("duplicated.cgns", 6);
 }
