@@ -12,13 +12,16 @@ use std::path::{Path, PathBuf};
 
 use verbss::deform::Reference;
 use verbss::mesh::CellKind;
+use verbss::motion::Motion;
 use verbss::{io, Mesh};
 use verbss_testkit::needs;
 
 mod common;
 mod like_one_process;
 
-use like_one_process::{deforms_like_one_process, ptscotch_ready, verbss_mpi_with};
+use like_one_process::{
+    deforms_like_one_process, node_index, ptscotch_ready, single, verbss_mpi_with,
+};
 
 fn asset(path: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -162,6 +165,67 @@ fn files_written_by_gmsh_are_read_in_blocks_with_their_physical_groups() {
         let stdouts =
             deforms_like_one_process(&cgns, "cylinder", &motion, Reference::Updated, scale, &[]);
         check_counts(&stdouts, &whole);
+    }
+}
+
+/// A condition over an element list in a family (`solid`) and a section of
+/// edges that no condition holds (`lid`, a group of its own), on a square
+/// of two triangles: moving either group moves its nodes and only them, as
+/// on one process, on 1 to 3 ranks (some of which hold nothing, so the
+/// gathered mesh is compared).
+#[test]
+fn a_condition_over_a_list_and_a_section_of_its_own_make_the_groups() {
+    if !ready() {
+        return;
+    }
+    let square = asset("cgns/list_and_own_section.cgns");
+    let whole = io::read(&square).unwrap();
+    assert_eq!(whole.group_names(), ["solid", "lid"]);
+    let index = node_index(&whole);
+    for group in ["solid", "lid"] {
+        let displacement = [0.01, 0.02, 0.0];
+        let motion = Motion::Translation { displacement };
+        let (one, _) = single(&whole, group, motion, 1, Reference::Fixed);
+        let moved = whole.group(group).unwrap().nodes();
+        for np in 1..=3 {
+            let dir = tempfile::tempdir().unwrap();
+            let out = dir.path().join("moved.pvtu");
+            let all = dir.path().join("all.vtu");
+            let args = [
+                "deform",
+                square.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+                "--moving",
+                group,
+                "--translate",
+                "0.01,0.02",
+                "--method",
+                "verbss",
+                "--gather",
+                all.to_str().unwrap(),
+            ];
+            let o = verbss_mpi_with(np, &args, dir.path(), &[]);
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            let gathered = io::read(&all).unwrap();
+            for (i, t) in gathered.node_tags.iter().enumerate() {
+                let g = index[t];
+                let shift = [0, 1].map(|d| gathered.point(i)[d] - whole.point(g)[d]);
+                assert_eq!(shift, [0, 1].map(|d| one.point(g)[d] - whole.point(g)[d]));
+                let expected = if moved.contains(&g) {
+                    [0.01, 0.02]
+                } else {
+                    [0.0; 2]
+                };
+                for d in 0..2 {
+                    assert!(
+                        (shift[d] - expected[d]).abs() < 1e-15,
+                        "{group}, {np} ranks"
+                    );
+                }
+            }
+            assert_eq!(gathered.node_count(), whole.node_count());
+        }
     }
 }
 

@@ -1,9 +1,10 @@
-/* Writes the broken CGNS fixtures under assets/meshes/bad/ (ADF files, the
- * smallest the library writes), for the error tests of the distributed
- * CGNS read (crates/verbss-mpi/tests/cgns_blocks.rs). Run from the
- * repository root (needs libcgns-dev):
- *   cc scripts/make_bad_cgns.c -o /tmp/make_bad_cgns -lcgns
- *   (cd assets/meshes/bad && /tmp/make_bad_cgns)
+/* Writes the hand-made CGNS fixtures (ADF files, the smallest the library
+ * writes) of the tests of the distributed CGNS read
+ * (crates/verbss-mpi/tests/cgns_blocks.rs): the broken ones under
+ * assets/meshes/bad/, the one of groups under assets/meshes/cgns/. Run from
+ * the repository root (needs libcgns-dev):
+ *   cc scripts/make_cgns_fixtures.c -o /tmp/make_cgns_fixtures -lcgns
+ *   (cd assets/meshes && /tmp/make_cgns_fixtures)
  */
 #include <stdio.h>
 #include <cgnslib.h>
@@ -13,12 +14,14 @@
  * edges (3, 4), with `extra`: 1 a condition over elements 3..9, of which
  * no section holds 5..9; 2 a second zone; 3 a polyhedral section; 4 no
  * section of cells; 5 a condition over elements 3..2000000002; 6 the
- * first triangle twice (elements 1 and 3, the edges 4 and 5). */
+ * first triangle twice (elements 1 and 3, the edges 4 and 5); 7 a condition
+ * `bottom` over the element list {3} in the family `solid`, and a section
+ * `lid` (element 5) that no condition holds. */
 static int square(const char *name, int extra) {
   int f, b, z, s, bc;
   cgsize_t size[3] = {4, 2, 0};
   double x[4] = {0, 1, 1, 0}, y[4] = {0, 0, 1, 1};
-  cgsize_t tri[6] = {1, 2, 3, 1, 3, 4}, bar[4] = {1, 2, 2, 3};
+  cgsize_t tri[6] = {1, 2, 3, 1, 3, 4}, bar[4] = {1, 2, 2, 3}, lid[2] = {3, 4};
   OK(cg_open(name, CG_MODE_WRITE, &f));
   OK(cg_base_write(f, "Base", 2, 2, &b));
   OK(cg_zone_write(f, b, "Zone", size, Unstructured, &z));
@@ -41,6 +44,15 @@ static int square(const char *name, int extra) {
     cgsize_t range[2] = {3, 2000000002};
     OK(cg_boco_write(f, b, z, "wall", BCWall, ElementRange, 2, range, &bc));
   }
+  if (extra == 7) { /* a condition over element 3 only, in the family `solid` */
+    cgsize_t list[1] = {3};
+    int fam;
+    OK(cg_family_write(f, b, "solid", &fam));
+    OK(cg_boco_write(f, b, z, "bottom", FamilySpecified, ElementList, 1, list, &bc));
+    OK(cg_goto(f, b, "Zone_t", z, "ZoneBC_t", 1, "BC_t", bc, "end"));
+    OK(cg_famname_write("solid"));
+    OK(cg_section_write(f, b, z, "lid", BAR_2, 5, 5, 0, lid, &s));
+  }
   if (extra == 2) { /* a second zone */
     cgsize_t size2[3] = {3, 1, 0};
     double x2[3] = {5, 6, 5}, y2[3] = {5, 5, 6};
@@ -61,11 +73,11 @@ int main(void) {
   int f, b, z;
   cgsize_t size[9] = {2, 2, 1, 1, 0, 0};
   OK(cg_set_file_type(CG_FILE_ADF));
-  OK(cg_open("structured.cgns", CG_MODE_WRITE, &f));
+  OK(cg_open("bad/structured.cgns", CG_MODE_WRITE, &f));
   OK(cg_base_write(f, "Grid", 2, 2, &b));
   OK(cg_zone_write(f, b, "Block", size, Structured, &z));
   OK(cg_close(f));
-  return square("condition_outside.cgns", 1) || square("two_zones.cgns", 2) || square("polyhedral.cgns", 3)
-      || square("no_cells.cgns", 4) || square("huge_range.cgns", 5)
-      || square("duplicated.cgns", 6);
+  return square("bad/condition_outside.cgns", 1) || square("bad/two_zones.cgns", 2) || square("bad/polyhedral.cgns", 3)
+      || square("bad/no_cells.cgns", 4) || square("bad/huge_range.cgns", 5)
+      || square("bad/duplicated.cgns", 6) || square("cgns/list_and_own_section.cgns", 7);
 }
