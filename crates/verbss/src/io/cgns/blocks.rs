@@ -24,7 +24,8 @@ impl Numbers {
     /// How many numbers the set holds.
     pub fn len(&self) -> u64 {
         match self {
-            Numbers::Range(first, last) => (last - first + 1).max(0) as u64,
+            Numbers::Range(first, last) if last < first => 0,
+            Numbers::Range(first, last) => last.abs_diff(*first).saturating_add(1),
             Numbers::List(list) => list.len() as u64,
         }
     }
@@ -73,7 +74,7 @@ impl Condition {
     /// zone's `elements`, and makes no group.
     pub fn is_region(&self, elements: u64, all_cells: bool) -> bool {
         let size = match self.numbers {
-            Numbers::Range(first, last) => first <= last && ((last - first) as u64) < elements,
+            Numbers::Range(first, last) => first <= last && last.abs_diff(first) < elements,
             Numbers::List(ref list) => !list.is_empty(),
         };
         self.at_cell_center && size && all_cells

@@ -389,6 +389,11 @@ mod hand_written {
         let wall = &zone.conditions[0];
         assert_eq!((wall.group.as_str(), wall.of_elements), ("solid", true));
         assert_eq!(wall.numbers, Numbers::List(vec![3, 4]));
+        assert_eq!(wall.numbers.iter().collect::<Vec<_>>(), [3, 4]);
+        // The widest range counts without overflowing; a reversed one is empty.
+        assert_eq!(Numbers::Range(i64::MIN, i64::MAX).len(), u64::MAX);
+        assert_eq!(Numbers::Range(7, 9).len(), 3);
+        assert!(Numbers::Range(9, 7).is_empty());
         assert!(!wall.is_region(5, false));
         // `wall` is covered (and a condition's name), `lid` a group of its own.
         let groups = vec!["solid".to_string()];
