@@ -17,9 +17,11 @@
 //!   blocks, and `repartition` (built with PT-Scotch) cuts it with PT-Scotch
 //!   and gives each rank its part's share, again without any rank holding
 //!   the whole mesh;
+//! * [`cgns_read`] reads a CGNS file in blocks on every rank, into the same
+//!   scattered blocks for the same cut;
 //! * [`step_quality`] reduces a step's quality report over the ranks.
 //!
-//! The MPI parts ([`Comm`], [`coupled`], [`halo`], [`partition`],
+//! The MPI parts ([`Comm`], [`cgns_read`], [`coupled`], [`halo`], [`partition`],
 //! [`scatter`], [`step_quality`], [`stepper`], [`sweeper`]) are built when `build.rs` finds
 //! MPI and METIS ([`missing`] says why they were not), `repartition` when it
 //! also finds PT-Scotch ([`ptscotch_missing`]); [`colouring`], [`cost`], [`part`],
@@ -31,6 +33,8 @@
 #![warn(missing_docs)]
 #![deny(unsafe_code)]
 
+#[cfg(with_mpi)]
+pub mod cgns_read;
 pub mod colouring;
 pub mod cost;
 #[cfg(with_mpi)]

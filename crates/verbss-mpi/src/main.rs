@@ -10,12 +10,12 @@
 //! report; every rank writes its piece `OUT-STEM_RANK.vtu` beside OUT, and
 //! rank 0 the `OUT-STEM.pvtu` joining them.
 //!
-//! A `.pvtu` output or `--pieces`, from a partitioned MSH 4.1 input or an
-//! SU2 input, goes another way ([`share_run::run_shares`]): every rank
-//! reads only its own partitions (MSH) or rank 0 streams the file to the
-//! others and PT-Scotch cuts it (SU2, [`su2`]); every rank writes only its
-//! own cells (a `.vtu` or an MSH 4.1 piece), and no rank holds the whole
-//! mesh.
+//! A `.pvtu` output or `--pieces`, from a partitioned MSH 4.1 input, an
+//! SU2 input or a CGNS input, goes another way ([`share_run::run_shares`]):
+//! every rank reads only its own partitions (MSH), rank 0 streams the file
+//! to the others (SU2, [`su2`]) or every rank reads its own blocks (CGNS,
+//! [`cgns`]) and PT-Scotch cuts it; every rank writes only its own cells
+//! (a `.vtu` or an MSH 4.1 piece), and no rank holds the whole mesh.
 //!
 //! Exit codes as `verbss`: 0 success, 2 bad input, 3 an inverted element,
 //! 4 a step no solver could solve. Built without MPI or METIS (see
@@ -23,6 +23,8 @@
 
 #![forbid(unsafe_code)]
 
+#[cfg(with_mpi)]
+mod cgns;
 #[cfg(with_mpi)]
 mod gather;
 #[cfg(with_mpi)]
@@ -66,7 +68,7 @@ enum Command {
 struct MpiDeformArgs {
     #[command(flatten)]
     deform: deform::DeformArgs,
-    /// With a .pvtu output from a partitioned MSH 4.1 or an SU2 input: rank
+    /// With a .pvtu output from a partitioned MSH 4.1, an SU2 or a CGNS input: rank
     /// 0 also writes the whole moved mesh here as one .vtu, received rank by
     /// rank in bounded messages.
     #[arg(long, value_name = "FILE.vtu")]
@@ -92,8 +94,8 @@ fn main() -> ExitCode {
         }
         Command::Deform(args) => match args.gather {
             Some(path) => Err(anyhow::anyhow!(
-                "--gather {}: only a .pvtu output or --pieces (from a partitioned MSH 4.1 or \
-                 an SU2 input) is gathered; this output is already the whole mesh",
+                "--gather {}: only a .pvtu output or --pieces (from a partitioned MSH 4.1, an \
+                 SU2 or a CGNS input) is gathered; this output is already the whole mesh",
                 path.display()
             )),
             None => deform::prepare(args.deform).and_then(run::run_distributed),

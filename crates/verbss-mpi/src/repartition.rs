@@ -1,4 +1,5 @@
-//! From the scattered blocks of an SU2 file ([`crate::scatter`]) to
+//! From the scattered blocks of an SU2 file ([`crate::scatter`]) or a CGNS
+//! file ([`crate::cgns_read`]) to
 //! PT-Scotch's parts: each rank ends with its part's cells and their nodes,
 //! the [`Share`] that [`crate::coupled::LocalSolver::new`] takes.
 //!
@@ -31,7 +32,7 @@ use verbss::{Error, Mesh, Result};
 
 use crate::coupled::kind_code;
 use crate::directory::ask;
-use crate::scatter::Scattered;
+use crate::scatter::{CellsAt, Scattered};
 use crate::share::agree;
 use crate::sys::ScotchError;
 use crate::Comm;
@@ -178,7 +179,10 @@ pub fn repartition(comm: &Comm, scattered: &Scattered) -> Result<Share> {
     };
     // A duplicated element lands on one rank (the part of its lowest node),
     // which finds it here as the whole-file reader would.
-    let valid = validate_at(&mesh, &scattered.path, scattered.elements_line);
+    let valid = match &scattered.cells_at {
+        CellsAt::Line(line) => validate_at(&mesh, &scattered.path, *line),
+        CellsAt::Zone(zone) => verbss::io::cgns::blocks::validate(&mesh, &scattered.path, zone),
+    };
     agree(comm, valid, "found an invalid cell")?;
     Ok(Share {
         mesh,

@@ -36,22 +36,39 @@ const ROUND_ERROR: u64 = 2;
 const TAG_ELEMENT: u64 = 0;
 const TAG_MARKER: u64 = 1;
 
-/// What one rank holds after the read.
+/// Where the file holds its cells, for the messages of the checks after
+/// the cut.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum CellsAt {
+    /// An SU2 file: the line of `NELEM=`.
+    Line(usize),
+    /// A CGNS file: `zone 'Z' (zone 1 of base 'B')`.
+    Zone(String),
+}
+
+impl Default for CellsAt {
+    fn default() -> Self {
+        CellsAt::Line(0)
+    }
+}
+
+/// What one rank holds after the read (of an SU2 file here, of a CGNS
+/// file by [`crate::cgns_read`]).
 #[derive(Debug, Default)]
 pub struct Scattered {
     /// The file.
     pub path: PathBuf,
-    /// `NDIME=`.
+    /// The dimension (SU2 `NDIME=`).
     pub dim: usize,
-    /// `NPOIN=`, the number of nodes `N`.
+    /// The number of nodes `N` (SU2 `NPOIN=`).
     pub points: u64,
-    /// `NELEM=`, the number of cells `E`.
+    /// The number of cells `E` (SU2 `NELEM=`).
     pub elements: u64,
-    /// The line of `NELEM=`.
-    pub elements_line: usize,
-    /// The markers' names, in file order.
+    /// Where the file holds its cells.
+    pub cells_at: CellsAt,
+    /// The markers' (groups') names, in file order.
     pub markers: Vec<String>,
-    /// The number of chunks rank 0 read.
+    /// The number of chunks rank 0 read (SU2; 0 for a CGNS file).
     pub chunks: usize,
     /// This rank's block of cells: the file index of each, increasing.
     pub cell_index: Vec<u64>,
@@ -163,7 +180,7 @@ fn finish(mine: &mut Scattered, outline: &[u64], names: &[u8]) {
     mine.points = outline[1];
     mine.elements = outline[2];
     mine.chunks = outline[3] as usize;
-    mine.elements_line = outline[4] as usize;
+    mine.cells_at = CellsAt::Line(outline[4] as usize);
     let names = String::from_utf8_lossy(names);
     mine.markers = if names.is_empty() {
         Vec::new()
@@ -232,9 +249,16 @@ pub fn block_of(index: u64, count: u64, ranks: usize) -> usize {
     (u128::from(index) * ranks as u128 / u128::from(count)) as usize
 }
 
+/// The indices of `count` whose block ([`block_of`]) is `rank`:
+/// `⌈rank·count/ranks⌉ .. ⌈(rank+1)·count/ranks⌉`.
+pub fn block(count: u64, ranks: usize, rank: usize) -> std::ops::Range<u64> {
+    let bound = |r: usize| (u128::from(count) * r as u128).div_ceil(ranks as u128) as u64;
+    bound(rank)..bound(rank + 1)
+}
+
 #[cfg(test)]
 mod tests {
-    use super::block_of;
+    use super::{block, block_of};
 
     #[test]
     fn elements_go_to_ranks_in_contiguous_blocks() {
@@ -245,5 +269,18 @@ mod tests {
         assert_eq!(blocks(2, 3), [0, 1]);
         assert_eq!(blocks(4, 1), [0, 0, 0, 0]);
         assert_eq!(block_of(u64::MAX - 1, u64::MAX, 1000), 999);
+    }
+
+    #[test]
+    fn a_rank_s_block_holds_the_indices_of_that_block() {
+        for (count, ranks) in [(7, 3), (2, 3), (4, 1), (0, 2), (10, 4)] {
+            for rank in 0..ranks {
+                let mine: Vec<u64> = (0..count)
+                    .filter(|&e| block_of(e, count, ranks) == rank)
+                    .collect();
+                assert_eq!(block(count, ranks, rank).collect::<Vec<_>>(), mine);
+            }
+        }
+        assert_eq!(block(u64::MAX, 1000, 999).end, u64::MAX);
     }
 }

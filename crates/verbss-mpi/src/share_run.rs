@@ -2,7 +2,9 @@
 //! partitioned MSH 4.1 input, where every rank reads only its own partitions
 //! ([`verbss_mpi::share::read_rank_share`]), or from a single-zone SU2
 //! input, which rank 0 reads in one pass and scatters and PT-Scotch cuts
-//! ([`verbss_mpi::scatter`], `verbss_mpi::repartition`). Then the flow-solver entry
+//! ([`verbss_mpi::scatter`], `verbss_mpi::repartition`), or from a
+//! single-zone CGNS input, of which every rank reads its own blocks
+//! ([`verbss_mpi::cgns_read`]) before the same cut. Then the flow-solver entry
 //! ([`verbss_mpi::coupled::LocalSolver`]) adds the ghost layer and sweeps,
 //! and every rank checks and writes its own cells, as a `.vtu` piece (rank 0
 //! the `.pvtu` joining them) or as an MSH 4.1 piece — no rank holds the
@@ -40,14 +42,15 @@ use verbss_mpi::share::{agree, global_numbers, partitions_of, prescribe, read_ra
 use verbss_mpi::step_quality::step_quality;
 use verbss_mpi::Comm;
 
+use crate::cgns;
 use crate::gather;
 use crate::run::join_pieces;
 use crate::share_report::StepLog;
 use crate::su2;
 
 /// Whether `verbss-mpi deform` takes this path without `--pieces`: a
-/// `.pvtu` output, which only a partitioned MSH 4.1 or an SU2 input is
-/// written to.
+/// `.pvtu` output, which only a partitioned MSH 4.1, an SU2 or a CGNS
+/// input is written to.
 pub fn applies(args: &DeformArgs) -> bool {
     args.output().extension().is_some_and(|e| e == "pvtu")
 }
@@ -65,8 +68,8 @@ fn check_partitioned(input: &Path, output: &Path) -> anyhow::Result<()> {
     }
     bail!(
         "{}: a .pvtu output or --pieces is written rank by rank, from a partitioned MSH \
-         4.1 input (`gmsh -part N -format msh41`) or an SU2 input, and {} is neither: give \
-         another output format, or partition the mesh",
+         4.1 input (`gmsh -part N -format msh41`), an SU2 input or a CGNS input, and {} is \
+         none of them: give another output format, or partition the mesh",
         output.display(),
         input.display()
     )
@@ -77,6 +80,9 @@ fn check_partitioned(input: &Path, output: &Path) -> anyhow::Result<()> {
 fn read_input(world: &Comm, input: &Path, output: &Path) -> anyhow::Result<(Share, String)> {
     if has_extension(input, "su2") {
         return su2::read(world, input);
+    }
+    if has_extension(input, "cgns") {
+        return cgns::read(world, input);
     }
     check_partitioned(input, output)?;
     let share = read_rank_share(world, input)?;

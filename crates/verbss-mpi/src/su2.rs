@@ -54,8 +54,15 @@ pub fn read(world: &Comm, path: &Path) -> anyhow::Result<(Share, String)> {
 #[cfg(not(with_ptscotch))]
 pub fn read(_world: &Comm, path: &Path) -> anyhow::Result<(Share, String)> {
     chunk_lines()?;
-    anyhow::bail!(
-        "{}: an SU2 input with a .pvtu output is cut by PT-Scotch, and verbss-mpi was built \
+    Err(without_ptscotch(path, "an SU2 input"))
+}
+
+/// The error for `input` (`an SU2 input`, `a CGNS input`) at `path` with a
+/// `.pvtu` output in a build without PT-Scotch.
+#[cfg(not(with_ptscotch))]
+pub fn without_ptscotch(path: &Path, input: &str) -> anyhow::Error {
+    anyhow::anyhow!(
+        "{}: {input} with a .pvtu output is cut by PT-Scotch, and verbss-mpi was built \
          without it ({}): install PT-Scotch (Debian: libptscotch-dev libscotchparmetis-dev), \
          then `cargo clean -p verbss-mpi` and build again; or give another output format",
         path.display(),

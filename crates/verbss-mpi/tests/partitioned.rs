@@ -450,7 +450,7 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
         "the number of steps must be at least 1",
     );
     let plain = fixture("channel_hole_v41_ascii.msh");
-    let not_partitioned = "is neither: give another output format";
+    let not_partitioned = "is none of them: give another output format";
     refused(2, &plain, &verbss, not_partitioned);
     let v22 = fixture("channel_hole_v22_ascii.msh");
     refused(2, &v22, &verbss, "MSH 2.2 has no partitioned entities");

@@ -21,16 +21,22 @@
 //! section of facets that no condition holds or is named after becomes a
 //! group of its own name.
 //!
+//! [`blocks::Blocks`] reads the same zone in blocks, with the same checks
+//! and names, for a distributed read (`verbss-mpi`).
+//!
 //! Writing a mesh read from a CGNS file copies that file and replaces only
 //! the values of `GridCoordinates/CoordinateX, Y (, Z)`, in their own
 //! precision; any other mesh is written as a fresh file (see [`write()`]).
 
+pub mod blocks;
 #[cfg(with_cgns)]
 mod ffi;
 #[cfg(with_cgns)]
 mod read;
 #[cfg(with_cgns)]
 mod write;
+#[cfg(with_cgns)]
+mod zone;
 
 use std::path::{Path, PathBuf};
 

@@ -3,6 +3,7 @@ use std::path::Path;
 use verbss_testkit::needs;
 
 use super::available;
+use super::blocks::{Blocks, Numbers};
 use crate::io::{read, write, WriteOptions};
 use crate::mesh::{samples, CellKind, Cells, Group, Mesh};
 
@@ -119,6 +120,50 @@ fn a_group_name_that_cgns_cannot_hold_is_refused() {
         )
     );
     assert!(!path.exists());
+}
+
+#[test]
+fn blocks_read_any_range_of_the_whole_reader_s_coordinates_and_cells() {
+    if !needs(LIBRARY, available()) {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    for mesh in [
+        samples::hex_wedge_pyramid_tet(),
+        samples::two_triangles_and_a_quad(),
+    ] {
+        let whole = write_read(dir.path(), "whole.cgns", &mesh);
+        let zone = Blocks::open(&dir.path().join("whole.cgns")).unwrap();
+        let (n, dim) = (whole.node_count() as u64, whole.dim);
+        assert_eq!((zone.vertices, zone.dim), (n, dim));
+        for first in 0..n {
+            for count in 0..=n - first {
+                let (from, to) = (first as usize * dim, (first + count) as usize * dim);
+                assert_eq!(
+                    zone.coordinates(first, count).unwrap(),
+                    whole.coords[from..to]
+                );
+            }
+        }
+        // The cells' section (MIXED in 2D) read in every block of it.
+        let cells = zone.sections.iter().position(|s| s.cells).unwrap();
+        let head = &zone.sections[cells];
+        assert_eq!(head.count, whole.cell_count() as u64);
+        for start in 0..head.count {
+            for count in 1..=head.count - start {
+                let block = zone
+                    .read_elements(cells, head.first + start as i64, count)
+                    .unwrap();
+                for (k, (kind, nodes)) in block.iter().enumerate() {
+                    let c = start as usize + k;
+                    assert_eq!((kind, nodes), (whole.cells.kinds[c], whole.cells.cell(c)));
+                }
+                assert_eq!(block.len() as u64, count);
+            }
+        }
+        let groups: Vec<&str> = zone.conditions.iter().map(|c| c.group.as_str()).collect();
+        assert_eq!(groups, whole.group_names());
+    }
 }
 
 /// Files written through the library as other tools write them.
@@ -307,5 +352,67 @@ mod hand_written {
         let mesh = read(&two).unwrap();
         assert_eq!((mesh.node_count(), mesh.cell_count()), (4, 2));
         assert_eq!(mesh.origin.cgns.unwrap().zones, 2);
+    }
+
+    #[test]
+    fn blocks_give_the_whole_reader_s_sections_conditions_and_groups() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = square(&dir.path().join("bc.cgns"), |f, b, z| {
+            f.write_family(b, "solid").unwrap();
+            f.write_boco(
+                ("Base", "Zone"),
+                (b, z),
+                ("wall", "solid"),
+                ffi::POINT_LIST,
+                &[3, 4],
+                ffi::EDGE_CENTER,
+            )
+            .unwrap();
+        });
+        let zone = Blocks::open(&path).unwrap();
+        let heads: Vec<(&str, i64, u64, bool, bool)> = zone
+            .sections
+            .iter()
+            .map(|s| (s.name.as_str(), s.first, s.count, s.cells, s.facets))
+            .collect();
+        assert_eq!(
+            heads,
+            [
+                ("Cells", 1, 2, true, false),
+                ("wall", 3, 2, false, true),
+                ("lid", 5, 1, false, true)
+            ]
+        );
+        assert_eq!(zone.elements(), 5);
+        assert_eq!(zone.section_of(4), Some(1));
+        assert_eq!(zone.section_of(6), None);
+        let wall = &zone.conditions[0];
+        assert_eq!((wall.group.as_str(), wall.of_elements), ("solid", true));
+        assert_eq!(wall.numbers, Numbers::List(vec![3, 4]));
+        assert_eq!(wall.numbers.iter().collect::<Vec<_>>(), [3, 4]);
+        // The widest range counts without overflowing; a reversed one is empty.
+        assert_eq!(Numbers::Range(i64::MIN, i64::MAX).len(), u64::MAX);
+        assert_eq!(Numbers::Range(7, 9).len(), 3);
+        assert!(Numbers::Range(9, 7).is_empty());
+        assert!(!wall.is_region(5, false));
+        // `wall` is covered (and a condition's name), `lid` a group of its own.
+        let groups = vec!["solid".to_string()];
+        assert!(!zone.sections[1].own_group(false, &zone.conditions, &groups));
+        assert!(zone.sections[2].own_group(false, &zone.conditions, &groups));
+        // An open file holds the library's lock: closed before the next.
+        drop(zone);
+        assert_eq!(read(&path).unwrap().group_names(), ["solid", "lid"]);
+        let two = square(&dir.path().join("two.cgns"), |f, b, _| {
+            f.write_zone(b, "Zone2", ffi::UNSTRUCTURED, &[3, 1, 0])
+                .unwrap();
+        });
+        assert_eq!(
+            Blocks::open(&two).err().unwrap().to_string(),
+            format!(
+                "{}: base 'Base' holds 2 zones: a distributed read takes single-zone files \
+                 (`verbss deform` reads zone 1 of several)",
+                two.display()
+            )
+        );
     }
 }

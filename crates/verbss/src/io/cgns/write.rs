@@ -5,7 +5,7 @@ use std::ffi::c_int;
 use std::path::Path;
 
 use super::ffi::{self, to_size, CgSize, File, Mode};
-use super::read::KINDS;
+use super::zone::KINDS;
 use super::{error, Source};
 use crate::error::{Error, Result};
 use crate::mesh::{CellKind, Cells, Mesh};

@@ -98,7 +98,6 @@ pub struct SectionInfo {
     pub kind: c_int,
     pub start: CgSize,
     pub end: CgSize,
-    pub has_parents: bool,
 }
 
 /// A boundary condition's header (`cg_boco_info`).
@@ -225,18 +224,23 @@ impl File {
             .collect()
     }
 
-    /// Reads the coordinate array `name` of `count` vertices, as doubles.
+    /// Reads the values of the coordinate array `name` at the `count`
+    /// vertices from `first` (numbered from 0), as doubles (none when
+    /// `count` is 0, which the library would refuse).
     pub fn read_coordinate(
         &self,
         b: c_int,
         z: c_int,
         name: &str,
-        count: usize,
+        (first, count): (usize, usize),
     ) -> Result<Vec<f64>, String> {
         let c = c_name(name)?;
         let mut data = vec![0.0f64; count];
-        let (min, max): (CgSize, CgSize) = (1, to_size(count)?);
-        // SAFETY: the buffer holds the `count` values of the range 1..=count.
+        if count == 0 {
+            return Ok(data);
+        }
+        let (min, max): (CgSize, CgSize) = (to_size(first + 1)?, to_size(first + count)?);
+        // SAFETY: the buffer holds the `count` values of the range min..=max.
         check(unsafe {
             cg_coord_read(
                 self.id,
@@ -344,50 +348,56 @@ impl File {
             kind,
             start,
             end,
-            has_parents: parents != 0,
         })
     }
 
-    /// Section `s`'s connectivity as stored (for `MIXED`, each element's
-    /// type before its nodes).
+    /// The connectivity of elements `start..=end` of section `index`, of
+    /// element type `kind`, as stored (for `MIXED`, each element's type
+    /// before its nodes): the whole section or a block of it.
     pub fn elements(
         &self,
-        b: c_int,
-        z: c_int,
-        s: &SectionInfo,
-        index: c_int,
+        (b, z, index): (c_int, c_int, c_int),
+        kind: c_int,
+        (start, end): (CgSize, CgSize),
     ) -> Result<Vec<CgSize>, String> {
+        let count = usize::try_from(end - start + 1)
+            .map_err(|_| format!("the element range {start}..{end} is empty"))?;
         let mut size: CgSize = 0;
         // SAFETY: an out-pointer.
-        check(unsafe { cg_ElementDataSize(self.id, b, z, index, &mut size) })?;
-        let count = usize::try_from(s.end - s.start + 1)
-            .map_err(|_| format!("the element range {}..{} is empty", s.start, s.end))?;
+        check(unsafe { cg_ElementPartialSize(self.id, b, z, index, start, end, &mut size) })?;
         let mut nodes: Vec<CgSize> =
             vec![0; usize::try_from(size).map_err(|_| format!("{size} connectivity entries"))?];
-        // Parent data: four numbers per element.
-        let mut parents: Vec<CgSize> = vec![0; if s.has_parents { 4 * count } else { 0 }];
-        let parents_ptr = if s.has_parents {
-            parents.as_mut_ptr()
-        } else {
-            std::ptr::null_mut()
-        };
-        let code = if s.kind == MIXED {
+        // No parent data asked for (a null pointer).
+        let code = if kind == MIXED {
             let mut offsets: Vec<CgSize> = vec![0; count + 1];
-            // SAFETY: buffers of the data size, count + 1 offsets and the parents.
+            // SAFETY: buffers of the data size and count + 1 offsets.
             unsafe {
-                cg_poly_elements_read(
+                cg_poly_elements_partial_read(
                     self.id,
                     b,
                     z,
                     index,
+                    start,
+                    end,
                     nodes.as_mut_ptr(),
                     offsets.as_mut_ptr(),
-                    parents_ptr,
+                    std::ptr::null_mut(),
                 )
             }
         } else {
-            // SAFETY: buffers of the data size and the parents.
-            unsafe { cg_elements_read(self.id, b, z, index, nodes.as_mut_ptr(), parents_ptr) }
+            // SAFETY: a buffer of the data size.
+            unsafe {
+                cg_elements_partial_read(
+                    self.id,
+                    b,
+                    z,
+                    index,
+                    start,
+                    end,
+                    nodes.as_mut_ptr(),
+                    std::ptr::null_mut(),
+                )
+            }
         };
         check(code)?;
         Ok(nodes)

@@ -94,20 +94,32 @@ extern "C" {
         nbndry: *mut c_int,
         parent_flag: *mut c_int,
     ) -> c_int;
-    pub fn cg_ElementDataSize(f: c_int, b: c_int, z: c_int, s: c_int, size: *mut CgSize) -> c_int;
-    pub fn cg_elements_read(
+    pub fn cg_ElementPartialSize(
         f: c_int,
         b: c_int,
         z: c_int,
         s: c_int,
+        start: CgSize,
+        end: CgSize,
+        size: *mut CgSize,
+    ) -> c_int;
+    pub fn cg_elements_partial_read(
+        f: c_int,
+        b: c_int,
+        z: c_int,
+        s: c_int,
+        start: CgSize,
+        end: CgSize,
         nodes: *mut CgSize,
         parents: *mut CgSize,
     ) -> c_int;
-    pub fn cg_poly_elements_read(
+    pub fn cg_poly_elements_partial_read(
         f: c_int,
         b: c_int,
         z: c_int,
         s: c_int,
+        start: CgSize,
+        end: CgSize,
         nodes: *mut CgSize,
         offsets: *mut CgSize,
         parents: *mut CgSize,
