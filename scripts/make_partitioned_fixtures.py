@@ -5,12 +5,16 @@ models it reuses):
 
     python3 scripts/make_partitioned_fixtures.py
 
-It partitions each model into 3 parts as `gmsh -part 3 -format msh41` does
+It partitions each model as `gmsh -part N -format msh41` does
 (METIS, with Gmsh's partition boundary entities) and writes
 
 * channel_hole_part3_v41_ascii.msh: the 2D hybrid channel, ASCII;
 * box_part3_v41_binary.msh: the 3D tetrahedral box, binary, with the
   ghost cells of `-part_ghosts` (a $GhostElements section);
+* box_part6_v41_ascii.msh: the box of box_v41_ascii.msh in 6 parts, ASCII,
+  where Gmsh puts
+  nodes that elements of one partition use on partition boundary entities
+  that do not list that partition (four such references);
 * partitions.json: per file and partition, Gmsh's own numbers: the cells
   of the mesh dimension and the nodes on the partition's entities.
 """
@@ -44,17 +48,23 @@ def partition_counts():
     return counts
 
 
+def box_as_written():
+    """The box as make_gmsh_fixtures.py wrote it (box_v41_ascii.msh)."""
+    gmsh.open(os.path.join(OUT, "box_v41_ascii.msh"))
+
+
 def main():
     gmsh.initialize(sys.argv[:1])
     gmsh.option.setNumber("General.Terminal", 0)
     files = {}
-    for make, name, binary, ghosts in [
-        (channel_with_hole, "channel_hole_part3_v41_ascii.msh", False, False),
-        (box, "box_part3_v41_binary.msh", True, True),
+    for make, name, parts, binary, ghosts in [
+        (channel_with_hole, "channel_hole_part3_v41_ascii.msh", 3, False, False),
+        (box, "box_part3_v41_binary.msh", 3, True, True),
+        (box_as_written, "box_part6_v41_ascii.msh", 6, False, False),
     ]:
         make()
         gmsh.option.setNumber("Mesh.PartitionCreateGhostCells", 1 if ghosts else 0)
-        gmsh.model.mesh.partition(3)
+        gmsh.model.mesh.partition(parts)
         gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
         gmsh.option.setNumber("Mesh.Binary", 1 if binary else 0)
         gmsh.write(os.path.join(OUT, name))

@@ -99,6 +99,7 @@ pub use with_mpi::{agree, read_rank_share};
 
 #[cfg(with_mpi)]
 mod with_mpi {
+    use std::collections::HashMap;
     use std::path::Path;
 
     use verbss::io::gmsh::partitioned::{partition_count, read_share, Share};
@@ -120,7 +121,57 @@ mod with_mpi {
             let wanted = partitions_of(count, comm.size() as usize, comm.rank() as usize, path)?;
             read_share(path, wanted)
         };
-        agree(comm, read(), "could not read its share")
+        let mut share = agree(comm, read(), "could not read its share")?;
+        join_roles(comm, &mut share);
+        Ok(share)
+    }
+
+    /// Makes every rank that holds a node agree on whether it is on the
+    /// boundary and on which groups (collective): each rank tells the
+    /// directory rank of each of its nodes (its file tag mod `P`) what its
+    /// share says, and takes back what all the shares say together. A share
+    /// can miss a group of a node whose facets only other partitions hold
+    /// (`verbss::io::gmsh::partitioned`, module documentation).
+    fn join_roles(comm: &Comm, share: &mut Share) {
+        let n = share.mesh.node_count();
+        // Bit 0: on the boundary; bit k + 1: on group k.
+        let words = (share.group_nodes.len() + 1).div_ceil(64);
+        let mut bits = vec![0u64; n * words];
+        let mut set = |i: usize, bit: usize| bits[i * words + bit / 64] |= 1 << (bit % 64);
+        for i in (0..n).filter(|&i| share.boundary[i]) {
+            set(i, 0);
+        }
+        for (k, (_, nodes)) in share.group_nodes.iter().enumerate() {
+            for &i in nodes {
+                set(i, k + 1);
+            }
+        }
+        let size = comm.size() as u64;
+        let mut told: Vec<Vec<u64>> = vec![Vec::new(); size as usize];
+        for (i, &tag) in share.mesh.node_tags.iter().enumerate() {
+            let to = &mut told[(tag % size) as usize];
+            to.push(tag);
+            to.extend_from_slice(&bits[i * words..(i + 1) * words]);
+        }
+        let mut joined: HashMap<u64, Vec<u64>> = HashMap::new();
+        for record in comm
+            .all_to_all(&told)
+            .iter()
+            .flat_map(|l| l.chunks_exact(1 + words))
+        {
+            let all = joined.entry(record[0]).or_insert_with(|| vec![0; words]);
+            for (a, b) in all.iter_mut().zip(&record[1..]) {
+                *a |= b;
+            }
+        }
+        let agreed = crate::directory::ask(comm, &share.mesh.node_tags, |tag| joined[&tag].clone());
+        let on = |i: usize, bit: usize| agreed[i][bit / 64] >> (bit % 64) & 1 == 1;
+        for (i, boundary) in share.boundary.iter_mut().enumerate() {
+            *boundary = on(i, 0);
+        }
+        for (k, (_, nodes)) in share.group_nodes.iter_mut().enumerate() {
+            *nodes = (0..n).filter(|&i| on(i, k + 1)).collect();
+        }
     }
 
     /// `result` on every rank where every rank's is `Ok` (collective);

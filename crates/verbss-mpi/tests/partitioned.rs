@@ -325,6 +325,26 @@ fn deform_a_partitioned_box_on_one_to_three_ranks() {
     );
 }
 
+/// The box cut in 6, where Gmsh puts nodes that elements of one partition
+/// use on partition boundary entities that do not list it, and nodes of the
+/// inlet's edges on entities whose parent is only the face beside it: each
+/// rank reads those nodes in a second pass and the ranks join their groups,
+/// so the translated inlet moves as on one process.
+#[test]
+fn deform_a_box_cut_in_six_on_one_to_three_ranks() {
+    if !common::mpi_ready() {
+        return;
+    }
+    deforms_like_one_process(
+        &fixture("box_part6_v41_ascii.msh"),
+        "inlet",
+        &["--translate", "0.1,0,0"],
+        Reference::Updated,
+        0.1,
+        &[],
+    );
+}
+
 /// Refused with exit code 2 and one message: more ranks than partitions,
 /// an input that is not partitioned, an error only rank 1 reads, the
 /// near-wall treatments, an option that needs the whole mesh, `--gather`

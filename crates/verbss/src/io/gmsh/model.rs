@@ -106,6 +106,21 @@ impl Nodes {
     pub fn len(&self) -> usize {
         self.tags.len()
     }
+
+    /// Appends node `i` of `from`.
+    pub fn push_from(&mut self, from: &Nodes, i: usize) {
+        let (tag, p) = (from.tags[i], &from.xyz[3 * i..3 * i + 3]);
+        if p[2] != 0.0 && self.off_plane.is_none() {
+            let mark = Mark {
+                offset: from.spans[i].start,
+                line: 0,
+            };
+            self.off_plane = Some((tag, p[2], mark));
+        }
+        self.tags.push(tag);
+        self.xyz.extend_from_slice(p);
+        self.spans.push(from.spans[i].clone());
+    }
 }
 
 /// Node tag → node index: a table when tags are dense enough, a hash map otherwise.

@@ -17,7 +17,12 @@
 //! ASCII block by counting its numbers line by line — without storing
 //! them. The share's cells are therefore its partitions' elements of the
 //! highest dimension, each in exactly one share; its nodes are those of its
-//! partitions' entities, which hold every node of those elements. Sections
+//! partitions' entities and any other node of those elements: Gmsh can put
+//! a node on a partition boundary entity that does not list every partition
+//! using it (where partitions touch at a single node; the 1,140-cell box of
+//! `assets/meshes/gmsh` cut in 6 has four such references), and such nodes
+//! are read in a second pass over `$Nodes`, of the blocks skipped the first
+//! time, keeping only them. Sections
 //! after `$Elements` (`$GhostElements` of `gmsh -part_ghosts`, …) are not
 //! read: a share has no ghosts of its own.
 //!
@@ -28,9 +33,14 @@
 //! conforming mesh this is the set of nodes on faces that belong to one
 //! cell of the whole mesh, the boundary of `verbss deform`. In the same way
 //! a node is on a physical group ([`Share::group_nodes`]) when its parent
-//! is one of the group's model entities or bounds one, recursively: every
-//! share that holds a node agrees on its groups, whether or not it holds a
-//! facet of the group around it.
+//! is one of the group's model entities or bounds one, recursively, or when
+//! a facet of the group that the share holds has it. The first rule alone
+//! would let every share that holds a node agree on its groups, but Gmsh
+//! can put a node of a model curve or point on a partition entity whose
+//! parent is only one of the faces beside it (the box cut in 6 again): a
+//! process that reads a share must therefore join its groups with the
+//! other shares' for the nodes they hold in common
+//! (`verbss_mpi::share::read_rank_share` does).
 
 use std::collections::{HashMap, HashSet};
 use std::ops::RangeInclusive;
@@ -125,10 +135,41 @@ pub fn read_share(path: &Path, wanted: RangeInclusive<usize>) -> Result<Share> {
             )),
         }
     };
-    let (nodes, entity_of_node) = read_nodes(&mut s, &head, &picked)?;
+    let (mut nodes, mut entity_of_node) = read_nodes(&mut s, &head, &picked, None)?;
     let index = NodeIndex::build(&nodes.tags)
         .map_err(|t| s.error_at(s.here(), format!("node tag {t} is given to two nodes")))?;
-    let (elements, at) = read_elements(&mut s, &head, &index, &picked)?;
+    // Nodes of the share's elements on other partitions' entities get the
+    // next indices, in the order first met, and are read in a second pass.
+    let known = nodes.len();
+    let mut elsewhere = Vec::new();
+    let mut elsewhere_index = HashMap::new();
+    let mut node_of = |tag: u64| {
+        index.get(tag).or_else(|| {
+            Some(*elsewhere_index.entry(tag).or_insert_with(|| {
+                elsewhere.push(tag);
+                known + elsewhere.len() - 1
+            }))
+        })
+    };
+    let (elements, at) = read_elements(&mut s, &head, &mut node_of, &picked)?;
+    if !elsewhere.is_empty() {
+        let (found, entities) = read_elsewhere(path, &picked, &elsewhere)?;
+        for &tag in &elsewhere {
+            let Some(i) = found.tags.iter().position(|&t| t == tag) else {
+                return Err(s.error_at(
+                    at,
+                    format!(
+                        "an element of partitions {}-{} refers to node {tag}, which $Nodes \
+                         does not define",
+                        wanted.start(),
+                        wanted.end()
+                    ),
+                ));
+            };
+            nodes.push_from(&found, i);
+            entity_of_node.push(entities[i]);
+        }
+    }
     let end = s.here();
     let c = Cursor::window(&[], path, end, head.binary);
     let (mesh, structure) = finish(&c, nodes, (elements, at), &head.names, false, end)?;
@@ -148,7 +189,18 @@ pub fn read_share(path: &Path, wanted: RangeInclusive<usize>) -> Result<Share> {
         .collect();
     let group_nodes = physical_groups(&head, mesh.dim)
         .into_iter()
-        .map(|(name, entities)| (name, on(&closure(&head.entities, entities))))
+        .map(|(name, entities)| {
+            let mut nodes = on(&closure(&head.entities, entities));
+            // Gmsh can put a node of a model curve or point on a partition
+            // entity whose parent is a face beside it: the group's facets
+            // held here name it too.
+            if let Ok(group) = mesh.group(&name) {
+                nodes.extend(group.nodes());
+                nodes.sort_unstable();
+                nodes.dedup();
+            }
+            (name, nodes)
+        })
         .collect();
     Ok(Share {
         mesh,
@@ -240,9 +292,27 @@ fn read_head(s: &mut Stream) -> Result<Head> {
 /// Whether a block is kept: from its header, read by a cursor, at a mark.
 type Picked<'a> = dyn Fn(&Cursor, BlockHeader, Mark) -> Result<bool> + 'a;
 
-/// Reads the `$Nodes` section's kept blocks; also returns the entity of
-/// each node kept.
-fn read_nodes(s: &mut Stream, head: &Head, picked: &Picked) -> Result<(Nodes, Vec<(usize, i32)>)> {
+/// The nodes `tags` from the blocks of `$Nodes` that `kept` did not keep
+/// (a second pass over the file at `path`), with their entities, in file
+/// order. Gmsh can put a node that elements of a partition use on a
+/// partition boundary entity that does not list that partition (seen where
+/// partitions touch at a single node).
+fn read_elsewhere(path: &Path, kept: &Picked, tags: &[u64]) -> Result<(Nodes, Vec<(usize, i32)>)> {
+    let wanted: HashSet<u64> = tags.iter().copied().collect();
+    let mut s = Stream::open(path)?;
+    let head = read_head(&mut s)?;
+    let skipped = |c: &Cursor, header: BlockHeader, mark: Mark| Ok(!kept(c, header, mark)?);
+    read_nodes(&mut s, &head, &skipped, Some(&wanted))
+}
+
+/// Reads the `$Nodes` section's kept blocks, of them only the nodes
+/// `wanted` when given; also returns the entity of each node kept.
+fn read_nodes(
+    s: &mut Stream,
+    head: &Head,
+    picked: &Picked,
+    wanted: Option<&HashSet<u64>>,
+) -> Result<(Nodes, Vec<(usize, i32)>)> {
     let (blocks, total) = read_section_header(s, head, "the number of nodes")?;
     let mut nodes = Nodes::default();
     let mut entity_of_node = Vec::new();
@@ -260,7 +330,18 @@ fn read_nodes(s: &mut Stream, head: &Head, picked: &Picked) -> Result<(Nodes, Ve
         let body = read_body(s, head, keep, n * (4 + params), size, "a node block")?;
         if let Some((buf, at)) = body {
             let mut c = Cursor::window(&buf, s.path(), at, head.binary);
-            read_node_block(&mut c, b, n, params, &mut nodes)?;
+            match wanted {
+                None => read_node_block(&mut c, b, n, params, &mut nodes)?,
+                Some(wanted) => {
+                    let mut block = Nodes::default();
+                    read_node_block(&mut c, b, n, params, &mut block)?;
+                    for i in 0..block.len() {
+                        if wanted.contains(&block.tags[i]) {
+                            nodes.push_from(&block, i);
+                        }
+                    }
+                }
+            }
             entity_of_node.resize(nodes.len(), (dim, tag));
         }
     }
@@ -279,7 +360,7 @@ fn read_nodes(s: &mut Stream, head: &Head, picked: &Picked) -> Result<(Nodes, Ve
 fn read_elements(
     s: &mut Stream,
     head: &Head,
-    index: &NodeIndex,
+    node_of: &mut impl FnMut(u64) -> Option<usize>,
     picked: &Picked,
 ) -> Result<(Elements, Mark)> {
     let mut line = Vec::new();
@@ -319,7 +400,7 @@ fn read_elements(
         let numbers = n * (1 + kind.node_count());
         if let Some((buf, at)) = read_body(s, head, keep, numbers, size, "an element block")? {
             let mut c = Cursor::window(&buf, s.path(), at, head.binary);
-            read_element_block(&mut c, b, kind, n, index, &mut elements)?;
+            read_element_block(&mut c, b, kind, n, node_of, &mut elements)?;
         }
     }
     if listed != total {

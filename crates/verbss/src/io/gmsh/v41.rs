@@ -214,7 +214,7 @@ pub(super) fn read_elements(
         let header = next_block(c, "$Elements", blocks, b)?;
         let kind = element_kind(c, header)?;
         start_element_block(c, header, entities, &mut elements)?;
-        read_element_block(c, b, kind, header.3, index, &mut elements)?;
+        read_element_block(c, b, kind, header.3, &mut |t| index.get(t), &mut elements)?;
         read += header.3;
     }
     if read != total {
@@ -275,13 +275,13 @@ pub(super) fn start_element_block(
 }
 
 /// Reads the `n` elements of `kind` of block `b` (after its header) into
-/// `elements`, their nodes by `index`.
+/// `elements`, each node tag's index by `node_of` (`None`: no such node).
 pub(super) fn read_element_block(
     c: &mut Cursor,
     b: usize,
     kind: CellKind,
     n: usize,
-    index: &NodeIndex,
+    node_of: &mut impl FnMut(u64) -> Option<usize>,
     elements: &mut Elements,
 ) -> Result<()> {
     let mut ids = [0usize; 8];
@@ -299,8 +299,7 @@ pub(super) fn read_element_block(
             }
             for (k, id) in ids[..nn].iter_mut().enumerate() {
                 let node = u64_at(rec, 8 * (1 + k));
-                *id = index
-                    .get(node)
+                *id = node_of(node)
                     .ok_or_else(|| c.error_at_offset(at + 8 * (1 + k), unknown_node(tag, node)))?;
             }
             elements.push(kind, tag, &ids[..nn]);
@@ -321,9 +320,7 @@ pub(super) fn read_element_block(
         }
         for id in &mut ids[..nn] {
             let node = c.uint("a node tag")?;
-            *id = index
-                .get(node)
-                .ok_or_else(|| c.error(unknown_node(tag, node)))?;
+            *id = node_of(node).ok_or_else(|| c.error(unknown_node(tag, node)))?;
         }
         elements.push(kind, tag, &ids[..nn]);
     }
