@@ -20,14 +20,9 @@ mod common;
 mod like_one_process;
 
 use like_one_process::{
-    deforms_like_one_process, node_index, ptscotch_ready, single, verbss_mpi_with,
+    asset, deforms_like_one_process, node_index, ptscotch_ready, rank_lines, single,
+    verbss_mpi_with,
 };
-
-fn asset(path: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets/meshes")
-        .join(path)
-}
 
 /// Whether MPI, PT-Scotch and the CGNS library are here; otherwise the
 /// test skips.
@@ -47,35 +42,6 @@ fn as_cgns(dir: &Path, name: &str, mesh: &Mesh) -> (PathBuf, Mesh) {
     (path, whole)
 }
 
-/// From each `rank R: …` line of `stdout`: the rank, the file's cells, and
-/// the nodes and cells the rank holds.
-fn rank_lines(stdout: &str) -> Vec<(usize, usize, usize, usize)> {
-    let number = |line: &str, before: &str| -> usize {
-        let at = line
-            .find(before)
-            .unwrap_or_else(|| panic!("'{before}' in '{line}'"));
-        let head = &line[..at];
-        let start = head
-            .rfind(|c: char| !c.is_ascii_digit())
-            .map_or(0, |k| k + 1);
-        head[start..].parse().unwrap()
-    };
-    let mut ranks: Vec<_> = stdout
-        .lines()
-        .filter(|l| l.starts_with("rank "))
-        .map(|l| {
-            (
-                number(l, ": PT-Scotch part "),
-                number(l, " cells read in blocks by every rank"),
-                number(l, " nodes and "),
-                number(l, " cells read;"),
-            )
-        })
-        .collect();
-    ranks.sort_unstable();
-    ranks
-}
-
 /// Checks the ranks' lines of the runs on 1, 2 and 3 ranks of `whole`:
 /// every cell once, and on several ranks no rank with all the cells or all
 /// the nodes.
@@ -83,10 +49,18 @@ fn check_counts(stdouts: &[String], whole: &Mesh) {
     let (cells, nodes) = (whole.cell_count(), whole.node_count());
     for (k, stdout) in stdouts.iter().enumerate() {
         let np = k + 1;
-        let ranks = rank_lines(stdout);
+        let ranks = rank_lines(
+            stdout,
+            [
+                ": PT-Scotch part ",
+                " cells read in blocks by every rank",
+                " nodes and ",
+                " cells read;",
+            ],
+        );
         assert_eq!(ranks.len(), np, "{stdout}");
         let mut sum = 0;
-        for (r, &(rank, of, held_nodes, held_cells)) in ranks.iter().enumerate() {
+        for (r, &[rank, of, held_nodes, held_cells]) in ranks.iter().enumerate() {
             assert_eq!(rank, r);
             assert_eq!(of, cells);
             assert!(np == 1 || held_cells < cells, "{np} ranks: rank {r}");

@@ -11,7 +11,7 @@
 //! `.pvtu` is refused; a step that inverts a cell leaves the input in the
 //! pieces.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use verbss::deform::Reference;
 use verbss::io;
@@ -19,13 +19,7 @@ use verbss::io;
 mod common;
 mod like_one_process;
 
-use like_one_process::{msh_pieces_like_one_process, ptscotch_ready, verbss_mpi_with};
-
-fn asset(path: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets/meshes")
-        .join(path)
-}
+use like_one_process::{asset, msh_pieces_like_one_process, ptscotch_ready, verbss_mpi_with};
 
 #[test]
 fn msh_pieces_of_a_partitioned_ascii_channel() {

@@ -9,8 +9,6 @@
 //! `VERBSS_MPI_CHUNK_LINES`). A bad file stops every rank with the
 //! whole-file reader's message, once, and exit code 2.
 
-use std::path::Path;
-
 use verbss::deform::Reference;
 use verbss::mesh::CellKind;
 use verbss::{io, Mesh};
@@ -18,42 +16,9 @@ use verbss::{io, Mesh};
 mod common;
 mod like_one_process;
 
-use like_one_process::{deforms_like_one_process, ptscotch_ready, verbss_mpi_with};
-
-fn asset(path: &str) -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets/meshes")
-        .join(path)
-}
-
-/// From each `rank R: …` line of `stdout`: the rank, the chunks rank 0
-/// read and the cells the rank holds of the file's.
-fn rank_lines(stdout: &str) -> Vec<(usize, usize, usize, usize)> {
-    let number = |line: &str, before: &str| -> usize {
-        let at = line
-            .find(before)
-            .unwrap_or_else(|| panic!("'{before}' in '{line}'"));
-        let head = &line[..at];
-        let start = head
-            .rfind(|c: char| !c.is_ascii_digit())
-            .map_or(0, |k| k + 1);
-        head[start..].parse().unwrap()
-    };
-    let mut ranks: Vec<_> = stdout
-        .lines()
-        .filter(|l| l.starts_with("rank "))
-        .map(|l| {
-            (
-                number(l, ": PT-Scotch part "),
-                number(l, " chunks of"),
-                number(l, " cells read;"),
-                number(l, " cells read by rank 0"),
-            )
-        })
-        .collect();
-    ranks.sort_unstable();
-    ranks
-}
+use like_one_process::{
+    asset, deforms_like_one_process, ptscotch_ready, rank_lines, verbss_mpi_with,
+};
 
 /// Checks the ranks' lines of the runs on 1, 2 and 3 ranks of `whole`:
 /// every cell once, no rank with all of them on several ranks, and rank 0
@@ -62,10 +27,18 @@ fn check_counts(stdouts: &[String], whole: &Mesh, chunks: usize) {
     let total = whole.cells.len();
     for (k, stdout) in stdouts.iter().enumerate() {
         let np = k + 1;
-        let ranks = rank_lines(stdout);
+        let ranks = rank_lines(
+            stdout,
+            [
+                ": PT-Scotch part ",
+                " chunks of",
+                " cells read;",
+                " cells read by rank 0",
+            ],
+        );
         assert_eq!(ranks.len(), np, "{stdout}");
         let mut sum = 0;
-        for (r, &(rank, read_in, held, of)) in ranks.iter().enumerate() {
+        for (r, &[rank, read_in, held, of]) in ranks.iter().enumerate() {
             assert_eq!(rank, r);
             assert!(read_in >= chunks, "{np} ranks: {read_in} chunks");
             assert_eq!(of, total);

@@ -12,6 +12,35 @@ use verbss::Mesh;
 
 use crate::common;
 
+/// The mesh `path` of the repository's `assets/meshes`.
+pub fn asset(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/meshes")
+        .join(path)
+}
+
+/// From each `rank R: …` line of `stdout`, sorted: the numbers that stand
+/// just before each of `before` (the first, `": …"`, gives the rank).
+pub fn rank_lines<const N: usize>(stdout: &str, before: [&str; N]) -> Vec<[usize; N]> {
+    let number = |line: &str, before: &str| -> usize {
+        let at = line
+            .find(before)
+            .unwrap_or_else(|| panic!("'{before}' in '{line}'"));
+        let head = &line[..at];
+        let start = head
+            .rfind(|c: char| !c.is_ascii_digit())
+            .map_or(0, |k| k + 1);
+        head[start..].parse().unwrap()
+    };
+    let mut ranks: Vec<[usize; N]> = stdout
+        .lines()
+        .filter(|l| l.starts_with("rank "))
+        .map(|l| before.map(|b| number(l, b)))
+        .collect();
+    ranks.sort_unstable();
+    ranks
+}
+
 /// `mpirun -np NP verbss-mpi ARGS…` with the environment variables `env`
 /// (`mpirun -x` passes them to every rank).
 pub fn verbss_mpi_with(
