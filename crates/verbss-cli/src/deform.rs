@@ -207,17 +207,6 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
         // Only an MSH output writes the coordinates back into the input
         // file's bytes; any other format frees them (the file's size).
         mesh.origin.gmsh = None;
-    } else if let Some(source) = mesh.origin.gmsh.as_mut().and_then(Arc::get_mut) {
-        // An MSH output keeps them on disk, beside the output (else in the
-        // temporary folder), not in memory; where neither can be written
-        // they stay in memory.
-        let beside = match args.output.parent() {
-            Some(dir) if !dir.as_os_str().is_empty() => dir,
-            _ => Path::new("."),
-        };
-        if source.spill(beside).is_err() {
-            let _kept_in_memory = source.spill(&std::env::temp_dir());
-        }
     }
     let dim = mesh.dim;
     let slides = slides(&args.slide, dim)?;

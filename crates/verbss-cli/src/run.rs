@@ -121,6 +121,7 @@ pub struct Prepared {
 
 /// Runs a prepared job in this process and prints its summary.
 pub fn run_here(mut prepared: Prepared) -> anyhow::Result<ExitCode> {
+    spill_source(&prepared.job);
     let job = &prepared.job;
     let mut deformer = Deformer::shared(
         Arc::clone(&job.mesh),
@@ -135,6 +136,18 @@ pub fn run_here(mut prepared: Prepared) -> anyhow::Result<ExitCode> {
         &mut prepared.recorder,
     )?;
     Ok(summary.print(job, true))
+}
+
+/// An MSH output is the input file's bytes with the moved coordinates:
+/// they wait in an unnamed temporary file beside the output (else in the
+/// temporary folder), not in memory, for the run (`gmsh::Source::spill`);
+/// where neither can be written they stay in memory.
+fn spill_source(job: &Job) {
+    if let Some(source) = &job.mesh.origin.gmsh {
+        if !job.dir.is_dir() || source.spill(&job.dir).is_err() {
+            let _kept_in_memory = source.spill(&std::env::temp_dir());
+        }
+    }
 }
 
 /// The file name without its extension (`mesh` when there is none).

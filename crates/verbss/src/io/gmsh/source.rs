@@ -14,7 +14,7 @@ use std::hash::{Hash, Hasher};
 use std::io::{self, BufReader, Read, Seek, SeekFrom, Write};
 use std::ops::Range;
 use std::path::Path;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, MutexGuard};
 
 use super::model::Structure;
 use crate::io::MshVersion;
@@ -25,7 +25,7 @@ use crate::mesh::{Cells, Mesh};
 pub struct Source {
     version: MshVersion,
     binary: bool,
-    bytes: Bytes,
+    bytes: Mutex<Bytes>,
     /// Byte range of `x y z` of each node, in the mesh's node order.
     coords: Vec<Range<usize>>,
     /// [`fingerprint`] of the mesh read from the file.
@@ -34,18 +34,18 @@ pub struct Source {
     structure: Structure,
 }
 
-/// Where a [`Source`] keeps the file's bytes.
+/// Where a [`Source`] keeps the file's bytes (behind a lock: a copy is
+/// written from them, or they move, one at a time).
 enum Bytes {
     /// In memory.
     Held(Arc<[u8]>),
-    /// In an unnamed temporary file ([`Source::spill`]), deleted with it;
-    /// locked while a copy is written from it.
-    Spilled(Mutex<File>),
+    /// In an unnamed temporary file ([`Source::spill`]), deleted with it.
+    Spilled(File),
 }
 
 impl fmt::Debug for Source {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let bytes = match &self.bytes {
+        let bytes = match &*self.bytes() {
             Bytes::Held(bytes) => format!("{} in memory", bytes.len()),
             Bytes::Spilled(_) => "in a temporary file".to_string(),
         };
@@ -71,7 +71,7 @@ impl Source {
         Source {
             version,
             binary,
-            bytes: Bytes::Held(bytes.into()),
+            bytes: Mutex::new(Bytes::Held(bytes.into())),
             coords,
             fingerprint: fingerprint(mesh),
             structure,
@@ -116,24 +116,31 @@ impl Source {
     /// process ends): a long run that writes its mesh back as this file
     /// then holds none of it in memory, and a change of the input file
     /// during the run changes nothing in what is written.
-    pub fn spill(&mut self, dir: &Path) -> io::Result<()> {
-        if let Bytes::Held(bytes) = &self.bytes {
+    pub fn spill(&self, dir: &Path) -> io::Result<()> {
+        let mut bytes = self.bytes();
+        if let Bytes::Held(held) = &*bytes {
             let mut file = tempfile::tempfile_in(dir)?;
-            file.write_all(bytes)?;
-            self.bytes = Bytes::Spilled(Mutex::new(file));
+            file.write_all(held)?;
+            *bytes = Bytes::Spilled(file);
         }
         Ok(())
+    }
+
+    /// The file's bytes, locked.
+    fn bytes(&self) -> MutexGuard<'_, Bytes> {
+        self.bytes
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
     }
 
     /// Writes the file with `coords` (`dim` numbers per node) in place of
     /// its own (`z = 0` in 2D): ASCII in shortest round-trip form (a node
     /// that did not move keeps its text), binary as little-endian doubles.
     pub(super) fn write(&self, w: &mut dyn Write, dim: usize, coords: &[f64]) -> io::Result<()> {
-        match &self.bytes {
+        match &*self.bytes() {
             Bytes::Held(bytes) => self.write_from(&mut &bytes[..], w, dim, coords),
             Bytes::Spilled(file) => {
-                let file = file.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
-                let mut file: &File = &file;
+                let mut file: &File = file;
                 file.seek(SeekFrom::Start(0))?;
                 let mut file = BufReader::with_capacity(1 << 16, file);
                 self.write_from(&mut file, w, dim, coords)
