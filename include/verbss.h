@@ -150,7 +150,7 @@ int verbss_settings_new(struct VerbssSettings **out);
 //   own, whatever the order of the calls;
 // - `solver` (`sor`, `direct`, for `ball-vertex`), `accel` (`none`, `amg`,
 //   `auto`), `omega` (in (0, 2), default 1.6): given, exactly that solver,
-//   with no escalation to the multigrid and the direct solve;
+//   with no escalation to GMRES, the multigrid and the direct solve;
 // - `tolerance` (default 1e-6, relative to the step's largest boundary
 //   displacement), `absolute_tolerance` (`on`, `off`), `max_iterations`
 //   (default 2000), `threads` (0: one per core; the results do not depend

@@ -38,7 +38,7 @@ struct Moving {
 /// - omega: the over-relaxation factor of the sweeps (1.6 when None).
 ///   omega, solver and accel all None: a step whose sweeps stall or diverge,
 ///   or leave a node's estimated error above 1% of its cell height,
-///   escalates to the multigrid and the direct solve (docs/method.md); any
+///   escalates to GMRES, the multigrid and the direct solve (docs/method.md); any
 ///   of them given: exactly that solver.
 /// - tolerance: the sweeps stop when the mean absolute change of one sweep is
 ///   below tolerance × the step's largest prescribed displacement (1e-6

@@ -380,6 +380,25 @@ impl<S: SpringSolver> Deformer<S> {
     pub fn step(&mut self, n: usize) -> Result<StepReport> {
         let start = Instant::now();
         let targets = self.targets(n)?;
+        // The step starts from the current coordinates, lent to it rather
+        // than copied, and given back when it fails.
+        let from = std::mem::take(&mut self.current.coords);
+        let stepped = self.step_from(n, &targets, &from, start);
+        if stepped.is_err() {
+            self.current.coords = from;
+        }
+        stepped
+    }
+
+    /// [`Deformer::step`] from coordinates `from` to `targets`, in adaptive
+    /// sub-steps: the new current snapshot, or the error.
+    fn step_from(
+        &mut self,
+        n: usize,
+        targets: &[(usize, Vec<f64>)],
+        from: &[f64],
+        start: Instant,
+    ) -> Result<StepReport> {
         // With a total unknown the accepted mesh does not depend on the
         // increments taken to reach it: no sub-steps.
         let substeps = match self.settings.reference {
@@ -391,8 +410,8 @@ impl<S: SpringSolver> Deformer<S> {
             Reference::Updated => self.current.report.min_quality,
             Reference::Fixed | Reference::Anchored => self.input_quality,
         };
-        let from = self.current.coords.clone();
-        let mut coords = from.clone();
+        // The last accepted sub-step's coordinates (`None`: `from`).
+        let mut coords: Option<Vec<f64>> = None;
         let (mut done, mut h) = (0.0, 1.0);
         let mut report = StepReport {
             step: n,
@@ -413,7 +432,8 @@ impl<S: SpringSolver> Deformer<S> {
                     (*i, q)
                 })
                 .collect();
-            let attempt = self.chosen(&coords, &at, end - done, reference_quality, &mut report)?;
+            let at_start = coords.as_deref().unwrap_or(from);
+            let attempt = self.chosen(at_start, &at, end - done, reference_quality, &mut report)?;
             let attempt_quality = attempt.min_quality();
             let Attempt {
                 coords: trial,
@@ -467,12 +487,12 @@ impl<S: SpringSolver> Deformer<S> {
             if self.settings.reference == Reference::Updated {
                 reference_quality = attempt_quality;
             }
-            coords = trial;
             done = end;
             if done >= 1.0 {
-                self.current = self.snapshot(coords, &quality, &inversions, report, start);
+                self.current = self.snapshot(trial, &quality, &inversions, report, start);
                 return Ok(self.current.report.clone());
             }
+            coords = Some(trial);
             h = (2.0 * h).min(1.0 - done);
         }
     }

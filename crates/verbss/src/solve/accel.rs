@@ -33,6 +33,9 @@ use crate::springs::NodeBlocks;
 
 /// Krylov iterations between GMRES restarts.
 const RESTART: usize = 20;
+/// The same for the sweep-preconditioned GMRES, which is kept short so
+/// that its basis costs little memory.
+const SWEEP_RESTART: usize = 4;
 /// Relaxation factor of the finest level's VerBSS smoothing sweeps.
 const SMOOTHING_OMEGA: f64 = 1.0;
 
@@ -118,9 +121,19 @@ impl AccelState {
     }
 }
 
-/// The hierarchy and the vectors the accelerated solve keeps between steps.
+/// What preconditions GMRES.
+enum Preconditioner {
+    /// One multigrid V-cycle.
+    Multigrid(Box<Hierarchy>),
+    /// One symmetric VerBSS sweep for `A e = r` from `e = 0` (forward, then
+    /// backward): the V-cycle's finest smoothing alone, no hierarchy
+    /// ([`super::Stage::Gmres`]).
+    Sweep,
+}
+
+/// The preconditioner and the vectors the accelerated solve keeps between steps.
 pub(crate) struct Accelerator {
-    hierarchy: Hierarchy,
+    preconditioner: Preconditioner,
     method: Method,
     /// Iterations of the first solve after the hierarchy was built.
     baseline: Option<usize>,
@@ -134,7 +147,9 @@ pub(crate) struct Accelerator {
 impl Accelerator {
     /// Whether this accelerator can serve a solve of `method` on `layout`.
     fn fits(&self, method: Method, layout: &Layout) -> bool {
-        !self.stale && self.method == method && self.hierarchy.order == layout.order
+        !self.stale
+            && self.method == method
+            && matches!(&self.preconditioner, Preconditioner::Multigrid(h) if h.order == layout.order)
     }
 
     /// Builds the hierarchy for the system of `built` (on its pool).
@@ -145,13 +160,26 @@ impl Accelerator {
         let hierarchy = Hierarchy::new::<D>(blocks, &built.layout, &built.coords)?;
         let n = D * built.layout.order.len();
         Ok(Accelerator {
-            hierarchy,
+            preconditioner: Preconditioner::Multigrid(Box::new(hierarchy)),
             method,
             baseline: None,
             stale: false,
             workspace: Workspace::new(n, RESTART),
             zeros: vec![0.0; n],
         })
+    }
+
+    /// GMRES preconditioned by one symmetric VerBSS sweep, for `unknowns`
+    /// values: [`SWEEP_RESTART`] + 3 vectors, built in no time.
+    pub(crate) fn sweep(method: Method, unknowns: usize) -> Accelerator {
+        Accelerator {
+            preconditioner: Preconditioner::Sweep,
+            method,
+            baseline: None,
+            stale: false,
+            workspace: Workspace::new(unknowns, SWEEP_RESTART),
+            zeros: vec![0.0; unknowns],
+        }
     }
 
     /// Solves the system of `built` for `work` (the initial guess on entry)
@@ -172,12 +200,22 @@ impl Accelerator {
         let started = Instant::now();
         let mut history = Vec::new();
         let Accelerator {
-            hierarchy,
+            preconditioner,
             workspace,
             zeros,
             ..
         } = self;
         let zeros: &[f64] = zeros;
+        let mut smooth = |e: &mut [f64], r: &[f64], reverse: bool| {
+            sweep::<D, _>(
+                layout,
+                e,
+                next,
+                partials,
+                &|p, w| verbss::update::<D>(blocks, layout, r, SMOOTHING_OMEGA, p, w),
+                reverse,
+            );
+        };
         let outcome = gmres::solve(
             workspace,
             work,
@@ -189,24 +227,20 @@ impl Accelerator {
                 residual::<D>(blocks, layout, zeros, v, out);
                 out.par_iter_mut().for_each(|x| *x = -*x);
             },
-            |rhs, out| {
-                hierarchy.vcycle(
+            |rhs, out| match preconditioner {
+                Preconditioner::Multigrid(hierarchy) => hierarchy.vcycle(
                     rhs,
                     out,
-                    |e: &mut [f64], r: &[f64], reverse: bool| {
-                        sweep::<D, _>(
-                            layout,
-                            e,
-                            next,
-                            partials,
-                            &|p, w| verbss::update::<D>(blocks, layout, r, SMOOTHING_OMEGA, p, w),
-                            reverse,
-                        );
-                    },
+                    &mut smooth,
                     |r: &[f64], e: &[f64], out: &mut [f64]| {
                         residual::<D>(blocks, layout, r, e, out);
                     },
-                );
+                ),
+                Preconditioner::Sweep => {
+                    out.fill(0.0);
+                    smooth(out, rhs, false);
+                    smooth(out, rhs, true);
+                }
             },
             record_history.then_some(&mut history),
         );
@@ -221,7 +255,10 @@ impl Accelerator {
             diverged: outcome.diverged,
             solve_seconds: started.elapsed().as_secs_f64(),
             history,
-            levels: self.hierarchy.levels(),
+            levels: match &self.preconditioner {
+                Preconditioner::Multigrid(h) => h.levels(),
+                Preconditioner::Sweep => 1,
+            },
             ..SolveInfo::default()
         }
     }

@@ -8,10 +8,14 @@
 //! otherwise the next stage starts from the best iterate so far (from the
 //! initial guess again when the sweeps diverged):
 //!
-//! * block systems (`verbss`, `spring`): GMRES around the multigrid V-cycle
-//!   ([`Stage::Multigrid`]), then the sparse direct solve ([`Stage::Direct`])
-//!   where it fits ([`DIRECT_NODES_2D`], [`DIRECT_NODES_3D`]), then sweeps
-//!   with ω = 1 ([`Stage::SafeSweeps`]);
+//! * block systems (`verbss`, `spring`): on 3D meshes of at least
+//!   [`GMRES_FIRST_NODES_3D`] nodes first GMRES preconditioned by one
+//!   symmetric sweep ([`Stage::Gmres`]: no hierarchy, so a step it solves
+//!   needs no memory beyond the sweeps' but six vectors), then
+//!   GMRES around the multigrid V-cycle ([`Stage::Multigrid`]), then the
+//!   sparse direct solve ([`Stage::Direct`]) where it fits
+//!   ([`DIRECT_NODES_2D`], [`DIRECT_NODES_3D`]), then sweeps with ω = 1
+//!   ([`Stage::SafeSweeps`]);
 //! * `ball-vertex` with SOR: the direct solve;
 //! * `laplacian`: the direct solve of its system, then sweeps with ω = 1,
 //!   which converge on its symmetric, diagonally dominant system.
@@ -21,6 +25,7 @@
 
 use std::time::Instant;
 
+use super::accel::Accelerator;
 use super::{
     prescribed_scale, run, verify, Accel, Engine, Method, SolveInfo, SolveParams, Solver, Stage,
     System, ERROR_FRACTION,
@@ -34,6 +39,15 @@ pub const DIRECT_NODES_2D: usize = 400_000;
 pub const DIRECT_NODES_3D: usize = 20_000;
 /// GMRES iterations of the multigrid stage.
 const MULTIGRID_ITERATIONS: usize = 60;
+/// GMRES iterations of the sweep-preconditioned stage ([`Stage::Gmres`]),
+/// each about three sweeps' work.
+const GMRES_ITERATIONS: usize = 400;
+/// From this many nodes a 3D block system escalates to [`Stage::Gmres`]
+/// before the multigrid, whose hierarchy would take 3–5 KB a node (more
+/// than 0.6 GB here) where the sweep-preconditioned GMRES takes 0.15 KB.
+/// Below it the multigrid goes first: it solves a stalled step in fewer
+/// seconds (BENCHMARKS.md, "A step that escalates, within 2 KB a node").
+pub const GMRES_FIRST_NODES_3D: usize = 150_000;
 /// The multigrid stage's stop, as a fraction of the error it must reach:
 /// [`ERROR_FRACTION`] of the smallest local size.
 const MULTIGRID_MARGIN: f64 = 0.1;
@@ -68,20 +82,7 @@ impl Engine {
         displacement: &mut [f64],
         params: &SolveParams,
     ) -> Result<SolveInfo> {
-        let first = if params.method == Method::BallVertex && params.solver == Solver::Direct {
-            Stage::Direct
-        } else {
-            Stage::Sweeps
-        };
-        let then: &[Stage] = match (params.escalate, params.method, params.solver) {
-            (false, ..) | (_, Method::BallVertex, Solver::Direct) => &[],
-            (_, Method::Verbss | Method::Spring, _) => {
-                &[Stage::Multigrid, Stage::Direct, Stage::SafeSweeps]
-            }
-            (_, Method::BallVertex, Solver::Sor) => &[Stage::Direct],
-            (_, Method::Laplacian, _) => &[Stage::Direct, Stage::SafeSweeps],
-        };
-        let chain: Vec<Stage> = std::iter::once(first).chain(then.iter().copied()).collect();
+        let chain = chain(self.conn.dim, self.roles.len(), params);
         // The stage that solved the last step is where the next one starts:
         // a mesh on which the sweeps diverge does not pay for them every step.
         let from = match self.escalation {
@@ -115,21 +116,7 @@ impl Engine {
         displacement: &mut [f64],
         params: &SolveParams,
     ) -> Result<SolveInfo> {
-        let dim = self.conn.dim;
-        let unknowns = self.roles.len();
-        let fits = unknowns
-            <= if dim == 2 {
-                DIRECT_NODES_2D
-            } else {
-                DIRECT_NODES_3D
-            };
-        let stages: &[Stage] = match params.method {
-            Method::Laplacian if fits => &[Stage::Direct, Stage::SafeSweeps],
-            Method::Laplacian => &[Stage::SafeSweeps],
-            _ if fits => &[Stage::Direct, Stage::Multigrid],
-            Method::BallVertex => &[Stage::Direct],
-            _ => &[Stage::Multigrid, Stage::Direct],
-        };
+        let stages = exact_chain(self.conn.dim, self.roles.len(), params.method);
         self.solve_in_stages(coords, displacement, params, stages, true)
     }
 
@@ -268,6 +255,7 @@ impl Engine {
         let factored = matches!(built.system, System::Blocks { factored: true, .. });
         let mut stage_params = params.clone();
         let mut hierarchy = None;
+        let mut sweep_gmres;
         let accelerator = match stage {
             Stage::Sweeps => {
                 let (a, seconds) = accel.prepare(built, pool, params, dim)?;
@@ -281,8 +269,7 @@ impl Engine {
                 stage_params.accel = Accel::Amg;
                 stage_params.max_iterations = MULTIGRID_ITERATIONS;
                 if !exact {
-                    let smallest = built.heights.iter().fold(f64::INFINITY, |a, &b| a.min(b));
-                    threshold = threshold.min(MULTIGRID_MARGIN * ERROR_FRACTION * smallest);
+                    threshold = threshold.min(MULTIGRID_MARGIN * ERROR_FRACTION * smallest(built));
                 }
                 match accel.prepare(built, pool, &stage_params, dim) {
                     Ok((a, seconds)) => {
@@ -291,6 +278,18 @@ impl Engine {
                     }
                     Err(_) => return Ok(None),
                 }
+            }
+            Stage::Gmres => {
+                if !factored || built.layout.len() == 0 {
+                    return Ok(None);
+                }
+                stage_params.accel = Accel::None;
+                stage_params.max_iterations = GMRES_ITERATIONS;
+                if !exact {
+                    threshold = threshold.min(MULTIGRID_MARGIN * ERROR_FRACTION * smallest(built));
+                }
+                sweep_gmres = Accelerator::sweep(params.method, dim * built.layout.len());
+                Some(&mut sweep_gmres)
             }
             Stage::SafeSweeps => {
                 stage_params.omega = 1.0;
@@ -346,6 +345,61 @@ impl Engine {
     }
 }
 
+/// The stages of a step's solve on a `dim`-D mesh of `nodes` nodes, in
+/// order (see the module documentation).
+fn chain(dim: usize, nodes: usize, params: &SolveParams) -> Vec<Stage> {
+    let first = if params.method == Method::BallVertex && params.solver == Solver::Direct {
+        Stage::Direct
+    } else {
+        Stage::Sweeps
+    };
+    let then: &[Stage] = match (params.escalate, params.method, params.solver) {
+        (false, ..) | (_, Method::BallVertex, Solver::Direct) => &[],
+        (_, Method::Verbss | Method::Spring, _) if gmres_first(dim, nodes) => &[
+            Stage::Gmres,
+            Stage::Multigrid,
+            Stage::Direct,
+            Stage::SafeSweeps,
+        ],
+        (_, Method::Verbss | Method::Spring, _) => {
+            &[Stage::Multigrid, Stage::Direct, Stage::SafeSweeps]
+        }
+        (_, Method::BallVertex, Solver::Sor) => &[Stage::Direct],
+        (_, Method::Laplacian, _) => &[Stage::Direct, Stage::SafeSweeps],
+    };
+    std::iter::once(first).chain(then.iter().copied()).collect()
+}
+
+/// The stages of a solve to round-off ([`Engine::solve_exact`]) on a
+/// `dim`-D mesh of `nodes` nodes.
+fn exact_chain(dim: usize, nodes: usize, method: Method) -> &'static [Stage] {
+    let fits = nodes
+        <= if dim == 2 {
+            DIRECT_NODES_2D
+        } else {
+            DIRECT_NODES_3D
+        };
+    match method {
+        Method::Laplacian if fits => &[Stage::Direct, Stage::SafeSweeps],
+        Method::Laplacian => &[Stage::SafeSweeps],
+        _ if fits => &[Stage::Direct, Stage::Multigrid],
+        Method::BallVertex => &[Stage::Direct],
+        _ if gmres_first(dim, nodes) => &[Stage::Gmres, Stage::Multigrid],
+        _ => &[Stage::Multigrid, Stage::Direct],
+    }
+}
+
+/// Whether a block system escalates to [`Stage::Gmres`] before the
+/// multigrid: in 3D from [`GMRES_FIRST_NODES_3D`] nodes.
+fn gmres_first(dim: usize, nodes: usize) -> bool {
+    dim == 3 && nodes >= GMRES_FIRST_NODES_3D
+}
+
+/// The smallest local size of the unknowns of `built`.
+fn smallest(built: &super::Built) -> f64 {
+    built.heights.iter().fold(f64::INFINITY, |a, &b| a.min(b))
+}
+
 /// The LU factors of the system of `built` (the Laplacian's as blocks).
 fn lu<const D: usize>(built: &super::Built) -> Result<super::direct::Lu> {
     match &built.system {
@@ -398,3 +452,6 @@ fn check<const D: usize>(built: &mut super::Built, displacement: &[f64]) -> veri
         }),
     }
 }
+
+#[cfg(test)]
+mod tests;

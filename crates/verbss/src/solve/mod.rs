@@ -87,7 +87,7 @@ mod spring_solver;
 mod sweep;
 mod verbss;
 pub mod verify;
-pub use self::escalate::{DIRECT_NODES_2D, DIRECT_NODES_3D};
+pub use self::escalate::{DIRECT_NODES_2D, DIRECT_NODES_3D, GMRES_FIRST_NODES_3D};
 pub use self::frame::{unit_directions, Frame, Frames};
 pub use self::params::{
     clear_prescribed, default_roles, Accel, Method, NodeRole, SolveInfo, SolveParams, Solver,

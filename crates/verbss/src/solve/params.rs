@@ -178,15 +178,20 @@ pub enum Stage {
     SafeSweeps,
     /// The sparse direct (LU) solve.
     Direct,
+    /// GMRES preconditioned by one symmetric VerBSS sweep (forward, then
+    /// backward): the multigrid's finest smoothing without its hierarchy,
+    /// a few vectors of memory (3D escalation before the multigrid).
+    Gmres,
 }
 
 impl Stage {
     /// Every stage, in declaration order (`Stage::ALL[s as usize] == s`).
-    pub const ALL: [Stage; 4] = [
+    pub const ALL: [Stage; 5] = [
         Stage::Sweeps,
         Stage::Multigrid,
         Stage::SafeSweeps,
         Stage::Direct,
+        Stage::Gmres,
     ];
 
     /// The name reports and messages use.
@@ -196,6 +201,7 @@ impl Stage {
             Stage::Multigrid => "multigrid",
             Stage::SafeSweeps => "safe-sweeps",
             Stage::Direct => "direct",
+            Stage::Gmres => "gmres",
         }
     }
 }
