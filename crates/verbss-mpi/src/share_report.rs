@@ -7,8 +7,9 @@
 //! sweeps do not compute is left open: `true_residual` is NaN (`null` in
 //! the JSON), `error_ratio` too unless an escalating solve accepted the
 //! step (the sweeper's estimate, docs/distributed.md, "Escalation without
-//! the whole mesh"), `stages` is `["sweeps"]` or `["sweeps",
-//! "safe-sweeps"]` and `substeps` 1 (there is no sub-step on this path).
+//! the whole mesh"), `stages` is `["sweeps"]`, `["sweeps", "gmres"]` or
+//! `["sweeps", "gmres", "safe-sweeps"]` and `substeps` 1 (there is no
+//! sub-step on this path).
 
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -15,9 +15,10 @@
 //! `--reference updated` the springs are on the current mesh and the solve
 //! is for the increment, with `fixed` on the input mesh for the total
 //! displacement. A step that inverts a cell stops the run with exit code 3
-//! (the pieces hold the last valid mesh), sweeps that do not converge with
-//! exit code 4: without the whole mesh there is no exact solve to escalate
-//! to. Unless `--quiet`, every rank says what it holds and rank 0 prints
+//! (the pieces hold the last valid mesh), a step that the sweeps, GMRES
+//! preconditioned by the sweep and the safe sweeps do not solve with exit
+//! code 4: without the whole mesh there is no multigrid or exact solve to
+//! escalate to. Unless `--quiet`, every rank says what it holds and rank 0 prints
 //! the single-process progress line of each step, its quality reduced over
 //! the ranks ([`verbss_mpi::step_quality`]); `--report` writes the
 //! single-process report from rank 0 (`share_report`), `--gather` the
@@ -186,10 +187,12 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
         if !info.converged {
             progress.finish();
             let message = format!(
-                "step {step}: the sweeps did not converge in {} sweeps (eq.-8 value {:e}); a \
-                 partitioned input has no exact solve to escalate to: raise --max-iterations, \
-                 or take more --steps",
-                info.iterations, info.residual
+                "step {step}: the stages {} did not converge ({} iterations in all, the last \
+                 value {:e}); a partitioned input has no multigrid or exact solve to escalate \
+                 to: raise --max-iterations, or take more --steps",
+                Stage::names(&[&[Stage::Sweeps], &info.stages[..]].concat()),
+                info.iterations,
+                info.residual
             );
             return report.stop(&message, 4, || {
                 write(&world, &job.output, &share, &coords, &orientation)

@@ -36,6 +36,8 @@ use crate::halo::{swap, Halo};
 use crate::part::Part;
 use crate::Comm;
 
+mod gmres;
+
 /// A rank's solver: its [`Part`], the roles of its nodes, the ghost
 /// exchange lists and, once built, its rows of the spring system.
 pub struct Sweeper<'c> {
@@ -376,34 +378,51 @@ impl<'c> Sweeper<'c> {
             return Ok(info);
         }
         // Under escalation a stage that diverges or runs out of sweeps is
-        // followed by sweeps with ω = 1 (Stage::SafeSweeps), from the initial
+        // followed by GMRES preconditioned by the sweep (Stage::Gmres), then
+        // by sweeps with ω = 1 (Stage::SafeSweeps): each from the initial
         // guess after a divergence, from the last iterate otherwise.
         let initial = work.clone();
-        let omegas: &[f64] = if params.escalate {
-            &[params.omega, 1.0]
-        } else {
-            &[params.omega]
-        };
-        for (k, &omega) in omegas.iter().enumerate() {
-            if k > 0 {
-                info.stages.push(Stage::SafeSweeps);
+        let swept = self.sweeps::<D>(
+            b,
+            &constant,
+            &mut work,
+            params.omega,
+            threshold,
+            params,
+            &mut info,
+        );
+        match swept {
+            Swept::Accepted => info.converged = true,
+            Swept::Exhausted => {}
+            Swept::Diverged { value, first } => {
+                if !params.escalate {
+                    return Err(Error::InvalidSetting(format!(
+                        "the sweeps diverged (eq.-8 value {value:.3e} at sweep {}, \
+                         {first:.3e} at the first); omega {} is too large for this mesh",
+                        info.iterations, params.omega
+                    )));
+                }
+                work.copy_from_slice(&initial);
             }
-            match self.sweeps::<D>(b, &constant, &mut work, omega, threshold, params, &mut info) {
-                Swept::Accepted => {
-                    info.converged = true;
-                    break;
-                }
+        }
+        if !info.converged && params.escalate {
+            info.stages.push(Stage::Gmres);
+            let outcome = self.gmres::<D>(b, &constant, &mut work, threshold);
+            info.iterations += outcome.iterations;
+            info.residual = outcome.estimate;
+            if outcome.diverged {
+                work.copy_from_slice(&initial);
+            } else if outcome.converged {
+                info.error_ratio = self.error_ratio::<D>(b, &constant, &work);
+                info.converged = info.error_ratio <= ERROR_FRACTION;
+            }
+        }
+        if !info.converged && params.escalate {
+            info.stages.push(Stage::SafeSweeps);
+            match self.sweeps::<D>(b, &constant, &mut work, 1.0, threshold, params, &mut info) {
+                Swept::Accepted => info.converged = true,
                 Swept::Exhausted => {}
-                Swept::Diverged { value, first } => {
-                    if !params.escalate {
-                        return Err(Error::InvalidSetting(format!(
-                            "the sweeps diverged (eq.-8 value {value:.3e} at sweep {}, \
-                             {first:.3e} at the first); omega {omega} is too large for this mesh",
-                            info.iterations
-                        )));
-                    }
-                    work.copy_from_slice(&initial);
-                }
+                Swept::Diverged { .. } => work.copy_from_slice(&initial),
             }
         }
         for (p, &i) in b.order.iter().enumerate() {

@@ -118,12 +118,6 @@ impl StepReport {
     }
 }
 
-/// The names of `stages`, comma separated.
-fn stage_names(stages: &[Stage]) -> String {
-    let names: Vec<&str> = stages.iter().map(|s| s.name()).collect();
-    names.join(", ")
-}
-
 /// A configuration of the mesh with its check. The quality of each cell is
 /// not kept (8 bytes a cell for the whole run): [`Snapshot::qualities`]
 /// measures it again, as the check did.
@@ -465,7 +459,7 @@ impl<S: SpringSolver> Deformer<S> {
                     _ => Error::NotConverged {
                         step: n,
                         what: Box::new(Unconverged {
-                            stages: stage_names(&info.stages),
+                            stages: Stage::names(&info.stages),
                             true_residual: info.true_residual,
                             error_ratio: info.error_ratio,
                             node: self.mesh.node_tags[info.worst_node],

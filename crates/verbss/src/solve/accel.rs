@@ -23,19 +23,15 @@ use rayon::prelude::*;
 use super::amg::Hierarchy;
 use super::gmres::{self, Workspace};
 use super::{
-    coupled, sweep, verbss, Accel, Built, Layout, Method, SolveInfo, SolveParams,
-    AUTO_AMG_NODES_2D, AUTO_AMG_NODES_3D, CHUNK,
+    chunked_dot, sweep, verbss, Accel, Built, Layout, Method, SolveInfo, SolveParams,
+    AUTO_AMG_NODES_2D, AUTO_AMG_NODES_3D, CHUNK, GMRES_RESTART,
 };
 use crate::error::Result;
-use crate::geometry::{ldlt_mul, packed_len, point};
 use crate::mesh::CellKind;
 use crate::springs::NodeBlocks;
 
 /// Krylov iterations between GMRES restarts.
 const RESTART: usize = 20;
-/// The same for the sweep-preconditioned GMRES, which is kept short so
-/// that its basis costs little memory.
-const SWEEP_RESTART: usize = 4;
 /// Relaxation factor of the finest level's VerBSS smoothing sweeps.
 const SMOOTHING_OMEGA: f64 = 1.0;
 
@@ -170,14 +166,14 @@ impl Accelerator {
     }
 
     /// GMRES preconditioned by one symmetric VerBSS sweep, for `unknowns`
-    /// values: [`SWEEP_RESTART`] + 3 vectors, built in no time.
+    /// values: [`GMRES_RESTART`] + 3 vectors, built in no time.
     pub(crate) fn sweep(method: Method, unknowns: usize) -> Accelerator {
         Accelerator {
             preconditioner: Preconditioner::Sweep,
             method,
             baseline: None,
             stale: false,
-            workspace: Workspace::new(unknowns, SWEEP_RESTART),
+            workspace: Workspace::new(unknowns, GMRES_RESTART),
             zeros: vec![0.0; unknowns],
         }
     }
@@ -242,6 +238,7 @@ impl Accelerator {
                     smooth(out, rhs, true);
                 }
             },
+            chunked_dot,
             record_history.then_some(&mut history),
         );
         match self.baseline {
@@ -264,9 +261,8 @@ impl Accelerator {
     }
 }
 
-/// `out_p = ρ_p(x)` for every position: `c_p + Σ_j B_pj x_j − K_pp x_p`,
-/// projected on the plane of a sliding node (see the module documentation).
-/// With `x` a correction and `constant = r`, this is `r − A x`.
+/// `out_p = ρ_p(x)` for every position ([`verbss::residual`]). With `x` a
+/// correction and `constant = r`, this is `r − A x`.
 fn residual<const D: usize>(
     blocks: &NodeBlocks,
     layout: &Layout,
@@ -274,31 +270,18 @@ fn residual<const D: usize>(
     x: &[f64],
     out: &mut [f64],
 ) {
-    let s = packed_len(D);
     out.par_chunks_mut(D * CHUNK)
         .enumerate()
         .for_each(|(t, chunk)| {
             for (k, o) in chunk.chunks_exact_mut(D).enumerate() {
                 let p = t * CHUNK + k;
-                let b = coupled::<D>(blocks, constant, p, x);
-                let factor = &blocks.diag[s * p..s * (p + 1)];
-                let xp = point::<D>(x, p);
-                let value = match layout.frame::<D>(p) {
-                    None => {
-                        let kx = ldlt_mul::<D>(factor, &xp);
-                        std::array::from_fn(|k| b[k] - kx[k])
-                    }
-                    Some(frame) => {
-                        let mut rb = frame.rotate(&b);
-                        let ka = ldlt_mul::<D>(factor, &frame.rotate(&xp));
-                        for k in 0..frame.free() {
-                            rb[k] -= ka[k];
-                        }
-                        frame.clear_given(&mut rb);
-                        frame.unrotate(&rb)
-                    }
-                };
-                o.copy_from_slice(&value);
+                o.copy_from_slice(&verbss::residual::<D>(
+                    blocks,
+                    layout.frame::<D>(p),
+                    constant,
+                    p,
+                    x,
+                ));
             }
         });
 }

@@ -41,7 +41,10 @@ pub const DIRECT_NODES_3D: usize = 20_000;
 const MULTIGRID_ITERATIONS: usize = 60;
 /// GMRES iterations of the sweep-preconditioned stage ([`Stage::Gmres`]),
 /// each about three sweeps' work.
-const GMRES_ITERATIONS: usize = 400;
+pub const GMRES_ITERATIONS: usize = 400;
+/// Its iterations between restarts: five basis vectors, so that a step it
+/// solves needs little more memory than the sweeps.
+pub const GMRES_RESTART: usize = 4;
 /// From this many nodes a 3D block system escalates to [`Stage::Gmres`]
 /// before the multigrid, whose hierarchy would take 3–5 KB a node (more
 /// than 0.6 GB here) where the sweep-preconditioned GMRES takes 0.15 KB.
@@ -269,7 +272,7 @@ impl Engine {
                 stage_params.accel = Accel::Amg;
                 stage_params.max_iterations = MULTIGRID_ITERATIONS;
                 if !exact {
-                    threshold = threshold.min(MULTIGRID_MARGIN * ERROR_FRACTION * smallest(built));
+                    threshold = krylov_stop(threshold, smallest(built));
                 }
                 match accel.prepare(built, pool, &stage_params, dim) {
                     Ok((a, seconds)) => {
@@ -286,7 +289,7 @@ impl Engine {
                 stage_params.accel = Accel::None;
                 stage_params.max_iterations = GMRES_ITERATIONS;
                 if !exact {
-                    threshold = threshold.min(MULTIGRID_MARGIN * ERROR_FRACTION * smallest(built));
+                    threshold = krylov_stop(threshold, smallest(built));
                 }
                 sweep_gmres = Accelerator::sweep(params.method, dim * built.layout.len());
                 Some(&mut sweep_gmres)
@@ -393,6 +396,13 @@ fn exact_chain(dim: usize, nodes: usize, method: Method) -> &'static [Stage] {
 /// multigrid: in 3D from [`GMRES_FIRST_NODES_3D`] nodes.
 fn gmres_first(dim: usize, nodes: usize) -> bool {
     dim == 3 && nodes >= GMRES_FIRST_NODES_3D
+}
+
+/// The stop of a Krylov stage ([`Stage::Gmres`], [`Stage::Multigrid`]):
+/// the sweeps' `threshold`, or a tenth of the error bound ([`ERROR_FRACTION`]
+/// of the cell height) at the smallest cell height `smallest` if lower.
+pub fn krylov_stop(threshold: f64, smallest: f64) -> f64 {
+    threshold.min(MULTIGRID_MARGIN * ERROR_FRACTION * smallest)
 }
 
 /// The smallest local size of the unknowns of `built`.

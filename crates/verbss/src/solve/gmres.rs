@@ -5,35 +5,35 @@
 //! multigrid cycle as `M⁻¹`, `M⁻¹ r ≈ A⁻¹ r` is an estimate of the error
 //! itself, so the stop test `‖M⁻¹ r‖₂ / √n < threshold` bounds the
 //! root-mean-square error of the unknowns rather than one sweep's change.
-//! Inner products are summed in fixed chunks, so the iterates do not depend
-//! on the number of threads.
+//! The inner product is the caller's: summed in fixed chunks on one process
+//! (so the iterates do not depend on the number of threads), over the owned
+//! unknowns and all-reduced over MPI ranks (`verbss-mpi`), where every rank
+//! then takes the same decisions.
 
 use rayon::prelude::*;
 
-use super::chunked_dot;
-
 /// What a GMRES solve did.
-pub(crate) struct Outcome {
+pub struct Outcome {
     /// Krylov iterations (preconditioner applications after the first).
-    pub(crate) iterations: usize,
+    pub iterations: usize,
     /// The last `‖M⁻¹ r‖₂ / √n`.
-    pub(crate) estimate: f64,
+    pub estimate: f64,
     /// Whether it fell below the threshold.
-    pub(crate) converged: bool,
+    pub converged: bool,
     /// Whether the estimate became non-finite or grew 10⁶-fold (`x` keeps
     /// the last iterate of a completed restart).
-    pub(crate) diverged: bool,
+    pub diverged: bool,
 }
 
 /// The Krylov basis and Hessenberg storage, kept between solves.
-pub(crate) struct Workspace {
+pub struct Workspace {
     basis: Vec<Vec<f64>>,
     scratch: Vec<f64>,
 }
 
 impl Workspace {
     /// Storage for vectors of length `n` and restarts every `restart` iterations.
-    pub(crate) fn new(n: usize, restart: usize) -> Workspace {
+    pub fn new(n: usize, restart: usize) -> Workspace {
         Workspace {
             basis: (0..=restart).map(|_| vec![0.0; n]).collect(),
             scratch: vec![0.0; n],
@@ -45,9 +45,10 @@ impl Workspace {
 /// `out = b − A x`, `operator(v, out)` sets `out = A v`,
 /// `precondition(r, out)` sets `out = M⁻¹ r`. Stops when
 /// `‖M⁻¹ r‖₂ / √dofs < threshold` or after `max_iterations` iterations;
-/// `history` receives that value after every iteration.
+/// `dot(a, b)` is the inner product; `history` receives that value after
+/// every iteration.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn solve<R, A, M>(
+pub fn solve<R, A, M, S>(
     work: &mut Workspace,
     x: &mut [f64],
     dofs: usize,
@@ -56,12 +57,14 @@ pub(crate) fn solve<R, A, M>(
     residual: R,
     operator: A,
     mut precondition: M,
+    dot: S,
     mut history: Option<&mut Vec<f64>>,
 ) -> Outcome
 where
     R: Fn(&[f64], &mut [f64]),
     A: Fn(&[f64], &mut [f64]),
     M: FnMut(&[f64], &mut [f64]),
+    S: Fn(&[f64], &[f64]) -> f64,
 {
     let restart = work.basis.len() - 1;
     let scale = 1.0 / (dofs.max(1) as f64).sqrt();
@@ -79,7 +82,7 @@ where
         let Workspace { basis, scratch } = work;
         residual(x, scratch);
         precondition(scratch, &mut basis[0]);
-        let beta = chunked_dot(&basis[0], &basis[0]).sqrt();
+        let beta = dot(&basis[0], &basis[0]).sqrt();
         outcome.estimate = beta * scale;
         let first = *first.get_or_insert(outcome.estimate);
         if !outcome.estimate.is_finite() || outcome.estimate > 1e6 * first.max(threshold) {
@@ -103,13 +106,13 @@ where
             let w = &mut rest[0];
             precondition(scratch, w);
             for (i, v) in done.iter().enumerate() {
-                let d = chunked_dot(w, v);
+                let d = dot(w, v);
                 h[i][k] = d;
                 w.par_iter_mut()
                     .zip(v.par_iter())
                     .for_each(|(a, b)| *a -= d * b);
             }
-            let len = chunked_dot(w, w).sqrt();
+            let len = dot(w, w).sqrt();
             h[k + 1][k] = len;
             if len > 0.0 {
                 scale_in_place(w, 1.0 / len);

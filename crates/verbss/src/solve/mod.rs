@@ -77,7 +77,7 @@ mod bsr;
 mod direct;
 mod escalate;
 mod frame;
-mod gmres;
+pub mod gmres;
 mod laplacian;
 mod params;
 mod pass;
@@ -87,7 +87,10 @@ mod spring_solver;
 mod sweep;
 mod verbss;
 pub mod verify;
-pub use self::escalate::{DIRECT_NODES_2D, DIRECT_NODES_3D, GMRES_FIRST_NODES_3D};
+pub use self::escalate::{
+    krylov_stop, DIRECT_NODES_2D, DIRECT_NODES_3D, GMRES_FIRST_NODES_3D, GMRES_ITERATIONS,
+    GMRES_RESTART,
+};
 pub use self::frame::{unit_directions, Frame, Frames};
 pub use self::params::{
     clear_prescribed, default_roles, Accel, Method, NodeRole, SolveInfo, SolveParams, Solver,
@@ -95,7 +98,7 @@ pub use self::params::{
 };
 use self::pass::{gather, prescribed_scale, run};
 pub use self::spring_solver::{SolverSetup, SpringSolver};
-pub use self::verbss::relax;
+pub use self::verbss::{relax, residual};
 pub(crate) use sweep::{chunked_dot, chunked_sum, sweep};
 
 use std::sync::Arc;

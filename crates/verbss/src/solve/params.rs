@@ -204,6 +204,12 @@ impl Stage {
             Stage::Gmres => "gmres",
         }
     }
+
+    /// The names of `stages`, comma separated (for messages).
+    pub fn names(stages: &[Stage]) -> String {
+        let names: Vec<&str> = stages.iter().map(|s| s.name()).collect();
+        names.join(", ")
+    }
 }
 
 impl Default for SolveParams {

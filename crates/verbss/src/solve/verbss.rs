@@ -6,7 +6,7 @@
 //! triangular solves and a diagonal scaling per node (paper eq. 13).
 
 use super::{coupled, Frame, Layout};
-use crate::geometry::{ldlt_solve, packed_len, point};
+use crate::geometry::{ldlt_mul, ldlt_solve, packed_len, point};
 use crate::springs::NodeBlocks;
 
 /// Position `p`'s relaxed block solution and the sum of the absolute changes
@@ -27,6 +27,39 @@ pub(crate) fn update<const D: usize>(
         layout.frame::<D>(p),
         omega,
     )
+}
+
+/// The residual of position `p` at `x`: `ρ_p = c_p + Σ_j B_pj x_j − K_pp x_p`
+/// (`blocks.diag` holding the LDLᵀ factors of `K_pp`); for a sliding node
+/// (`frame`) in its frame, the given components cleared, turned back to
+/// mesh axes: its normal part never changes. With `x` a correction and
+/// `constant = r`, this is `r − A x`, the residual the Krylov stages use.
+pub fn residual<const D: usize>(
+    blocks: &NodeBlocks,
+    frame: Option<Frame<D>>,
+    constant: &[f64],
+    p: usize,
+    x: &[f64],
+) -> [f64; D] {
+    let s = packed_len(D);
+    let b = coupled::<D>(blocks, constant, p, x);
+    let factor = &blocks.diag[s * p..s * (p + 1)];
+    let xp = point::<D>(x, p);
+    match frame {
+        None => {
+            let kx = ldlt_mul::<D>(factor, &xp);
+            std::array::from_fn(|k| b[k] - kx[k])
+        }
+        Some(frame) => {
+            let mut rb = frame.rotate(&b);
+            let ka = ldlt_mul::<D>(factor, &frame.rotate(&xp));
+            for k in 0..frame.free() {
+                rb[k] -= ka[k];
+            }
+            frame.clear_given(&mut rb);
+            frame.unrotate(&rb)
+        }
+    }
 }
 
 /// One node's update (paper eq. 13) from its LDLᵀ factor `factor`, its
