@@ -343,10 +343,8 @@ impl DeformArgs {
         let whole_mesh = [
             (self.positions.is_some(), "--positions"),
             (!self.slide.is_empty(), "--slide"),
-            (self.rigid_layer.is_some(), "--rigid-layer"),
-            (self.substeps.is_some_and(|k| k > 0), "--substeps"),
-            (self.stiffening.is_some_and(|p| p > 0.0), "--stiffening"),
             (self.blend == Some(true), "--blend on"),
+            (self.substeps.is_some_and(|k| k > 0), "--substeps"),
             (self.solver.is_some(), "--solver"),
             (self.accel.is_some(), "--accel"),
             (
@@ -401,7 +399,8 @@ pub struct ShareJob {
     pub moving: Vec<String>,
     /// Their motion: a translation or a rotation.
     pub motion: Motion,
-    /// The settings (method verbss or spring, no near-wall treatment).
+    /// The settings (method verbss or spring; of the near-wall treatments
+    /// the rigid layer and the stiffening).
     pub settings: Settings,
     /// Where rank 0 writes the per-step report (JSON), if anywhere.
     pub report: Option<PathBuf>,
