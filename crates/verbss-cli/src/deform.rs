@@ -336,7 +336,8 @@ impl DeformArgs {
         if !matches!(self.method, Preset::Verbss | Preset::Spring) {
             bail!(
                 "{}: a partitioned input is read rank by rank, which runs --method verbss or \
-                 spring (the near-wall treatments of robust need the whole mesh)",
+                 spring, with --rigid-layer, --stiffening and --substeps if asked (the blend of \
+                 robust needs the whole mesh)",
                 self.mesh.display()
             );
         }
@@ -344,7 +345,6 @@ impl DeformArgs {
             (self.positions.is_some(), "--positions"),
             (!self.slide.is_empty(), "--slide"),
             (self.blend == Some(true), "--blend on"),
-            (self.substeps.is_some_and(|k| k > 0), "--substeps"),
             (self.solver.is_some(), "--solver"),
             (self.accel.is_some(), "--accel"),
             (
@@ -400,7 +400,7 @@ pub struct ShareJob {
     /// Their motion: a translation or a rotation.
     pub motion: Motion,
     /// The settings (method verbss or spring; of the near-wall treatments
-    /// the rigid layer and the stiffening).
+    /// the rigid layer, the stiffening and the sub-steps).
     pub settings: Settings,
     /// Where rank 0 writes the per-step report (JSON), if anywhere.
     pub report: Option<PathBuf>,

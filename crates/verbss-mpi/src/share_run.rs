@@ -20,10 +20,15 @@
 //! wall where they are; with
 //! `--reference updated` the springs are on the current mesh and the solve
 //! is for the increment, with `fixed` on the input mesh for the total
-//! displacement. A step that inverts a cell stops the run with exit code 3
-//! (the pieces hold the last valid mesh), sweeps that do not converge with
-//! exit code 4: without the whole mesh there is no exact solve to escalate
-//! to. Unless `--quiet`, every rank says what it holds, rank 0 the rigid
+//! displacement. With `--substeps K` and the updated reference, a step that
+//! inverts a cell or whose sweeps do not converge is redone in increments
+//! (the step's prescribed displacements spread linearly, the springs on
+//! each increment's start), halved after a failure and doubled after a
+//! success down to `2^-K` of the step, as `verbss deform` does. A step that
+//! inverts a cell (in the smallest increment) stops the run with exit code
+//! 3 (the pieces hold the last valid mesh), sweeps that do not converge
+//! with exit code 4: without the whole mesh there is no exact solve to
+//! escalate to. Unless `--quiet`, every rank says what it holds, rank 0 the rigid
 //! layer's node count and thickness, and rank 0 prints
 //! the single-process progress line of each step, its quality reduced over
 //! the ranks ([`verbss_mpi::step_quality`]); `--report` writes the
@@ -210,22 +215,58 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
     for step in 1..=steps {
         let start = Instant::now();
         let (_, target) = at(step)?;
-        let (springs, mut u) = match job.settings.reference {
-            Reference::Fixed => (mesh.coords.clone(), target.clone()),
-            _ => {
-                let increment = target.iter().zip(&before).map(|(a, b)| a - b).collect();
-                (coords.clone(), increment)
+        let delta: Vec<f64> = target.iter().zip(&before).map(|(a, b)| a - b).collect();
+        // Increments of the step, halved after a failure down to `floor`
+        // and doubled after a success (with a total unknown, none).
+        let floor = match job.settings.reference {
+            Reference::Updated => 0.5f64.powi(job.settings.robust.substeps as i32),
+            _ => 1.0,
+        };
+        let (mut done, mut h) = (0.0, 1.0);
+        let mut current = coords.clone();
+        let mut solves = Vec::new();
+        let mut increments = 0;
+        let mut check_seconds = 0.0;
+        let (moved, mut r) = loop {
+            let end = if done + h >= 1.0 { 1.0 } else { done + h };
+            let (springs, mut u) = match job.settings.reference {
+                Reference::Fixed => (mesh.coords.clone(), target.clone()),
+                _ => {
+                    let fraction = end - done;
+                    (
+                        current.clone(),
+                        delta.iter().map(|d| d * fraction).collect(),
+                    )
+                }
+            };
+            let info = solver.solve(&springs, &mut u, &job.settings.solve)?;
+            let moved: Vec<f64> = springs.iter().zip(&u).map(|(x, du)| x + du).collect();
+            let check = Instant::now();
+            let r = step_quality(&world, mesh, &moved, &orientation);
+            check_seconds += check.elapsed().as_secs_f64();
+            let failed = !info.converged || r.inverted > 0;
+            solves.push(info);
+            if failed && h * 0.5 >= floor {
+                h *= 0.5;
+                continue;
             }
+            increments += 1;
+            if failed || end >= 1.0 {
+                break (moved, r);
+            }
+            current = moved;
+            done = end;
+            h = (2.0 * h).min(1.0 - done);
         };
         before = target;
-        let info = solver.solve(&springs, &mut u, &job.settings.solve)?;
-        let moved: Vec<f64> = springs.iter().zip(&u).map(|(x, du)| x + du).collect();
-        let check = Instant::now();
-        let mut r = step_quality(&world, mesh, &moved, &orientation);
-        r.check_seconds = check.elapsed().as_secs_f64();
+        let info = solves.pop().expect("a solve per step");
+        r.check_seconds = check_seconds;
         r.step = step;
-        r.substeps = 1;
+        r.substeps = increments;
         r.stages.push(Stage::Sweeps);
+        for earlier in &solves {
+            r.add(earlier);
+        }
         r.add(&info);
         r.converged = info.converged;
         r.true_residual = f64::NAN;
@@ -241,10 +282,12 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
         if !info.converged {
             progress.finish();
             let message = format!(
-                "step {step}: the sweeps did not converge in {} sweeps (eq.-8 value {:e}); a \
+                "step {step}: the sweeps did not converge in {} sweeps (eq.-8 value {:e}){}; a \
                  partitioned input has no exact solve to escalate to: raise --max-iterations, \
                  or take more --steps",
-                info.iterations, info.residual
+                info.iterations,
+                info.residual,
+                smallest(floor)
             );
             return report.stop(&message, 4, || {
                 write(&world, &job.output, &share, &coords, &orientation)
@@ -253,7 +296,8 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
         if inverted > 0 {
             progress.finish();
             let message = format!(
-                "step {step} inverts {inverted} cells; {} holds step {}",
+                "step {step} inverts {inverted} cells{}; {} holds step {}",
+                smallest(floor),
                 job.output.display(),
                 step - 1
             );
@@ -263,7 +307,7 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
         }
         progress.step(report.last());
         coords = moved;
-        sweeps += info.iterations;
+        sweeps += report.last().iterations;
     }
     progress.finish();
     write(&world, &job.output, &share, &coords, &orientation)?;
@@ -279,6 +323,16 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
         );
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// What a failed step's message says of its increments: nothing without
+/// sub-steps, else the smallest one tried, `floor` of the step.
+fn smallest(floor: f64) -> String {
+    if floor < 1.0 {
+        format!(" in increments down to {floor} of the step")
+    } else {
+        String::new()
+    }
 }
 
 /// What the output line names: `output`, or for MSH pieces their pattern

@@ -1,5 +1,5 @@
-//! The rigid layer and the wall-distance stiffening of `verbss-mpi deform`
-//! on the path where no rank holds the whole mesh
+//! The rigid layer, the wall-distance stiffening and the sub-steps of
+//! `verbss-mpi deform` on the path where no rank holds the whole mesh
 //! (`verbss_mpi::near_wall`), on 1, 2 and 3 ranks: the moved mesh, the
 //! reported quality and the gathered file are those of the single-process
 //! stepper with the same treatments (to 1e-10 of the largest
@@ -18,14 +18,21 @@ use verbss_mpi::share::partitions_of;
 mod common;
 mod like_one_process;
 
-use like_one_process::{asset, deforms_like_one_process_with, ptscotch_ready, NearWall};
+use like_one_process::{
+    asset, deforms_like_one_process_with, ptscotch_ready, single_with, NearWall,
+};
+use verbss::motion::Motion;
 
 /// The rigid layer `layer` and the stiffening exponent 1, for both runs.
 fn treatments<'a>(layer: Layer, args: &'a [&'a str]) -> NearWall<'a> {
     let mut robust = Robust::off();
     robust.layer = layer;
     robust.stiffening = 1.0;
-    NearWall { robust, args }
+    NearWall {
+        robust,
+        args,
+        steps: 2,
+    }
 }
 
 /// Runs `mesh` like one process with `near_wall` and checks that rank 0
@@ -166,4 +173,65 @@ fn the_flap_turns_between_fixed_walls_as_on_one_process() {
         &treatments(Layer::Auto, &args),
     );
     assert!(layer > 1000, "{layer}");
+}
+
+/// The hole of the channel lifted by 0.27 in one step inverts a cell in
+/// one increment (exit code 3 with `--substeps 0`, as on one process) and
+/// is reached in two with `--substeps 6`: the increments, the moved mesh
+/// and the report are the single process's.
+#[test]
+fn sub_steps_lift_the_channel_hole_as_on_one_process() {
+    if !common::mpi_ready() {
+        return;
+    }
+    let mesh = asset("gmsh/channel_hole_part3_v41_ascii.msh");
+    let motion = ["--translate", "0,0.27"];
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("moved.pvtu");
+    let mut args = vec![
+        "deform",
+        mesh.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "wall",
+        "--method",
+        "verbss",
+        "--substeps",
+        "0",
+    ];
+    args.extend_from_slice(&motion);
+    for np in 1..=3 {
+        let o = like_one_process::verbss_mpi_with(np, &args, dir.path(), &[]);
+        assert_eq!(o.status.code(), Some(3), "{np} ranks");
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(
+            stderr.matches("step 1 inverts 1 cells; ").count(),
+            1,
+            "{stderr}"
+        );
+    }
+    let mut robust = Robust::off();
+    robust.substeps = 6;
+    let whole = verbss::io::read(&mesh).unwrap();
+    let translation = Motion::Translation {
+        displacement: [0.0, 0.27, 0.0],
+    };
+    let (_, reports, _) = single_with(&whole, "wall", translation, 1, Reference::Updated, robust);
+    assert_eq!(reports[1].substeps, 2);
+    let near_wall = NearWall {
+        robust,
+        args: &["--substeps", "6"],
+        steps: 1,
+    };
+    let (stdouts, _) = deforms_like_one_process_with(
+        &mesh,
+        "wall",
+        &motion,
+        Reference::Updated,
+        0.27,
+        &[],
+        &near_wall,
+    );
+    assert_eq!(stdouts.len(), 3);
 }

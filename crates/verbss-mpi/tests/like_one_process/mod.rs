@@ -129,9 +129,9 @@ fn motion_of(motion: &[&str]) -> Motion {
     }
 }
 
-/// `verbss-mpi deform MESH -o OUT --moving GROUP --method verbss --steps 2
+/// `verbss-mpi deform MESH -o OUT --moving GROUP --method verbss
 /// --reference REFERENCE` on `np` ranks with the tests' tolerance and
-/// `extra` arguments; asserts that it succeeds.
+/// `extra` arguments (the steps among them); asserts that it succeeds.
 fn run(
     np: usize,
     mesh: &Path,
@@ -155,8 +155,6 @@ fn run(
         group,
         "--method",
         "verbss",
-        "--steps",
-        "2",
         "--reference",
         reference,
         "--tolerance",
@@ -315,7 +313,7 @@ pub fn msh_pieces_like_one_process(
     for np in 1..=3 {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("moved.msh");
-        let mut args = vec!["--pieces", "-q"];
+        let mut args = vec!["--pieces", "-q", "--steps", "2"];
         args.extend_from_slice(motion);
         run(np, mesh, &out, group, reference, &args, env);
         assert!(!out.exists(), "{}", out.display());
@@ -412,6 +410,7 @@ fn reports_like_one_process(path: &Path, whole: &Mesh, one: &[StepReport], np: u
         assert_eq!(bins, want.bins, "{np} ranks, step {n}");
         assert_eq!(bins.iter().sum::<usize>(), whole.cell_count());
         assert_eq!(got["inverted"], want.inverted, "{np} ranks, step {n}");
+        assert_eq!(got["substeps"], want.substeps, "{np} ranks, step {n}");
         let min = got["min_quality"].as_f64().unwrap();
         assert!(
             (min - want.min_quality).abs() < 1e-10,
@@ -477,17 +476,20 @@ pub fn deforms_like_one_process(
     let near_wall = NearWall {
         robust: Robust::off(),
         args: &[],
+        steps: 2,
     };
     deforms_like_one_process_with(mesh, group, motion, reference, scale, env, &near_wall).0
 }
 
 /// Near-wall treatments of both runs: the single process's `robust`, the
-/// same as the distributed run's arguments `args`.
+/// same as the distributed run's arguments `args`; and the number of steps.
 pub struct NearWall<'a> {
     /// The single-process treatments.
     pub robust: Robust,
     /// The same as `verbss-mpi deform` arguments.
     pub args: &'a [&'a str],
+    /// The steps of both runs.
+    pub steps: usize,
 }
 
 /// [`deforms_like_one_process`] with the near-wall treatments
@@ -506,7 +508,7 @@ pub fn deforms_like_one_process_with(
         &whole,
         group,
         motion_of(motion),
-        2,
+        near_wall.steps,
         reference,
         near_wall.robust,
     );
@@ -517,11 +519,14 @@ pub fn deforms_like_one_process_with(
         let out = dir.path().join("moved.pvtu");
         let report = dir.path().join("report.json");
         let gathered = dir.path().join("all.vtu");
+        let steps = near_wall.steps.to_string();
         let mut args = vec![
             "--report",
             report.to_str().unwrap(),
             "--gather",
             gathered.to_str().unwrap(),
+            "--steps",
+            &steps,
         ];
         args.extend_from_slice(motion);
         args.extend_from_slice(near_wall.args);
@@ -532,8 +537,10 @@ pub fn deforms_like_one_process_with(
         reports_like_one_process(&report, &whole, &reports, np);
         gathered_like_one_process(&gathered, &whole, &one, &index, scale, np);
         let stderr = String::from_utf8_lossy(&o.stderr);
-        for step in ["step 1/2: sweeps (", "step 2/2: sweeps ("] {
-            assert_eq!(stderr.matches(step).count(), 1, "{stderr}");
+        let steps = near_wall.steps;
+        for step in 1..=steps {
+            let line = format!("step {step}/{steps}: sweeps (");
+            assert_eq!(stderr.matches(&line).count(), 1, "{stderr}");
         }
         stdouts.push(String::from_utf8_lossy(&o.stdout).into_owned());
     }
