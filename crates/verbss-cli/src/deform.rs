@@ -336,16 +336,14 @@ impl DeformArgs {
         if !matches!(self.method, Preset::Verbss | Preset::Spring) {
             bail!(
                 "{}: a partitioned input is read rank by rank, which runs --method verbss or \
-                 spring (the near-wall treatments of robust need the whole mesh)",
+                 spring, with --rigid-layer, --stiffening and --substeps if asked (the blend of \
+                 robust needs the whole mesh)",
                 self.mesh.display()
             );
         }
         let whole_mesh = [
             (self.positions.is_some(), "--positions"),
             (!self.slide.is_empty(), "--slide"),
-            (self.rigid_layer.is_some(), "--rigid-layer"),
-            (self.substeps.is_some_and(|k| k > 0), "--substeps"),
-            (self.stiffening.is_some_and(|p| p > 0.0), "--stiffening"),
             (self.blend == Some(true), "--blend on"),
             (self.solver.is_some(), "--solver"),
             (self.accel.is_some(), "--accel"),
@@ -401,7 +399,8 @@ pub struct ShareJob {
     pub moving: Vec<String>,
     /// Their motion: a translation or a rotation.
     pub motion: Motion,
-    /// The settings (method verbss or spring, no near-wall treatment).
+    /// The settings (method verbss or spring; of the near-wall treatments
+    /// the rigid layer, the stiffening and the sub-steps).
     pub settings: Settings,
     /// Where rank 0 writes the per-step report (JSON), if anywhere.
     pub report: Option<PathBuf>,

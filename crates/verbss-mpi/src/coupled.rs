@@ -21,6 +21,9 @@
 //!    keyed by `global mod ranks`, two all-to-all exchanges);
 //! 2. every rank sends each cell to the owners of its nodes, so that each
 //!    owner has every cell around its nodes and one ghost layer ([`Part`]);
+//!    steps 1 and 2 are [`Ghosts::new`], which a caller may run first
+//!    (to find the roles on the ghost layer) and hand to
+//!    [`LocalSolver::with_ghosts`];
 //! 3. the unknowns are coloured in parallel, Jones–Plassmann style: a node
 //!    whose hashed global number beats those of all its uncoloured unknown
 //!    neighbours takes the smallest colour none of its neighbours has,
@@ -33,11 +36,11 @@
 //! differ: compare converged results, not sweep counts. Results for
 //! different numbers of ranks agree to rounding.
 
-use verbss::mesh::CellKind;
 use verbss::solve::{NodeRole, SolveInfo, SolveParams};
 use verbss::topology;
-use verbss::{Cells, Error, Mesh, Result};
+use verbss::{Error, Mesh, Result};
 
+pub use crate::ghosts::Ghosts;
 use crate::halo::Halo;
 use crate::part::Part;
 use crate::sweeper::Sweeper;
@@ -63,89 +66,36 @@ impl<'c> LocalSolver<'c> {
         roles: &[NodeRole],
         normals: &[[f64; 3]],
     ) -> Result<LocalSolver<'c>> {
-        let n = mesh.node_count();
-        if global.len() != n || roles.len() != n {
+        if roles.len() != mesh.node_count() {
             return Err(Error::InvalidSetting(format!(
-                "{} global numbers and {} roles for {n} local nodes",
-                global.len(),
-                roles.len()
+                "{} roles for {} local nodes",
+                roles.len(),
+                mesh.node_count()
             )));
         }
-        let size = comm.size() as usize;
-        let rank = comm.rank();
-        let owner = owners(comm, global);
-        // Cells go to the owners of their nodes: kind, node count, then per
-        // node its global number and owner.
-        let mut out: Vec<Vec<u64>> = vec![Vec::new(); size];
-        for c in 0..mesh.cells.len() {
-            let nodes = mesh.cells.cell(c);
-            let mut targets: Vec<i32> = nodes.iter().map(|&v| owner[v]).collect();
-            targets.sort_unstable();
-            targets.dedup();
-            for t in targets {
-                let buf = &mut out[t as usize];
-                buf.push(kind_code(mesh.cells.kinds[c]));
-                buf.push(nodes.len() as u64);
-                for &v in nodes {
-                    buf.push(global[v]);
-                    buf.push(owner[v] as u64);
-                }
-            }
+        let ghosts = Ghosts::new(comm, mesh, global)?;
+        LocalSolver::with_ghosts(comm, ghosts, roles, normals)
+    }
+
+    /// [`LocalSolver::new`] on a ghost layer already built (collective):
+    /// `roles` per local node of the mesh `ghosts` was built from.
+    pub fn with_ghosts(
+        comm: &'c Comm,
+        ghosts: Ghosts,
+        roles: &[NodeRole],
+        normals: &[[f64; 3]],
+    ) -> Result<LocalSolver<'c>> {
+        let Ghosts { part, local, halo } = ghosts;
+        if roles.len() != local.len() {
+            return Err(Error::InvalidSetting(format!(
+                "{} roles for {} local nodes",
+                roles.len(),
+                local.len()
+            )));
         }
-        let received = comm.all_to_all(&out);
-        // The part: own cells and received ones, each once (keyed by its sorted nodes).
-        let mut cells: Vec<(Vec<u64>, CellKind, Vec<u64>)> = Vec::new();
-        let mut node_owner: Vec<(u64, i32)> = global.iter().copied().zip(owner.clone()).collect();
-        for c in 0..mesh.cells.len() {
-            let g: Vec<u64> = mesh.cells.cell(c).iter().map(|&v| global[v]).collect();
-            cells.push((sorted(&g), mesh.cells.kinds[c], g));
-        }
-        for buf in &received {
-            let mut at = 0;
-            while at < buf.len() {
-                let kind = CellKind::ALL[buf[at] as usize];
-                let count = buf[at + 1] as usize;
-                let mut g = Vec::with_capacity(count);
-                for k in 0..count {
-                    g.push(buf[at + 2 + 2 * k]);
-                    node_owner.push((buf[at + 2 + 2 * k], buf[at + 3 + 2 * k] as i32));
-                }
-                at += 2 + 2 * count;
-                cells.push((sorted(&g), kind, g));
-            }
-        }
-        cells.sort_by(|a, b| a.0.cmp(&b.0));
-        cells.dedup_by(|a, b| a.0 == b.0);
-        node_owner.sort_unstable();
-        node_owner.dedup_by_key(|p| p.0);
-        let part_global: Vec<u64> = node_owner.iter().map(|p| p.0).collect();
-        let index = |g: u64| {
-            part_global
-                .binary_search(&g)
-                .expect("a node of a part cell")
-        };
-        let mut part_cells = Cells::new();
-        for (_, kind, g) in &cells {
-            let nodes: Vec<usize> = g.iter().map(|&x| index(x)).collect();
-            part_cells.push(*kind, &nodes);
-        }
-        let dim = mesh.dim;
-        let local: Vec<usize> = global.iter().map(|&g| index(g)).collect();
-        let m = part_global.len();
-        let part = Part {
-            dim,
-            rank,
-            owner: node_owner.iter().map(|p| p.1).collect(),
-            coords: vec![0.0; dim * m],
-            node_tags: part_global.iter().map(|&g| g + 1).collect(),
-            cell_tags: (1..=cells.len() as u64).collect(),
-            cell_global: (0..cells.len() as u64).collect(),
-            cells: part_cells,
-            global: part_global,
-        };
+        let m = part.node_count();
         // Roles of the new nodes from their owners: Free −1, Fixed −2,
         // Slide(k) k, Line(k) −3 − k.
-        let halo = Halo::new(comm, &part.global, &part.owner);
         let mut codes = vec![0.0; m];
         for (i, r) in roles.iter().enumerate() {
             codes[local[i]] = match r {
@@ -209,6 +159,31 @@ impl<'c> LocalSolver<'c> {
         Ok(info)
     }
 
+    /// Sets per-local-node spring stiffness factors (as
+    /// [`verbss::solve::Engine::set_stiffness`], one per local node of the
+    /// caller's mesh; empty: all 1); the ghosts take their owners' factors
+    /// (collective).
+    pub fn set_stiffness(&mut self, factors: &[f64]) -> Result<()> {
+        let n = self.local.len();
+        if factors.is_empty() {
+            self.sweeper.set_stiffness(Vec::new());
+            return Ok(());
+        }
+        if factors.len() != n {
+            return Err(Error::InvalidSetting(format!(
+                "{} stiffness factors for {n} local nodes",
+                factors.len()
+            )));
+        }
+        let mut all = vec![1.0; self.sweeper.part().node_count()];
+        for (i, &p) in self.local.iter().enumerate() {
+            all[p] = factors[i];
+        }
+        self.sweeper.exchange(&mut all, 1);
+        self.sweeper.set_stiffness(all);
+        Ok(())
+    }
+
     /// This rank's part: its cells, its nodes and their ghosts.
     pub fn part(&self) -> &Part {
         self.sweeper.part()
@@ -223,45 +198,6 @@ impl<'c> LocalSolver<'c> {
             .max()
             .unwrap_or(0)
     }
-}
-
-/// The owner of each local node: the lowest rank holding its global number.
-fn owners(comm: &Comm, global: &[u64]) -> Vec<i32> {
-    let size = comm.size() as u64;
-    let mut ask: Vec<Vec<u64>> = vec![Vec::new(); size as usize];
-    for &g in global {
-        ask[(g % size) as usize].push(g);
-    }
-    let asked = comm.all_to_all(&ask);
-    let mut holders: Vec<(u64, i32)> = asked
-        .iter()
-        .enumerate()
-        .flat_map(|(r, list)| list.iter().map(move |&g| (g, r as i32)))
-        .collect();
-    holders.sort_unstable();
-    holders.dedup_by_key(|p| p.0);
-    let answers: Vec<Vec<u64>> = asked
-        .iter()
-        .map(|list| {
-            list.iter()
-                .map(|g| {
-                    let k = holders.binary_search_by_key(g, |p| p.0).expect("asked");
-                    holders[k].1 as u64
-                })
-                .collect()
-        })
-        .collect();
-    let replies = comm.all_to_all(&answers);
-    let mut next = vec![0usize; size as usize];
-    global
-        .iter()
-        .map(|&g| {
-            let d = (g % size) as usize;
-            let o = replies[d][next[d]];
-            next[d] += 1;
-            o as i32
-        })
-        .collect()
 }
 
 /// Parallel greedy colouring of the unknown nodes of `part` (see the
@@ -323,19 +259,4 @@ fn mix(g: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^ (z >> 31)
-}
-
-/// The position of `kind` in [`CellKind::ALL`].
-pub(crate) fn kind_code(kind: CellKind) -> u64 {
-    CellKind::ALL
-        .iter()
-        .position(|&k| k == kind)
-        .expect("every kind is listed") as u64
-}
-
-/// `g` sorted.
-fn sorted(g: &[u64]) -> Vec<u64> {
-    let mut s = g.to_vec();
-    s.sort_unstable();
-    s
 }

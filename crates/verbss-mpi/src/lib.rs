@@ -19,9 +19,12 @@
 //!   the whole mesh;
 //! * [`cgns_read`] reads a CGNS file in blocks on every rank, into the same
 //!   scattered blocks for the same cut;
+//! * [`ghosts`] adds a rank's ghost layer, and [`near_wall`] finds the
+//!   rigid layer and the wall-distance stiffening on it;
 //! * [`step_quality`] reduces a step's quality report over the ranks.
 //!
-//! The MPI parts ([`Comm`], [`cgns_read`], [`coupled`], [`halo`], [`partition`],
+//! The MPI parts ([`Comm`], [`cgns_read`], [`coupled`], [`ghosts`], [`halo`],
+//! [`near_wall`], [`partition`],
 //! [`scatter`], [`step_quality`], [`stepper`], [`sweeper`]) are built when `build.rs` finds
 //! MPI and METIS ([`missing`] says why they were not), `repartition` when it
 //! also finds PT-Scotch ([`ptscotch_missing`]); [`colouring`], [`cost`], [`part`],
@@ -42,7 +45,11 @@ pub mod coupled;
 #[cfg(with_mpi)]
 pub mod directory;
 #[cfg(with_mpi)]
+pub mod ghosts;
+#[cfg(with_mpi)]
 pub mod halo;
+#[cfg(with_mpi)]
+pub mod near_wall;
 pub mod part;
 #[cfg(with_mpi)]
 pub mod partition;

@@ -30,8 +30,8 @@ use verbss::io::su2::validate_at;
 use verbss::mesh::{CellKind, Cells, FileOrigin};
 use verbss::{Error, Mesh, Result};
 
-use crate::coupled::kind_code;
 use crate::directory::ask;
+use crate::ghosts::kind_code;
 use crate::scatter::{CellsAt, Scattered};
 use crate::share::agree;
 use crate::sys::ScotchError;

@@ -23,7 +23,7 @@ use verbss::io::su2::{stream, Chunk};
 use verbss::mesh::CellKind;
 use verbss::{Error, Result};
 
-use crate::coupled::kind_code;
+use crate::ghosts::kind_code;
 use crate::Comm;
 
 /// The round codes rank 0 broadcasts.

@@ -4,21 +4,33 @@
 //! input, which rank 0 reads in one pass and scatters and PT-Scotch cuts
 //! ([`verbss_mpi::scatter`], `verbss_mpi::repartition`), or from a
 //! single-zone CGNS input, of which every rank reads its own blocks
-//! ([`verbss_mpi::cgns_read`]) before the same cut. Then the flow-solver entry
-//! ([`verbss_mpi::coupled::LocalSolver`]) adds the ghost layer and sweeps,
+//! ([`verbss_mpi::cgns_read`]) before the same cut. Then the ghost layer is
+//! added ([`verbss_mpi::coupled::Ghosts`]), the rigid layer and the
+//! wall-distance stiffening found on it when `--rigid-layer` or
+//! `--stiffening` asks ([`verbss_mpi::near_wall`]), and the flow-solver
+//! entry ([`verbss_mpi::coupled::LocalSolver`]) sweeps,
 //! and every rank checks and writes its own cells, as a `.vtu` piece (rank 0
 //! the `.pvtu` joining them) or as an MSH 4.1 piece — no rank holds the
 //! whole mesh (docs/distributed.md).
 //!
 //! Step `n` of `N` prescribes the moving nodes where the motion puts their
-//! input positions at `n/N`, the other boundary nodes where they are; with
+//! input positions at `n/N`, the rigid-layer nodes next to them where the
+//! motion puts theirs (as `verbss deform` does for a translation or a
+//! rotation), the other boundary nodes and the layer nodes next to a fixed
+//! wall where they are; with
 //! `--reference updated` the springs are on the current mesh and the solve
 //! is for the increment, with `fixed` on the input mesh for the total
-//! displacement. A step that inverts a cell stops the run with exit code 3
-//! (the pieces hold the last valid mesh), a step that the sweeps, GMRES
+//! displacement. With `--substeps K` and the updated reference, a step that
+//! inverts a cell or whose solve does not converge is redone in increments
+//! (the step's prescribed displacements spread linearly, the springs on
+//! each increment's start), halved after a failure and doubled after a
+//! success down to `2^-K` of the step, as `verbss deform` does. A step that
+//! inverts a cell (in the smallest increment) stops the run with exit code
+//! 3 (the pieces hold the last valid mesh), a step that the sweeps, GMRES
 //! preconditioned by the sweep and the safe sweeps do not solve with exit
 //! code 4: without the whole mesh there is no multigrid or exact solve to
-//! escalate to. Unless `--quiet`, every rank says what it holds and rank 0 prints
+//! escalate to. Unless `--quiet`, every rank says what it holds, rank 0 the
+//! rigid layer's node count and thickness, and rank 0 prints
 //! the single-process progress line of each step, its quality reduced over
 //! the ranks ([`verbss_mpi::step_quality`]); `--report` writes the
 //! single-process report from rank 0 (`share_report`), `--gather` the
@@ -33,11 +45,14 @@ use verbss::deform::Reference;
 use verbss::io::gmsh::partitioned::{partition_count, Share};
 use verbss::motion::{Clock, Frame, Motion};
 use verbss::quality;
+use verbss::robust::Layer;
+use verbss::solve::NodeRole;
 use verbss::solve::Stage;
 use verbss_cli::deform::DeformArgs;
 use verbss_cli::progress::Progress;
 use verbss_cli::run::{file_stem, output_dir};
-use verbss_mpi::coupled::LocalSolver;
+use verbss_mpi::coupled::{Ghosts, LocalSolver};
+use verbss_mpi::near_wall::near_wall;
 use verbss_mpi::pieces::{write_local_piece, write_msh_piece};
 use verbss_mpi::share::{agree, global_numbers, partitions_of, prescribe, read_rank_share};
 use verbss_mpi::step_quality::step_quality;
@@ -110,6 +125,18 @@ fn displacement(motion: &Motion, p: &[f64], step: usize, steps: usize) -> verbss
     Ok(x.iter().zip(p).map(|(a, b)| a - b).collect())
 }
 
+/// Per node of `share`: body 0 for the nodes of the moving groups `moving`
+/// (one motion moves them all: one chain, one body), none for the others.
+fn moving_body(share: &Share, moving: &[String]) -> Vec<Option<usize>> {
+    let mut body = vec![None; share.mesh.node_count()];
+    for (_, nodes) in share.group_nodes.iter().filter(|(g, _)| moving.contains(g)) {
+        for &i in nodes {
+            body[i] = Some(0);
+        }
+    }
+    body
+}
+
 /// Runs the job on every rank (see the module documentation); with
 /// `gather`, rank 0 also writes the whole moved mesh there ([`gather`]).
 pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<ExitCode> {
@@ -129,24 +156,57 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
     let mesh = &share.mesh;
     job.settings.validate()?;
     let steps = job.settings.steps;
-    let at = |step| {
-        prescribe(&share, &job.moving, |p| {
-            displacement(&job.motion, p, step, steps)
-        })
+    let global = global_numbers(&share);
+    let ghosts = Ghosts::new(&world, mesh, &global)?;
+    let robust = &job.settings.robust;
+    let near = {
+        let (roles, _) = prescribe(&share, &job.moving, |_| Ok(vec![0.0; mesh.dim]))?;
+        let body = moving_body(&share, &job.moving);
+        near_wall(
+            &world,
+            mesh,
+            &ghosts,
+            &roles,
+            &body,
+            &share.group_nodes,
+            robust,
+        )?
+    };
+    let at = |step| -> verbss::Result<(Vec<NodeRole>, Vec<f64>)> {
+        let moved = |p: &[f64]| displacement(&job.motion, p, step, steps);
+        let (mut roles, mut u) = prescribe(&share, &job.moving, moved)?;
+        let dim = mesh.dim;
+        for (i, layer) in near.layer.iter().enumerate() {
+            if let Some(body) = layer {
+                roles[i] = NodeRole::Fixed;
+                if body.is_some() {
+                    u[dim * i..dim * (i + 1)].copy_from_slice(&moved(mesh.point(i))?);
+                }
+            }
+        }
+        Ok((roles, u))
     };
     let (roles, mut before) = at(0)?;
-    let mut solver = LocalSolver::new(&world, mesh, &global_numbers(&share), &roles, &[])?;
+    let part_nodes = ghosts.part.node_count();
+    let part_cells = ghosts.part.cells.len();
+    let mut solver = LocalSolver::with_ghosts(&world, ghosts, &roles, &[])?;
+    solver.set_stiffness(&near.stiffness)?;
     if !job.quiet {
-        let part = solver.part();
         println!(
-            "rank {}: {from}: {} nodes and {} cells read; with the ghost layer {} nodes and \
-             {} cells",
+            "rank {}: {from}: {} nodes and {} cells read; with the ghost layer {part_nodes} \
+             nodes and {part_cells} cells",
             world.rank(),
             mesh.node_count(),
             mesh.cell_count(),
-            part.node_count(),
-            part.cells.len()
         );
+        if root && robust.layer != Layer::Off {
+            let t: Vec<String> = near.thickness.iter().map(|t| format!("{t:.6e}")).collect();
+            println!(
+                "rigid layer: {} nodes, {} thick around each body",
+                near.layer_nodes,
+                t.join(", ")
+            );
+        }
     }
     let orientation = quality::orientation(mesh);
     let mut coords = mesh.coords.clone();
@@ -156,22 +216,58 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
     for step in 1..=steps {
         let start = Instant::now();
         let (_, target) = at(step)?;
-        let (springs, mut u) = match job.settings.reference {
-            Reference::Fixed => (mesh.coords.clone(), target.clone()),
-            _ => {
-                let increment = target.iter().zip(&before).map(|(a, b)| a - b).collect();
-                (coords.clone(), increment)
+        let delta: Vec<f64> = target.iter().zip(&before).map(|(a, b)| a - b).collect();
+        // Increments of the step, halved after a failure down to `floor`
+        // and doubled after a success (with a total unknown, none).
+        let floor = match job.settings.reference {
+            Reference::Updated => 0.5f64.powi(job.settings.robust.substeps as i32),
+            _ => 1.0,
+        };
+        let (mut done, mut h) = (0.0, 1.0);
+        let mut current = coords.clone();
+        let mut solves = Vec::new();
+        let mut increments = 0;
+        let mut check_seconds = 0.0;
+        let (moved, mut r) = loop {
+            let end = if done + h >= 1.0 { 1.0 } else { done + h };
+            let (springs, mut u) = match job.settings.reference {
+                Reference::Fixed => (mesh.coords.clone(), target.clone()),
+                _ => {
+                    let fraction = end - done;
+                    (
+                        current.clone(),
+                        delta.iter().map(|d| d * fraction).collect(),
+                    )
+                }
+            };
+            let info = solver.solve(&springs, &mut u, &job.settings.solve)?;
+            let moved: Vec<f64> = springs.iter().zip(&u).map(|(x, du)| x + du).collect();
+            let check = Instant::now();
+            let r = step_quality(&world, mesh, &moved, &orientation);
+            check_seconds += check.elapsed().as_secs_f64();
+            let failed = !info.converged || r.inverted > 0;
+            solves.push(info);
+            if failed && h * 0.5 >= floor {
+                h *= 0.5;
+                continue;
             }
+            increments += 1;
+            if failed || end >= 1.0 {
+                break (moved, r);
+            }
+            current = moved;
+            done = end;
+            h = (2.0 * h).min(1.0 - done);
         };
         before = target;
-        let info = solver.solve(&springs, &mut u, &job.settings.solve)?;
-        let moved: Vec<f64> = springs.iter().zip(&u).map(|(x, du)| x + du).collect();
-        let check = Instant::now();
-        let mut r = step_quality(&world, mesh, &moved, &orientation);
-        r.check_seconds = check.elapsed().as_secs_f64();
+        let info = solves.pop().expect("a solve per step");
+        r.check_seconds = check_seconds;
         r.step = step;
-        r.substeps = 1;
+        r.substeps = increments;
         r.stages.push(Stage::Sweeps);
+        for earlier in &solves {
+            r.add(earlier);
+        }
         r.add(&info);
         r.converged = info.converged;
         r.true_residual = f64::NAN;
@@ -188,11 +284,12 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
             progress.finish();
             let message = format!(
                 "step {step}: the stages {} did not converge ({} iterations in all, the last \
-                 value {:e}); a partitioned input has no multigrid or exact solve to escalate \
-                 to: raise --max-iterations, or take more --steps",
+                 value {:e}){}; a partitioned input has no multigrid or exact solve to \
+                 escalate to: raise --max-iterations, or take more --steps",
                 Stage::names(&[&[Stage::Sweeps], &info.stages[..]].concat()),
                 info.iterations,
-                info.residual
+                info.residual,
+                smallest(floor)
             );
             return report.stop(&message, 4, || {
                 write(&world, &job.output, &share, &coords, &orientation)
@@ -201,7 +298,8 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
         if inverted > 0 {
             progress.finish();
             let message = format!(
-                "step {step} inverts {inverted} cells; {} holds step {}",
+                "step {step} inverts {inverted} cells{}; {} holds step {}",
+                smallest(floor),
                 job.output.display(),
                 step - 1
             );
@@ -211,7 +309,7 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
         }
         progress.step(report.last());
         coords = moved;
-        sweeps += info.iterations;
+        sweeps += report.last().iterations;
     }
     progress.finish();
     write(&world, &job.output, &share, &coords, &orientation)?;
@@ -227,6 +325,16 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
         );
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// What a failed step's message says of its increments: nothing without
+/// sub-steps, else the smallest one tried, `floor` of the step.
+fn smallest(floor: f64) -> String {
+    if floor < 1.0 {
+        format!(" in increments down to {floor} of the step")
+    } else {
+        String::new()
+    }
 }
 
 /// What the output line names: `output`, or for MSH pieces their pattern

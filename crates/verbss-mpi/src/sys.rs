@@ -314,6 +314,12 @@ impl Comm {
         self.reduce(&[value], 2)[0]
     }
 
+    /// The smallest over the ranks of each of `values`, of the same length
+    /// on every rank (collective).
+    pub fn mins<T: Scalar>(&self, values: &[T]) -> Vec<T> {
+        self.reduce(values, 2)
+    }
+
     /// Rank `root`'s `data` into every rank's `data`, of the same length
     /// on every rank (collective).
     pub fn broadcast<T: Scalar>(&self, root: i32, data: &mut [T]) {

@@ -29,13 +29,16 @@
 //! at least [`ANISOTROPIC`], at most [`BL_CAP`] of the body's size — and
 //! [`INNER_FRACTION`] of the body's size (the diagonal of its bounding box).
 
-use std::cmp::Reverse;
-use std::collections::{BinaryHeap, HashMap};
+use std::collections::HashMap;
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::solve::NodeRole;
 use crate::topology::{self, Csr};
+
+pub mod spread;
+
+pub use self::spread::Nearest;
 
 /// Cells at least this stretched (longest over shortest edge) belong to a
 /// boundary layer.
@@ -189,11 +192,9 @@ pub fn prepare(
 ) -> Result<Treatment> {
     robust.validate()?;
     let p = robust.stiffening;
-    let given = match robust.layer {
-        Layer::Off if p == 0.0 => return Ok(Treatment::default()),
-        Layer::Off | Layer::Auto => None,
-        Layer::Thickness(t) => Some(t),
-    };
+    if robust.layer == Layer::Off && p == 0.0 {
+        return Ok(Treatment::default());
+    }
     let n = mesh.node_count();
     let graph = topology::edge_graph_from(&mesh.cells, &topology::node_cells(&mesh.cells, n));
     // Bodies: moving nodes sharing a chain of motions.
@@ -223,66 +224,61 @@ pub fn prepare(
             roles[i] == NodeRole::Fixed && anchor_index[i] == usize::MAX && !in_fixed_wall[i]
         })
         .collect();
-    let fields: Vec<(Vec<f64>, Vec<usize>)> = body_seeds
+    let tags = &mesh.node_tags;
+    let fields: Vec<(Vec<f64>, Vec<u64>)> = body_seeds
         .iter()
-        .map(|seeds| nearest_seed(&graph, mesh.dim, &mesh.coords, seeds))
+        .map(|seeds| nearest_seed(&graph, mesh.dim, &mesh.coords, seeds, tags))
         .collect();
-    let to_fixed = nearest_seed(&graph, mesh.dim, &mesh.coords, &fixed).0;
-    let thickness: Vec<f64> = match (given, robust.layer) {
-        (Some(t), _) => vec![t; body_seeds.len()],
-        (None, Layer::Auto) => body_seeds
-            .iter()
-            .zip(&fields)
-            .map(|(seeds, (dist, _))| auto_thickness(mesh, seeds, dist))
-            .collect(),
-        _ => body_seeds
-            .iter()
-            .map(|seeds| INNER_FRACTION * size(mesh, seeds))
-            .collect(),
-    };
-    let mut stiffness = Vec::new();
+    let to_fixed = nearest_seed(&graph, mesh.dim, &mesh.coords, &fixed, tags).0;
+    let anchor_of_tag: HashMap<u64, usize> = moving
+        .iter()
+        .enumerate()
+        .map(|(k, (node, _))| (tags[*node], k))
+        .collect();
+    let thickness: Vec<f64> = body_seeds
+        .iter()
+        .zip(&fields)
+        .map(|(seeds, (dist, _))| {
+            let mut reached = vec![false; n];
+            for &s in seeds {
+                reached[s] = true;
+            }
+            let size = Bounds::of(mesh.dim, &mesh.coords, seeds).diagonal();
+            thickness(robust.layer, size, |cap| {
+                spread::reach(
+                    &mesh.cells,
+                    &mesh.coords,
+                    mesh.dim,
+                    dist,
+                    cap,
+                    &mut reached,
+                    |_| false,
+                )
+            })
+        })
+        .collect();
     // A body of no extent (a single moving node) has no thickness: it
     // stiffens nothing.
-    if p > 0.0 && thickness.iter().any(|&t| t > 0.0) {
-        stiffness = (0..n)
-            .map(|i| {
-                fields
-                    .iter()
-                    .zip(&thickness)
-                    .filter(|(_, &t)| t > 0.0)
-                    .map(|((dist, _), t)| (t / dist[i].max(*t)).powf(p))
-                    .fold(f64::MIN_POSITIVE, f64::max)
-            })
-            .collect();
-    }
+    let stiffen = p > 0.0 && thickness.iter().any(|&t| t > 0.0);
+    let mut stiffness = Vec::new();
     let mut nodes = Vec::new();
+    let mut at = vec![0.0; fields.len()];
     for i in 0..n {
-        if robust.layer == Layer::Off {
-            break;
+        for (a, (dist, _)) in at.iter_mut().zip(&fields) {
+            *a = dist[i];
         }
-        if !matches!(
+        if stiffen {
+            stiffness.push(stiffness_factor(&at, &thickness, p));
+        }
+        let free = matches!(
             roles[i],
             NodeRole::Free | NodeRole::Slide(_) | NodeRole::Line(_)
-        ) {
+        );
+        if robust.layer == Layer::Off || !free {
             continue;
         }
-        let Some((b, (dist, seed))) = fields
-            .iter()
-            .enumerate()
-            .min_by(|x, y| x.1 .0[i].total_cmp(&y.1 .0[i]))
-        else {
-            break;
-        };
-        let d = dist[i];
-        let other = fields
-            .iter()
-            .enumerate()
-            .filter(|&(c, _)| c != b)
-            .map(|(_, f)| f.0[i])
-            .fold(to_fixed[i], f64::min);
-        if d <= thickness[b] && d <= GAP_SHARE * other {
-            let anchor = anchor_index[seed[i]];
-            nodes.push((i, (anchor != usize::MAX).then_some(anchor)));
+        if let Some(b) = layer_body(&at, to_fixed[i], &thickness) {
+            nodes.push((i, anchor_of_tag.get(&fields[b].1[i]).copied()));
         }
     }
     Ok(Treatment {
@@ -292,12 +288,53 @@ pub fn prepare(
     })
 }
 
+/// A body's layer thickness `t` (see the module documentation): the given
+/// one, or with [`Layer::Auto`] the larger of the boundary layer's
+/// thickness `reached(cap)` (the largest wall distance reached through
+/// anisotropic cells, at most `cap = BL_CAP · size`) and
+/// `INNER_FRACTION · size`, or without a layer `INNER_FRACTION · size` (the
+/// stiffening's `t`); `size` is the diagonal of the body's bounding box.
+pub fn thickness(layer: Layer, size: f64, reached: impl FnOnce(f64) -> f64) -> f64 {
+    match layer {
+        Layer::Thickness(t) => t,
+        Layer::Auto => reached(BL_CAP * size).max(INNER_FRACTION * size),
+        Layer::Off => INNER_FRACTION * size,
+    }
+}
+
+/// The stiffness factor of a node at distance `dist[b]` from body `b` of
+/// thickness `thickness[b]`: `max_b (t_b / max(d_b, t_b))^p` over the
+/// bodies with `t_b > 0` (a body of no extent stiffens nothing), at least
+/// the smallest positive number.
+pub fn stiffness_factor(dist: &[f64], thickness: &[f64], p: f64) -> f64 {
+    dist.iter()
+        .zip(thickness)
+        .filter(|(_, &t)| t > 0.0)
+        .map(|(d, t)| (t / d.max(*t)).powf(p))
+        .fold(f64::MIN_POSITIVE, f64::max)
+}
+
+/// The body whose rigid layer a free node at distance `dist[b]` from each
+/// body `b` and `to_fixed` from the other fixed boundary joins: its nearest
+/// body `b`, when `d_b ≤ t_b` and `d_b ≤ GAP_SHARE ·` its distance to any
+/// other body or the fixed boundary; `None` otherwise.
+pub fn layer_body(dist: &[f64], to_fixed: f64, thickness: &[f64]) -> Option<usize> {
+    let (b, &d) = dist.iter().enumerate().min_by(|x, y| x.1.total_cmp(y.1))?;
+    let other = dist
+        .iter()
+        .enumerate()
+        .filter(|&(c, _)| c != b)
+        .map(|(_, &e)| e)
+        .fold(to_fixed, f64::min);
+    (d <= thickness[b] && d <= GAP_SHARE * other).then_some(b)
+}
+
 /// The nodes of each group that is a fixed wall inside the domain: all its
 /// nodes prescribed, none moving, and its bounding box inside the mesh's
 /// (so that the outer boundary is not one).
 fn fixed_walls(mesh: &Mesh, roles: &[NodeRole], anchor: &[usize]) -> Vec<Vec<usize>> {
     let all: Vec<usize> = (0..mesh.node_count()).collect();
-    let outer = bounds(mesh, &all);
+    let outer = Bounds::of(mesh.dim, &mesh.coords, &all);
     mesh.groups
         .iter()
         .map(|g| g.nodes())
@@ -306,52 +343,28 @@ fn fixed_walls(mesh: &Mesh, roles: &[NodeRole], anchor: &[usize]) -> Vec<Vec<usi
                 && nodes
                     .iter()
                     .all(|&i| roles[i] == NodeRole::Fixed && anchor[i] == usize::MAX)
-                && {
-                    let (lo, hi) = bounds(mesh, nodes);
-                    (0..mesh.dim).all(|d| lo[d] > outer.0[d] && hi[d] < outer.1[d])
-                }
+                && Bounds::of(mesh.dim, &mesh.coords, nodes).inside(&outer)
         })
         .collect()
 }
 
-/// For every node of `coords` the distance to its nearest seed and that seed, found by
-/// spreading the seeds along the mesh edges (a node takes the nearest, in
-/// straight line, of its neighbours' seeds, until nothing changes). Nodes
-/// no seed reaches keep an infinite distance.
+/// For every node of `coords` the distance to its nearest seed and that
+/// seed's number `ids[s]` (which breaks ties: node tags, so that a rank's
+/// part, numbering by tag, breaks them alike), spread along the mesh edges
+/// ([`Nearest::spread`]). Nodes no seed reaches keep an infinite distance.
 pub(crate) fn nearest_seed(
     graph: &Csr,
     dim: usize,
     coords: &[f64],
     seeds: &[usize],
-) -> (Vec<f64>, Vec<usize>) {
-    let n = graph.rows();
-    let mut dist = vec![f64::INFINITY; n];
-    let mut seed = vec![usize::MAX; n];
-    let mut heap = BinaryHeap::new();
+    ids: &[u64],
+) -> (Vec<f64>, Vec<u64>) {
+    let mut nearest = Nearest::new(graph.rows(), dim);
     for &s in seeds {
-        dist[s] = 0.0;
-        seed[s] = s;
-        heap.push(Reverse((0u64, s)));
+        nearest.set_seed(s, ids[s], &coords[dim * s..dim * (s + 1)]);
     }
-    // Non-negative f64s order like their bit patterns.
-    while let Some(Reverse((bits, i))) = heap.pop() {
-        if f64::from_bits(bits) > dist[i] {
-            continue;
-        }
-        let s = seed[i];
-        for j in graph.entries(i) {
-            let d = distance(
-                &coords[dim * j..dim * (j + 1)],
-                &coords[dim * s..dim * (s + 1)],
-            );
-            if d < dist[j] {
-                dist[j] = d;
-                seed[j] = s;
-                heap.push(Reverse((d.to_bits(), j)));
-            }
-        }
-    }
-    (dist, seed)
+    nearest.spread(graph, coords, |_| {}, |changed| changed);
+    (nearest.dist, nearest.seed)
 }
 
 fn distance(a: &[f64], b: &[f64]) -> f64 {
@@ -362,72 +375,51 @@ fn distance(a: &[f64], b: &[f64]) -> f64 {
         .sqrt()
 }
 
-/// A body's automatic layer thickness (see the module documentation);
-/// `dist` is every node's distance to the body's wall nodes `seeds`.
-fn auto_thickness(mesh: &Mesh, seeds: &[usize], dist: &[f64]) -> f64 {
-    let size = size(mesh, seeds);
-    let n = mesh.node_count();
-    let node_cells = topology::node_cells(&mesh.cells, n);
-    let mut reached = vec![false; n];
-    let mut queue: Vec<usize> = seeds.to_vec();
-    for &s in seeds {
-        reached[s] = true;
-    }
-    let mut seen_cell = vec![false; mesh.cell_count()];
-    let mut layer: f64 = 0.0;
-    while let Some(i) = queue.pop() {
-        for c in node_cells.entries(i) {
-            if seen_cell[c] {
-                continue;
-            }
-            seen_cell[c] = true;
-            if aspect_ratio(mesh, c) < ANISOTROPIC {
-                continue;
-            }
-            for &j in mesh.cells.cell(c) {
-                if !reached[j] && dist[j] <= BL_CAP * size {
-                    reached[j] = true;
-                    layer = layer.max(dist[j]);
-                    queue.push(j);
-                }
-            }
-        }
-    }
-    layer.max(INNER_FRACTION * size)
+/// The bounding box of some nodes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bounds {
+    /// The dimension.
+    pub dim: usize,
+    /// The smallest coordinates (`+∞` for no node).
+    pub lo: [f64; 3],
+    /// The largest coordinates (`−∞` for no node).
+    pub hi: [f64; 3],
 }
 
-/// Longest over shortest edge of cell `c`.
-fn aspect_ratio(mesh: &Mesh, c: usize) -> f64 {
-    let nodes = mesh.cells.cell(c);
-    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
-    for &[a, b] in mesh.cells.kinds[c].table().edges {
-        let l = distance(mesh.point(nodes[a]), mesh.point(nodes[b]));
-        lo = lo.min(l);
-        hi = hi.max(l);
-    }
-    hi / lo
-}
-
-/// The corners of the bounding box of nodes `nodes`.
-fn bounds(mesh: &Mesh, nodes: &[usize]) -> ([f64; 3], [f64; 3]) {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for &s in nodes {
-        for (d, x) in mesh.point(s).iter().enumerate() {
-            lo[d] = lo[d].min(*x);
-            hi[d] = hi[d].max(*x);
+impl Bounds {
+    /// The box of nodes `nodes` of `coords`.
+    pub fn of(dim: usize, coords: &[f64], nodes: &[usize]) -> Bounds {
+        let mut b = Bounds {
+            dim,
+            lo: [f64::INFINITY; 3],
+            hi: [f64::NEG_INFINITY; 3],
+        };
+        for &s in nodes {
+            for d in 0..dim {
+                b.lo[d] = b.lo[d].min(coords[dim * s + d]);
+                b.hi[d] = b.hi[d].max(coords[dim * s + d]);
+            }
         }
+        b
     }
-    (lo, hi)
+
+    /// The length of its diagonal.
+    pub fn diagonal(&self) -> f64 {
+        (0..self.dim)
+            .map(|d| (self.hi[d] - self.lo[d]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    }
+
+    /// Whether it lies strictly inside `outer`.
+    pub fn inside(&self, outer: &Bounds) -> bool {
+        (0..self.dim).all(|d| self.lo[d] > outer.lo[d] && self.hi[d] < outer.hi[d])
+    }
 }
 
 /// The diagonal of the bounding box of nodes `seeds`.
 pub(crate) fn size(mesh: &Mesh, seeds: &[usize]) -> f64 {
-    let (lo, hi) = bounds(mesh, seeds);
-    (0..mesh.dim)
-        .map(|d| (hi[d] - lo[d]).powi(2))
-        .sum::<f64>()
-        .sqrt()
+    Bounds::of(mesh.dim, &mesh.coords, seeds).diagonal()
 }
 
 #[cfg(test)]

@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 use verbss::deform::{Deformer, Preset, Reference, StepReport};
 use verbss::motion::{Attachment, Motion};
+use verbss::robust::Robust;
 use verbss::Mesh;
 
 use crate::common;
@@ -71,8 +72,23 @@ pub fn single(
     steps: usize,
     reference: Reference,
 ) -> (Mesh, Vec<StepReport>) {
+    let (mesh, reports, _) = single_with(whole, group, motion, steps, reference, Robust::off());
+    (mesh, reports)
+}
+
+/// [`single`] with the near-wall treatments `robust`; also the number of
+/// rigid-layer nodes.
+pub fn single_with(
+    whole: &Mesh,
+    group: &str,
+    motion: Motion,
+    steps: usize,
+    reference: Reference,
+    robust: Robust,
+) -> (Mesh, Vec<StepReport>, usize) {
     let mut settings = Preset::Verbss.settings(steps);
     settings.reference = reference;
+    settings.robust = robust;
     settings.solve.tolerance = TOLERANCE;
     settings.solve.escalate = false;
     settings.solve.max_iterations = 100_000;
@@ -85,11 +101,12 @@ pub fn single(
     for n in 1..=steps {
         reports.push(d.step(n).unwrap());
     }
-    (d.mesh(), reports)
+    (d.mesh(), reports, d.rigid_layer().0)
 }
 
 /// The motion of the arguments `motion`: `--translate D` or `--rotate A`
-/// (about the axis z through (0.5, 0.5, 0.5), as the tests give it).
+/// (about the axis z through `--center C` when it follows, else through
+/// (0.5, 0.5, 0.5)).
 fn motion_of(motion: &[&str]) -> Motion {
     match motion[0] {
         "--translate" => {
@@ -99,16 +116,22 @@ fn motion_of(motion: &[&str]) -> Motion {
             }
         }
         _ => Motion::Rotation {
-            center: [0.5, 0.5, 0.5],
+            center: match motion.get(2..4) {
+                Some(["--center", c]) => {
+                    let c: Vec<f64> = c.split(',').map(|x| x.parse().unwrap()).collect();
+                    [c[0], c[1], c.get(2).copied().unwrap_or(0.0)]
+                }
+                _ => [0.5, 0.5, 0.5],
+            },
             axis: [0.0, 0.0, 1.0],
             angle: motion[1].parse::<f64>().unwrap().to_radians(),
         },
     }
 }
 
-/// `verbss-mpi deform MESH -o OUT --moving GROUP --method verbss --steps 2
+/// `verbss-mpi deform MESH -o OUT --moving GROUP --method verbss
 /// --reference REFERENCE` on `np` ranks with the tests' tolerance and
-/// `extra` arguments; asserts that it succeeds.
+/// `extra` arguments (the steps among them); asserts that it succeeds.
 fn run(
     np: usize,
     mesh: &Path,
@@ -132,8 +155,6 @@ fn run(
         group,
         "--method",
         "verbss",
-        "--steps",
-        "2",
         "--reference",
         reference,
         "--tolerance",
@@ -292,7 +313,7 @@ pub fn msh_pieces_like_one_process(
     for np in 1..=3 {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("moved.msh");
-        let mut args = vec!["--pieces", "-q"];
+        let mut args = vec!["--pieces", "-q", "--steps", "2"];
         args.extend_from_slice(motion);
         run(np, mesh, &out, group, reference, &args, env);
         assert!(!out.exists(), "{}", out.display());
@@ -389,6 +410,7 @@ fn reports_like_one_process(path: &Path, whole: &Mesh, one: &[StepReport], np: u
         assert_eq!(bins, want.bins, "{np} ranks, step {n}");
         assert_eq!(bins.iter().sum::<usize>(), whole.cell_count());
         assert_eq!(got["inverted"], want.inverted, "{np} ranks, step {n}");
+        assert_eq!(got["substeps"], want.substeps, "{np} ranks, step {n}");
         let min = got["min_quality"].as_f64().unwrap();
         assert!(
             (min - want.min_quality).abs() < 1e-10,
@@ -451,8 +473,45 @@ pub fn deforms_like_one_process(
     scale: f64,
     env: &[(&str, &str)],
 ) -> Vec<String> {
+    let near_wall = NearWall {
+        robust: Robust::off(),
+        args: &[],
+        steps: 2,
+    };
+    deforms_like_one_process_with(mesh, group, motion, reference, scale, env, &near_wall).0
+}
+
+/// Near-wall treatments of both runs: the single process's `robust`, the
+/// same as the distributed run's arguments `args`; and the number of steps.
+pub struct NearWall<'a> {
+    /// The single-process treatments.
+    pub robust: Robust,
+    /// The same as `verbss-mpi deform` arguments.
+    pub args: &'a [&'a str],
+    /// The steps of both runs.
+    pub steps: usize,
+}
+
+/// [`deforms_like_one_process`] with the near-wall treatments
+/// `near_wall`; also the single-process run's number of rigid-layer nodes.
+pub fn deforms_like_one_process_with(
+    mesh: &Path,
+    group: &str,
+    motion: &[&str],
+    reference: Reference,
+    scale: f64,
+    env: &[(&str, &str)],
+    near_wall: &NearWall,
+) -> (Vec<String>, usize) {
     let whole = verbss::io::read(mesh).unwrap();
-    let (one, reports) = single(&whole, group, motion_of(motion), 2, reference);
+    let (one, reports, layer) = single_with(
+        &whole,
+        group,
+        motion_of(motion),
+        near_wall.steps,
+        reference,
+        near_wall.robust,
+    );
     let index = node_index(&whole);
     let mut stdouts = Vec::new();
     for np in 1..=3 {
@@ -460,13 +519,17 @@ pub fn deforms_like_one_process(
         let out = dir.path().join("moved.pvtu");
         let report = dir.path().join("report.json");
         let gathered = dir.path().join("all.vtu");
+        let steps = near_wall.steps.to_string();
         let mut args = vec![
             "--report",
             report.to_str().unwrap(),
             "--gather",
             gathered.to_str().unwrap(),
+            "--steps",
+            &steps,
         ];
         args.extend_from_slice(motion);
+        args.extend_from_slice(near_wall.args);
         let o = run(np, mesh, &out, group, reference, &args, env);
         pieces_like_one_process(dir.path(), "vtu", np, &whole, &one, scale);
         let pvtu = std::fs::read_to_string(&out).unwrap();
@@ -474,10 +537,12 @@ pub fn deforms_like_one_process(
         reports_like_one_process(&report, &whole, &reports, np);
         gathered_like_one_process(&gathered, &whole, &one, &index, scale, np);
         let stderr = String::from_utf8_lossy(&o.stderr);
-        for step in ["step 1/2: sweeps (", "step 2/2: sweeps ("] {
-            assert_eq!(stderr.matches(step).count(), 1, "{stderr}");
+        let steps = near_wall.steps;
+        for step in 1..=steps {
+            let line = format!("step {step}/{steps}: sweeps (");
+            assert_eq!(stderr.matches(&line).count(), 1, "{stderr}");
         }
         stdouts.push(String::from_utf8_lossy(&o.stdout).into_owned());
     }
-    stdouts
+    (stdouts, layer)
 }

@@ -203,7 +203,7 @@ fn stiffening_is_one_within_the_layer_and_falls_as_a_power_of_the_distance() {
         &topology::node_cells(&mesh.cells, mesh.node_count()),
     );
     let seeds: Vec<usize> = moving.iter().map(|m| m.0).collect();
-    let (dist, _) = nearest_seed(&graph, mesh.dim, &mesh.coords, &seeds);
+    let (dist, _) = nearest_seed(&graph, mesh.dim, &mesh.coords, &seeds, &mesh.node_tags);
     for (phi, d) in t.stiffness.iter().zip(&dist) {
         let expected = if *d <= 0.1 { 1.0 } else { (0.1 / d).powi(2) };
         assert!((phi - expected).abs() < 1e-15 * expected.max(1.0));
@@ -315,4 +315,39 @@ fn invalid_settings_are_named() {
             .unwrap();
         assert_eq!(e.to_string(), message);
     }
+}
+
+/// The nearest seeds do not depend on the node numbering (what lets a
+/// rank's part with its ghosts find the single-process distances): the
+/// airfoil's, with the nodes numbered backwards, are the same per node.
+#[test]
+fn the_nearest_seed_does_not_depend_on_the_node_order() {
+    let mesh = crate::io::read(Path::new(NACA)).unwrap();
+    let n = mesh.node_count();
+    let graph_of = |cells: &crate::mesh::Cells| {
+        topology::edge_graph_from(cells, &topology::node_cells(cells, n))
+    };
+    let seeds = mesh.group("airfoil").unwrap().nodes();
+    let (dist, seed) = nearest_seed(
+        &graph_of(&mesh.cells),
+        2,
+        &mesh.coords,
+        &seeds,
+        &mesh.node_tags,
+    );
+    let back = |i: usize| n - 1 - i;
+    let mut cells = crate::mesh::Cells::new();
+    for c in 0..mesh.cell_count() {
+        let nodes: Vec<usize> = mesh.cells.cell(c).iter().map(|&v| back(v)).collect();
+        cells.push(mesh.cells.kinds[c], &nodes);
+    }
+    let coords: Vec<f64> = (0..n).flat_map(|i| mesh.point(back(i)).to_vec()).collect();
+    let tags: Vec<u64> = (0..n).map(|i| mesh.node_tags[back(i)]).collect();
+    let seeds: Vec<usize> = seeds.iter().map(|&s| back(s)).collect();
+    let (dist_back, seed_back) = nearest_seed(&graph_of(&cells), 2, &coords, &seeds, &tags);
+    for i in 0..n {
+        assert_eq!(dist[i], dist_back[back(i)], "node {i}");
+        assert_eq!(seed[i], seed_back[back(i)], "node {i}");
+    }
+    assert!(dist.iter().all(|d| d.is_finite()));
 }

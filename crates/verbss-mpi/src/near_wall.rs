@@ -1,0 +1,259 @@
+//! The rigid layer and the wall-distance stiffening (docs/method.md, the
+//! `robust` method) where no rank holds the whole mesh: what
+//! [`verbss::robust::prepare`] computes on one process, computed on each
+//! rank's part with its ghosts ([`Ghosts`]) and made global by ghost
+//! exchanges and all-reduces.
+//!
+//! * **Bodies.** The moving nodes of one chain of motions form a body (the
+//!   caller numbers them); a group whose nodes are all prescribed, none
+//!   moving, with a bounding box strictly inside the mesh's, is a fixed
+//!   wall: the group's node count, an all-prescribed flag and its box are
+//!   all-reduced (sum, minimum, minimum and maximum), as the mesh's box.
+//!   A body's size is the diagonal of its all-reduced box.
+//! * **Wall distances.** Per body (and for the other fixed boundary) each
+//!   node's nearest seed — distance, the seed's global number and its
+//!   coordinates — is spread along the part's edges in synchronous rounds
+//!   ([`Nearest::spread`]), a ghost exchange after each round giving every
+//!   ghost its owner's label, until an all-reduce finds no label changed in
+//!   a round. An edge `(i, j)` with `j` owned by rank `q` is in `q`'s part
+//!   (the owner holds every cell around its nodes), so every owned node
+//!   sees in each round what it sees on one process, and the rounds give
+//!   the single-process labels (the global numbers order the seeds as the
+//!   node tags do there).
+//! * **Thickness.** [`Layer::Auto`]'s boundary layer is the reach through
+//!   cells of aspect ratio at least [`verbss::robust::ANISOTROPIC`]
+//!   ([`reach`]), iterated with ghost exchanges the same way; its largest
+//!   wall distance is a max all-reduce.
+//! * **Per node.** The layer nodes and the stiffness factors follow from the
+//!   distances by the single-process rules ([`layer_body`],
+//!   [`stiffness_factor`]), on every node of the part, so that a node has
+//!   the same answer on every rank holding it.
+
+use verbss::robust::spread::{reach, Nearest};
+use verbss::robust::{layer_body, stiffness_factor, thickness, Bounds, Layer, Robust};
+use verbss::solve::NodeRole;
+use verbss::topology;
+use verbss::{Error, Mesh, Result};
+
+use crate::ghosts::Ghosts;
+use crate::Comm;
+
+/// The rigid layer and the stiffness factors of a rank's nodes.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct NearWall {
+    /// Per local node: `None` outside the rigid layer, `Some(Some(b))` a
+    /// layer node that moves with moving body `b`, `Some(None)` one that
+    /// stays (next to a fixed wall).
+    pub layer: Vec<Option<Option<usize>>>,
+    /// Per local node the spring stiffness factor (empty: no stiffening).
+    pub stiffness: Vec<f64>,
+    /// The layer's thickness around each body: the moving bodies, then the
+    /// fixed walls.
+    pub thickness: Vec<f64>,
+    /// The number of layer nodes on all ranks.
+    pub layer_nodes: u64,
+}
+
+/// The near-wall treatment `robust` of the local mesh `mesh` (collective;
+/// see the module documentation): `ghosts` its ghost layer, `roles` its
+/// nodes' roles before the layer, `body[i]` the moving body of a moving
+/// node (numbered from 0 over all ranks), `groups` the mesh's
+/// groups with their local nodes, the same names in the same order on
+/// every rank.
+pub fn near_wall(
+    comm: &Comm,
+    mesh: &Mesh,
+    ghosts: &Ghosts,
+    roles: &[NodeRole],
+    body: &[Option<usize>],
+    groups: &[(String, Vec<usize>)],
+    robust: &Robust,
+) -> Result<NearWall> {
+    robust.validate()?;
+    let p = robust.stiffening;
+    if robust.layer == Layer::Off && p == 0.0 {
+        return Ok(NearWall::default());
+    }
+    let count = groups.len() as u64;
+    if comm.min(count) != comm.max(count) {
+        return Err(Error::InvalidSetting(
+            "the ranks hold different lists of groups".into(),
+        ));
+    }
+    let dim = mesh.dim;
+    let part = &ghosts.part;
+    let m = part.node_count();
+    let coords = ghosts.spread(comm, &mesh.coords, dim);
+    // Per part node: prescribed or not, and the moving body (−1: none).
+    let codes: Vec<f64> = roles
+        .iter()
+        .zip(body)
+        .flat_map(|(r, b)| {
+            [
+                f64::from(u8::from(*r == NodeRole::Fixed)),
+                b.map_or(-1.0, |b| b as f64),
+            ]
+        })
+        .collect();
+    let codes = ghosts.spread(comm, &codes, 2);
+    let fixed_at = |i: usize| codes[2 * i] == 1.0;
+    let body_at = |i: usize| (codes[2 * i + 1] >= 0.0).then(|| codes[2 * i + 1] as usize);
+    let bodies = comm.max(
+        body.iter()
+            .flatten()
+            .map(|&b| b as u64 + 1)
+            .max()
+            .unwrap_or(0),
+    ) as usize;
+    let mut seeds: Vec<Vec<usize>> = vec![Vec::new(); bodies];
+    for i in 0..m {
+        if let Some(b) = body_at(i) {
+            seeds[b].push(i);
+        }
+    }
+    let all: Vec<usize> = (0..mesh.node_count()).collect();
+    let outer = reduced(comm, Bounds::of(dim, &mesh.coords, &all));
+    let mut in_wall = vec![false; m];
+    for (_, nodes) in groups {
+        let prescribed = nodes
+            .iter()
+            .all(|&i| roles[i] == NodeRole::Fixed && body[i].is_none());
+        let held = comm.sum(nodes.len() as u64);
+        let all_prescribed = comm.min(u64::from(prescribed)) == 1;
+        let bounds = reduced(comm, Bounds::of(dim, &mesh.coords, nodes));
+        if held == 0 || !all_prescribed || !bounds.inside(&outer) {
+            continue;
+        }
+        let mut flag = vec![0.0; mesh.node_count()];
+        for &i in nodes {
+            flag[i] = 1.0;
+        }
+        let flag = ghosts.spread(comm, &flag, 1);
+        let wall: Vec<usize> = (0..m).filter(|&i| flag[i] == 1.0).collect();
+        for &i in &wall {
+            in_wall[i] = true;
+        }
+        seeds.push(wall);
+    }
+    let graph = topology::edge_graph_from(&part.cells, &topology::node_cells(&part.cells, m));
+    let nearest = |seeds: &[usize]| -> Nearest {
+        let mut labels = Nearest::new(m, dim);
+        for &s in seeds {
+            labels.set_seed(s, part.global[s], &coords[dim * s..dim * (s + 1)]);
+        }
+        labels.spread(
+            &graph,
+            &coords,
+            |labels| {
+                let mut flat = pack(labels);
+                ghosts.halo.exchange(comm, &mut flat, 2 + dim);
+                unpack(&flat, labels);
+            },
+            |changed| comm.sum(u64::from(changed)) > 0,
+        );
+        labels
+    };
+    let fields: Vec<Nearest> = seeds.iter().map(|s| nearest(s)).collect();
+    let other_fixed: Vec<usize> = (0..m)
+        .filter(|&i| fixed_at(i) && body_at(i).is_none() && !in_wall[i])
+        .collect();
+    let to_fixed = nearest(&other_fixed).dist;
+    let thickness: Vec<f64> = seeds
+        .iter()
+        .zip(&fields)
+        .map(|(seeds, field)| {
+            let size = reduced(comm, Bounds::of(dim, &coords, seeds)).diagonal();
+            thickness(robust.layer, size, |cap| {
+                let mut reached = vec![false; m];
+                for &s in seeds {
+                    reached[s] = true;
+                }
+                let mut before = reached.clone();
+                let layer = reach(
+                    &part.cells,
+                    &coords,
+                    dim,
+                    &field.dist,
+                    cap,
+                    &mut reached,
+                    |r| {
+                        let mut flat: Vec<f64> =
+                            r.iter().map(|&x| f64::from(u8::from(x))).collect();
+                        ghosts.halo.exchange(comm, &mut flat, 1);
+                        for (x, f) in r.iter_mut().zip(&flat) {
+                            *x = *f == 1.0;
+                        }
+                        let changed = (0..m)
+                            .filter(|&i| part.owns(i) && r[i] != before[i])
+                            .count();
+                        before.copy_from_slice(r);
+                        comm.sum(changed as u64) > 0
+                    },
+                );
+                comm.max(layer)
+            })
+        })
+        .collect();
+    let stiffen = p > 0.0 && thickness.iter().any(|&t| t > 0.0);
+    let mut at = vec![0.0; fields.len()];
+    let mut factors = vec![1.0; m];
+    let mut layer = vec![None; m];
+    for i in 0..m {
+        for (a, field) in at.iter_mut().zip(&fields) {
+            *a = field.dist[i];
+        }
+        if stiffen {
+            factors[i] = stiffness_factor(&at, &thickness, p);
+        }
+        if robust.layer != Layer::Off && !fixed_at(i) {
+            layer[i] = layer_body(&at, to_fixed[i], &thickness).map(|b| (b < bodies).then_some(b));
+        }
+    }
+    let owned = (0..m)
+        .filter(|&i| part.owns(i) && layer[i].is_some())
+        .count();
+    Ok(NearWall {
+        layer: ghosts.local.iter().map(|&i| layer[i]).collect(),
+        stiffness: if stiffen {
+            ghosts.local.iter().map(|&i| factors[i]).collect()
+        } else {
+            Vec::new()
+        },
+        thickness,
+        layer_nodes: comm.sum(owned as u64),
+    })
+}
+
+/// The box of all ranks' boxes `b` (collective).
+fn reduced(comm: &Comm, b: Bounds) -> Bounds {
+    let mut values = b.lo.to_vec();
+    values.extend(b.hi.iter().map(|x| -x));
+    let all = comm.mins(&values);
+    Bounds {
+        dim: b.dim,
+        lo: [all[0], all[1], all[2]],
+        hi: [-all[3], -all[4], -all[5]],
+    }
+}
+
+/// The labels as `2 + D` numbers per node: distance, seed, point.
+fn pack(labels: &Nearest) -> Vec<f64> {
+    let dim = labels.dim;
+    let mut flat = Vec::with_capacity((2 + dim) * labels.dist.len());
+    for i in 0..labels.dist.len() {
+        flat.push(labels.dist[i]);
+        flat.push(labels.seed[i] as f64);
+        flat.extend_from_slice(&labels.point[dim * i..dim * (i + 1)]);
+    }
+    flat
+}
+
+/// [`pack`]'s numbers back into `labels`.
+fn unpack(flat: &[f64], labels: &mut Nearest) {
+    let dim = labels.dim;
+    for (i, x) in flat.chunks(2 + dim).enumerate() {
+        labels.dist[i] = x[0];
+        labels.seed[i] = x[1] as u64;
+        labels.point[dim * i..dim * (i + 1)].copy_from_slice(&x[2..]);
+    }
+}
