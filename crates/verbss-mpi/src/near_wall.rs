@@ -148,6 +148,7 @@ pub fn near_wall(
                 let mut flat = pack(labels);
                 ghosts.halo.exchange(comm, &mut flat, 2 + dim);
                 unpack(&flat, labels);
+                true
             },
             |changed| comm.sum(u64::from(changed)) > 0,
         );

@@ -38,6 +38,7 @@ use crate::topology::{self, Csr};
 
 pub mod spread;
 
+pub(crate) use self::spread::heap_distances;
 pub use self::spread::Nearest;
 
 /// Cells at least this stretched (longest over shortest edge) belong to a
@@ -363,7 +364,7 @@ pub(crate) fn nearest_seed(
     for &s in seeds {
         nearest.set_seed(s, ids[s], &coords[dim * s..dim * (s + 1)]);
     }
-    nearest.spread(graph, coords, |_| {}, |changed| changed);
+    nearest.spread(graph, coords, |_| false, |changed| changed);
     (nearest.dist, nearest.seed)
 }
 

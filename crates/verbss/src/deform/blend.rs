@@ -36,7 +36,7 @@ use std::sync::Arc;
 use super::harmonic::Laplace;
 use crate::geometry::{cross, dot, norm};
 use crate::mesh::Mesh;
-use crate::robust::{self, nearest_seed};
+use crate::robust::{self, heap_distances};
 use crate::solve::{Frame, NodeRole};
 use crate::topology::Csr;
 
@@ -291,9 +291,8 @@ pub(super) fn keep_in_planes(
 
 /// The angle's weight `v` of every node (see the module documentation).
 fn angle_weights(graph: &Csr, dim: usize, coords: &[f64], body: &Body, rho: f64) -> Vec<f64> {
-    let ids: Vec<u64> = (0..graph.rows() as u64).collect();
-    let (to_body, _) = nearest_seed(graph, dim, coords, &body.held, &ids);
-    let (to_others, _) = nearest_seed(graph, dim, coords, &body.others, &ids);
+    let to_body = heap_distances(graph, dim, coords, &body.held);
+    let to_others = heap_distances(graph, dim, coords, &body.others);
     let rho = ANGLE_SCALE * rho.max(f64::MIN_POSITIVE);
     to_body
         .iter()

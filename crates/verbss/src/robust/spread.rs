@@ -14,9 +14,18 @@
 //!   depends on the order of its steps: the straight-line distance to a
 //!   seed is not a path length, and which seeds a node is offered depends
 //!   on the labels its neighbours held on the way.)
+//! * [`heap_distances`]: the same spread taken in order of distance from a
+//!   heap, a node at a time. Several times cheaper on one process, but its
+//!   result depends on the order of the steps, so it is what the blended
+//!   rigid motion uses for its weights at every increment (docs/method.md,
+//!   "Blended rigid motion"), and the rigid layer, which ranks must find
+//!   alike, uses [`Nearest`].
 //! * [`reach`]: the nodes reached from the labelled ones through cells of
 //!   aspect ratio at least [`super::ANISOTROPIC`], the boundary layer of
 //!   the automatic rigid layer's thickness.
+
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 
 use crate::mesh::Cells;
 use crate::topology::{self, Csr};
@@ -59,14 +68,15 @@ impl Nearest {
 
     /// Spreads the labels along the edges of `graph` (nodes at `coords`)
     /// in synchronous rounds (see the module documentation) until no label
-    /// changes: `exchange` runs after each round (a ghost exchange, or
-    /// nothing), `any` turns whether a label here changed in the round into
-    /// whether one changed anywhere.
+    /// changes: `exchange` runs after each round (a ghost exchange, saying
+    /// that it may have changed labels, or nothing, saying `false`), `any`
+    /// turns whether a label here changed in the round into whether one
+    /// changed anywhere.
     pub fn spread(
         &mut self,
         graph: &Csr,
         coords: &[f64],
-        mut exchange: impl FnMut(&mut Nearest),
+        mut exchange: impl FnMut(&mut Nearest) -> bool,
         mut any: impl FnMut(bool) -> bool,
     ) {
         let n = self.dist.len();
@@ -107,27 +117,69 @@ impl Nearest {
                 is_active[i] = false;
             }
             targets.clear();
+            active.clear();
             for (k, &(j, d, seed)) in updates.iter().enumerate() {
                 self.dist[j] = d;
                 self.seed[j] = seed;
                 self.point[dim * j..dim * (j + 1)].copy_from_slice(&points[dim * k..dim * (k + 1)]);
+                // An update is always a change: a nearer or lower seed.
+                active.push(j);
             }
             updates.clear();
             points.clear();
-            exchange(self);
-            active.clear();
-            for i in 0..n {
-                if self.dist[i] != prev_dist[i] || self.seed[i] != prev_seed[i] {
-                    active.push(i);
-                    prev_dist[i] = self.dist[i];
-                    prev_seed[i] = self.seed[i];
+            if exchange(self) {
+                // The exchange may have changed ghosts: find every change.
+                active.clear();
+                for i in 0..n {
+                    if self.dist[i] != prev_dist[i] || self.seed[i] != prev_seed[i] {
+                        active.push(i);
+                    }
                 }
+            }
+            for &i in &active {
+                prev_dist[i] = self.dist[i];
+                prev_seed[i] = self.seed[i];
             }
             if !any(!active.is_empty()) {
                 return;
             }
         }
     }
+}
+
+/// For every node of `coords` the distance to its nearest seed of `seeds`,
+/// spread along the edges of `graph` in order of distance (a node takes the
+/// nearest, in straight line, of its neighbours' seeds, until nothing
+/// changes). Nodes no seed reaches keep an infinite distance.
+pub(crate) fn heap_distances(graph: &Csr, dim: usize, coords: &[f64], seeds: &[usize]) -> Vec<f64> {
+    let n = graph.rows();
+    let mut dist = vec![f64::INFINITY; n];
+    let mut seed = vec![usize::MAX; n];
+    let mut heap = BinaryHeap::new();
+    for &s in seeds {
+        dist[s] = 0.0;
+        seed[s] = s;
+        heap.push(Reverse((0u64, s)));
+    }
+    // Non-negative f64s order like their bit patterns.
+    while let Some(Reverse((bits, i))) = heap.pop() {
+        if f64::from_bits(bits) > dist[i] {
+            continue;
+        }
+        let s = seed[i];
+        for j in graph.entries(i) {
+            let d = distance(
+                &coords[dim * j..dim * (j + 1)],
+                &coords[dim * s..dim * (s + 1)],
+            );
+            if d < dist[j] {
+                dist[j] = d;
+                seed[j] = s;
+                heap.push(Reverse((d.to_bits(), j)));
+            }
+        }
+    }
+    dist
 }
 
 /// Marks in `reached` every node reached from the marked ones through cells
