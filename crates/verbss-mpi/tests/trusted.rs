@@ -60,16 +60,9 @@ fn run(
     (o, worst)
 }
 
-/// A loose eq.-8 tolerance (1e-2) stops the sweeps early. With ω given,
-/// which means exactly those sweeps, the step inverts cells (exit 3); with
-/// the default escalation the sweeps go on until every node's estimated
-/// error is trusted, and the mesh is valid.
-#[test]
-fn a_loose_stop_is_not_accepted_until_the_error_is_trusted() {
-    if !ptscotch_ready() {
-        return;
-    }
-    let dir = tempfile::tempdir().unwrap();
+/// The NACA0012 of `assets/meshes/su2` and one process's mesh after it
+/// pitched 2° about its quarter chord in one step.
+fn naca0012_pitched() -> (std::path::PathBuf, verbss::Mesh) {
     let mesh = repo("assets/meshes/su2/mesh_NACA0012_inv.su2");
     let whole = io::read(&mesh).unwrap();
     let motion = verbss::motion::Motion::Rotation {
@@ -84,6 +77,20 @@ fn a_loose_stop_is_not_accepted_until_the_error_is_trusted() {
         1,
         verbss::deform::Reference::Updated,
     );
+    (mesh, exact)
+}
+
+/// A loose eq.-8 tolerance (1e-2) stops the sweeps early. With ω given,
+/// which means exactly those sweeps, the step inverts cells (exit 3); with
+/// the default escalation the sweeps go on until every node's estimated
+/// error is trusted, and the mesh is valid.
+#[test]
+fn a_loose_stop_is_not_accepted_until_the_error_is_trusted() {
+    if !ptscotch_ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let (mesh, exact) = naca0012_pitched();
     let loose = [
         "--moving",
         "airfoil",
@@ -178,20 +185,7 @@ fn sweeps_cut_short_go_on_to_the_distributed_gmres() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    let mesh = repo("assets/meshes/su2/mesh_NACA0012_inv.su2");
-    let whole = io::read(&mesh).unwrap();
-    let motion = verbss::motion::Motion::Rotation {
-        center: [0.25, 0.0, 0.0],
-        axis: [0.0, 0.0, 1.0],
-        angle: 2f64.to_radians(),
-    };
-    let (exact, _) = like_one_process::single(
-        &whole,
-        "airfoil",
-        motion,
-        1,
-        verbss::deform::Reference::Updated,
-    );
+    let (mesh, exact) = naca0012_pitched();
     let report = dir.path().join("report.json");
     let args = [
         "--moving",
