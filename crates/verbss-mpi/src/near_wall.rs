@@ -10,16 +10,13 @@
 //!   wall: the group's node count, an all-prescribed flag and its box are
 //!   all-reduced (sum, minimum, minimum and maximum), as the mesh's box.
 //!   A body's size is the diagonal of its all-reduced box.
-//! * **Wall distances.** Per body (and for the other fixed boundary) each
-//!   node's nearest seed — distance, the seed's global number and its
-//!   coordinates — is spread along the part's edges in synchronous rounds
-//!   ([`Nearest::spread`]), a ghost exchange after each round giving every
-//!   ghost its owner's label, until an all-reduce finds no label changed in
-//!   a round. An edge `(i, j)` with `j` owned by rank `q` is in `q`'s part
-//!   (the owner holds every cell around its nodes), so every owned node
-//!   sees in each round what it sees on one process, and the rounds give
-//!   the single-process labels (the global numbers order the seeds as the
-//!   node tags do there).
+//! * **Wall distances.** Per body (and for the other fixed boundary) every
+//!   rank all-gathers the seeds it owns — coordinates and global numbers —
+//!   and finds for each node of its part, connected to a seed
+//!   ([`connect`], with ghost exchanges until an all-reduce finds no new
+//!   node), the nearest seed in straight line ([`nearest_seeds`]). That
+//!   answer is exact, ties going to the smaller global number as they go
+//!   to the smaller node tag on one process, so it is one process's.
 //! * **Thickness.** [`Layer::Auto`]'s boundary layer is the reach through
 //!   cells of aspect ratio at least [`verbss::robust::ANISOTROPIC`]
 //!   ([`reach`]), iterated with ghost exchanges the same way; its largest
@@ -29,7 +26,8 @@
 //!   [`stiffness_factor`]), on every node of the part, so that a node has
 //!   the same answer on every rank holding it.
 
-use verbss::robust::spread::{reach, Nearest};
+use verbss::robust::spread::{connect, nearest_seeds, reach};
+use verbss::robust::Seeds;
 use verbss::robust::{layer_body, stiffness_factor, thickness, Bounds, Layer, Robust};
 use verbss::solve::NodeRole;
 use verbss::topology;
@@ -136,29 +134,33 @@ pub fn near_wall(
         seeds.push(wall);
     }
     let graph = topology::edge_graph_from(&part.cells, &topology::node_cells(&part.cells, m));
-    let nearest = |seeds: &[usize]| -> Nearest {
-        let mut labels = Nearest::new(m, dim);
-        for &s in seeds {
-            labels.set_seed(s, part.global[s], &coords[dim * s..dim * (s + 1)]);
-        }
-        labels.spread(
-            &graph,
-            &coords,
-            |labels| {
-                let mut flat = pack(labels);
-                ghosts.halo.exchange(comm, &mut flat, 2 + dim);
-                unpack(&flat, labels);
-                true
-            },
-            |changed| comm.sum(u64::from(changed)) > 0,
+    let nearest = |seeds: &[usize]| -> (Vec<f64>, Vec<u64>) {
+        // Every rank's owned seeds go to every rank.
+        let owned: Vec<usize> = seeds.iter().copied().filter(|&s| part.owns(s)).collect();
+        let points: Vec<f64> = owned
+            .iter()
+            .flat_map(|&s| &coords[dim * s..dim * (s + 1)])
+            .copied()
+            .collect();
+        let ids: Vec<u64> = owned.iter().map(|&s| part.global[s]).collect();
+        let all = Seeds::new(
+            dim,
+            &comm.all_gather(&points).concat(),
+            &comm.all_gather(&ids).concat(),
         );
-        labels
+        let mut reached = vec![false; m];
+        for &s in seeds {
+            reached[s] = true;
+        }
+        let before = reached.clone();
+        connect(&graph, &mut reached, mark_sync(comm, ghosts, before));
+        nearest_seeds(&all, &graph, &coords, &reached)
     };
-    let fields: Vec<Nearest> = seeds.iter().map(|s| nearest(s)).collect();
+    let fields: Vec<(Vec<f64>, Vec<u64>)> = seeds.iter().map(|s| nearest(s)).collect();
     let other_fixed: Vec<usize> = (0..m)
         .filter(|&i| fixed_at(i) && body_at(i).is_none() && !in_wall[i])
         .collect();
-    let to_fixed = nearest(&other_fixed).dist;
+    let to_fixed = nearest(&other_fixed).0;
     let thickness: Vec<f64> = seeds
         .iter()
         .zip(&fields)
@@ -169,27 +171,15 @@ pub fn near_wall(
                 for &s in seeds {
                     reached[s] = true;
                 }
-                let mut before = reached.clone();
+                let before = reached.clone();
                 let layer = reach(
                     &part.cells,
                     &coords,
                     dim,
-                    &field.dist,
+                    &field.0,
                     cap,
                     &mut reached,
-                    |r| {
-                        let mut flat: Vec<f64> =
-                            r.iter().map(|&x| f64::from(u8::from(x))).collect();
-                        ghosts.halo.exchange(comm, &mut flat, 1);
-                        for (x, f) in r.iter_mut().zip(&flat) {
-                            *x = *f == 1.0;
-                        }
-                        let changed = (0..m)
-                            .filter(|&i| part.owns(i) && r[i] != before[i])
-                            .count();
-                        before.copy_from_slice(r);
-                        comm.sum(changed as u64) > 0
-                    },
+                    mark_sync(comm, ghosts, before),
                 );
                 comm.max(layer)
             })
@@ -201,7 +191,7 @@ pub fn near_wall(
     let mut layer = vec![None; m];
     for i in 0..m {
         for (a, field) in at.iter_mut().zip(&fields) {
-            *a = field.dist[i];
+            *a = field.0[i];
         }
         if stiffen {
             factors[i] = stiffness_factor(&at, &thickness, p);
@@ -237,24 +227,25 @@ fn reduced(comm: &Comm, b: Bounds) -> Bounds {
     }
 }
 
-/// The labels as `2 + D` numbers per node: distance, seed, point.
-fn pack(labels: &Nearest) -> Vec<f64> {
-    let dim = labels.dim;
-    let mut flat = Vec::with_capacity((2 + dim) * labels.dist.len());
-    for i in 0..labels.dist.len() {
-        flat.push(labels.dist[i]);
-        flat.push(labels.seed[i] as f64);
-        flat.extend_from_slice(&labels.point[dim * i..dim * (i + 1)]);
-    }
-    flat
-}
-
-/// [`pack`]'s numbers back into `labels`.
-fn unpack(flat: &[f64], labels: &mut Nearest) {
-    let dim = labels.dim;
-    for (i, x) in flat.chunks(2 + dim).enumerate() {
-        labels.dist[i] = x[0];
-        labels.seed[i] = x[1] as u64;
-        labels.point[dim * i..dim * (i + 1)].copy_from_slice(&x[2..]);
+/// The `sync` of a walk that marks nodes, `before` its marks at the start:
+/// a ghost exchange of the marks, saying whether a rank's owned mark changed
+/// since the last call (collective).
+fn mark_sync<'a>(
+    comm: &'a Comm,
+    ghosts: &'a Ghosts,
+    mut before: Vec<bool>,
+) -> impl FnMut(&mut [bool]) -> bool + 'a {
+    move |marks| {
+        let mut flat: Vec<f64> = marks.iter().map(|&x| f64::from(u8::from(x))).collect();
+        ghosts.halo.exchange(comm, &mut flat, 1);
+        for (x, f) in marks.iter_mut().zip(&flat) {
+            *x = *f == 1.0;
+        }
+        let part = &ghosts.part;
+        let changed = (0..marks.len())
+            .filter(|&i| part.owns(i) && marks[i] != before[i])
+            .count();
+        before.copy_from_slice(marks);
+        comm.sum(changed as u64) > 0
     }
 }

@@ -224,7 +224,16 @@ impl<S: SpringSolver> Deformer<S> {
             )));
         }
         let mut plan = plan_roles(mesh, attachments)?;
-        let rigid = robust::prepare(mesh, &plan.roles, &plan.moving, &settings.robust)?;
+        // The edge graph, built once for the near-wall treatments, the
+        // blend and the springs.
+        let edge_graph = Arc::new(topology::edge_graph(&mesh.cells, mesh.node_count()));
+        let rigid = robust::prepare(
+            mesh,
+            Some(&edge_graph),
+            &plan.roles,
+            &plan.moving,
+            &settings.robust,
+        )?;
         let layer = rigid
             .nodes
             .iter()
@@ -234,25 +243,21 @@ impl<S: SpringSolver> Deformer<S> {
                 (i, k, role)
             })
             .collect();
-        let edge_graph = (settings.robust.blend && !plan.moving.is_empty())
-            .then(|| Arc::new(topology::edge_graph(&mesh.cells, mesh.node_count())));
-        let blend = if let Some(edge_graph) = &edge_graph {
-            Some(Blend::new(
+        let blend = (settings.robust.blend && !plan.moving.is_empty()).then(|| {
+            Blend::new(
                 mesh,
-                Arc::clone(edge_graph),
+                Arc::clone(&edge_graph),
                 &plan.roles,
                 &plan.normals,
                 blend::bodies(&plan.moving, &rigid.nodes),
-            ))
-        } else {
-            None
-        };
+            )
+        });
         let solver = make(&SolverSetup {
             mesh,
             roles: &plan.roles,
             normals: &plan.normals,
             stiffness: &rigid.stiffness,
-            edge_graph: edge_graph.as_ref(),
+            edge_graph: Some(&edge_graph),
         })?;
         let orientation = quality::orientation(mesh);
         let start = Instant::now();

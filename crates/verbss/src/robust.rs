@@ -39,7 +39,7 @@ use crate::topology::{self, Csr};
 pub mod spread;
 
 pub(crate) use self::spread::heap_distances;
-pub use self::spread::Nearest;
+pub use self::spread::Seeds;
 
 /// Cells at least this stretched (longest over shortest edge) belong to a
 /// boundary layer.
@@ -184,9 +184,11 @@ pub struct Treatment {
 /// The rigid layer and stiffness factors of `mesh` around the moving nodes
 /// `moving` (node and the chain of motions it follows); `roles` are the
 /// nodes' roles before the layer (moving nodes and other boundary nodes
-/// fixed, sliding nodes, free).
+/// fixed, sliding nodes, free); `graph` the mesh's edge graph
+/// ([`topology::edge_graph`]) where the caller has it, built here otherwise.
 pub fn prepare(
     mesh: &Mesh,
+    graph: Option<&Csr>,
     roles: &[NodeRole],
     moving: &[(usize, Vec<usize>)],
     robust: &Robust,
@@ -197,7 +199,14 @@ pub fn prepare(
         return Ok(Treatment::default());
     }
     let n = mesh.node_count();
-    let graph = topology::edge_graph_from(&mesh.cells, &topology::node_cells(&mesh.cells, n));
+    let built;
+    let graph = match graph {
+        Some(graph) => graph,
+        None => {
+            built = topology::edge_graph(&mesh.cells, n);
+            &built
+        }
+    };
     // Bodies: moving nodes sharing a chain of motions.
     let mut body_of_chain: HashMap<&[usize], usize> = HashMap::new();
     let mut body_seeds: Vec<Vec<usize>> = Vec::new();
@@ -228,9 +237,9 @@ pub fn prepare(
     let tags = &mesh.node_tags;
     let fields: Vec<(Vec<f64>, Vec<u64>)> = body_seeds
         .iter()
-        .map(|seeds| nearest_seed(&graph, mesh.dim, &mesh.coords, seeds, tags))
+        .map(|seeds| nearest_seed(graph, mesh.dim, &mesh.coords, seeds, tags))
         .collect();
-    let to_fixed = nearest_seed(&graph, mesh.dim, &mesh.coords, &fixed, tags).0;
+    let to_fixed = nearest_seed(graph, mesh.dim, &mesh.coords, &fixed, tags).0;
     let anchor_of_tag: HashMap<u64, usize> = moving
         .iter()
         .enumerate()
@@ -349,10 +358,11 @@ fn fixed_walls(mesh: &Mesh, roles: &[NodeRole], anchor: &[usize]) -> Vec<Vec<usi
         .collect()
 }
 
-/// For every node of `coords` the distance to its nearest seed and that
-/// seed's number `ids[s]` (which breaks ties: node tags, so that a rank's
-/// part, numbering by tag, breaks them alike), spread along the mesh edges
-/// ([`Nearest::spread`]). Nodes no seed reaches keep an infinite distance.
+/// For every node of `coords` connected to a seed of `seeds`: the distance
+/// to its nearest seed in straight line and that seed's number `ids[s]`
+/// (which breaks ties: node tags, so that a rank's part, numbering by tag,
+/// breaks them alike; [`spread::nearest_seeds`]). Other nodes keep an
+/// infinite distance.
 pub(crate) fn nearest_seed(
     graph: &Csr,
     dim: usize,
@@ -360,12 +370,18 @@ pub(crate) fn nearest_seed(
     seeds: &[usize],
     ids: &[u64],
 ) -> (Vec<f64>, Vec<u64>) {
-    let mut nearest = Nearest::new(graph.rows(), dim);
+    let points: Vec<f64> = seeds
+        .iter()
+        .flat_map(|&s| &coords[dim * s..dim * (s + 1)])
+        .copied()
+        .collect();
+    let numbers: Vec<u64> = seeds.iter().map(|&s| ids[s]).collect();
+    let mut reached = vec![false; graph.rows()];
     for &s in seeds {
-        nearest.set_seed(s, ids[s], &coords[dim * s..dim * (s + 1)]);
+        reached[s] = true;
     }
-    nearest.spread(graph, coords, |_| false, |changed| changed);
-    (nearest.dist, nearest.seed)
+    spread::connect(graph, &mut reached, |_| false);
+    spread::nearest_seeds(&Seeds::new(dim, &points, &numbers), graph, coords, &reached)
 }
 
 fn distance(a: &[f64], b: &[f64]) -> f64 {

@@ -1,25 +1,23 @@
-//! The two graph walks of the near-wall treatments, on any set of nodes
-//! and cells: a whole mesh, or a rank's part with its ghosts, where a
-//! `sync` closure between local passes makes the walk global.
+//! The wall distances and the boundary layer's reach of the near-wall
+//! treatments, on any set of nodes and cells: a whole mesh, or a rank's
+//! part with its ghosts, where a `sync` closure between local passes makes
+//! a walk global.
 //!
-//! * [`Nearest`]: every node's nearest seed, spread along the mesh edges. In
-//!   each round every node `j` next to a node whose label changed in the
-//!   round before takes the seed `s` of such a neighbour when `|x_j − x_s|`
-//!   is below its own distance (the smallest distance, then the smallest
-//!   seed number, of them all), the labels of the round before being read;
-//!   the rounds go on until no label changes. The result does not depend on
-//!   the order of the nodes, so a rank's part with its ghosts, exchanging
-//!   them after each round, finds what one process finds. (A heap ordered
-//!   by distance, as a Dijkstra walk, would be cheaper but its result
-//!   depends on the order of its steps: the straight-line distance to a
-//!   seed is not a path length, and which seeds a node is offered depends
-//!   on the labels its neighbours held on the way.)
-//! * [`heap_distances`]: the same spread taken in order of distance from a
-//!   heap, a node at a time. Several times cheaper on one process, but its
-//!   result depends on the order of the steps, so it is what the blended
-//!   rigid motion uses for its weights at every increment (docs/method.md,
-//!   "Blended rigid motion"), and the rigid layer, which ranks must find
-//!   alike, uses [`Nearest`].
+//! * [`Seeds`] and [`nearest_seeds`]: every node's nearest seed in
+//!   straight line, `min_s (|x_j − x_s|, id_s)` over the seeds of its
+//!   connected part of the mesh (ties to the smaller seed number), found
+//!   in a k-d tree of the seeds. The answer is exact, so it depends neither
+//!   on the order of the nodes nor on how the mesh is cut: a rank holding
+//!   all seeds finds on its part what one process finds. [`connect`] marks
+//!   the nodes connected to a seed.
+//! * [`heap_distances`]: the distance spread along the edges from a heap,
+//!   in order of distance, a node taking the nearest of its neighbours'
+//!   seeds. Cheaper still, but its answer depends on the order of its
+//!   steps (the straight-line distance to a seed is not a path length), so
+//!   it is what the blended rigid motion uses for its weights at every
+//!   increment (docs/method.md, "Blended rigid motion"), while the rigid
+//!   layer and the stiffening, which ranks must find alike, use
+//!   [`nearest_seeds`].
 //! * [`reach`]: the nodes reached from the labelled ones through cells of
 //!   aspect ratio at least [`super::ANISOTROPIC`], the boundary layer of
 //!   the automatic rigid layer's thickness.
@@ -32,117 +30,159 @@ use crate::topology::{self, Csr};
 
 use super::{distance, ANISOTROPIC};
 
-/// Per node the nearest seed found so far: the distance `dist` to it
-/// (infinite where none reached), the seed's number `seed` and its point
-/// `point` (`dim` numbers per node, carried so that a node can compare a
-/// seed it does not hold).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Nearest {
-    /// The dimension.
-    pub dim: usize,
-    /// The distance to the nearest seed.
-    pub dist: Vec<f64>,
-    /// The nearest seed's number (`u64::MAX` where none reached).
-    pub seed: Vec<u64>,
-    /// The nearest seed's coordinates.
-    pub point: Vec<f64>,
+/// A k-d tree leaf's most points.
+const LEAF: usize = 8;
+
+/// Seed points in a k-d tree, each with its number: the points of
+/// `[lo, hi)` split at the middle `m = (lo + hi) / 2` along axis
+/// `depth mod dim`, those before `m` not above `split[m]`, those from `m`
+/// on not below, down to leaves of at most [`LEAF`] points.
+#[derive(Debug, Clone)]
+pub struct Seeds {
+    dim: usize,
+    points: Vec<f64>,
+    ids: Vec<u64>,
+    split: Vec<f64>,
 }
 
-impl Nearest {
-    /// `n` nodes that no seed reached yet.
-    pub fn new(n: usize, dim: usize) -> Nearest {
-        Nearest {
+impl Seeds {
+    /// The seeds at `points` (`dim` numbers each) numbered `ids`.
+    pub fn new(dim: usize, points: &[f64], ids: &[u64]) -> Seeds {
+        let mut order: Vec<usize> = (0..ids.len()).collect();
+        let mut split = vec![0.0; ids.len()];
+        arrange(dim, points, &mut order, 0, 0, &mut split);
+        Seeds {
             dim,
-            dist: vec![f64::INFINITY; n],
-            seed: vec![u64::MAX; n],
-            point: vec![0.0; dim * n],
+            points: order
+                .iter()
+                .flat_map(|&k| &points[dim * k..dim * (k + 1)])
+                .copied()
+                .collect(),
+            ids: order.iter().map(|&k| ids[k]).collect(),
+            split,
         }
     }
 
-    /// Makes node `i` the seed numbered `id`, at `point`.
-    pub fn set_seed(&mut self, i: usize, id: u64, point: &[f64]) {
-        self.dist[i] = 0.0;
-        self.seed[i] = id;
-        self.point[self.dim * i..self.dim * (i + 1)].copy_from_slice(point);
+    /// The number of seeds.
+    pub fn len(&self) -> usize {
+        self.ids.len()
     }
 
-    /// Spreads the labels along the edges of `graph` (nodes at `coords`)
-    /// in synchronous rounds (see the module documentation) until no label
-    /// changes: `exchange` runs after each round (a ghost exchange, saying
-    /// that it may have changed labels, or nothing, saying `false`), `any`
-    /// turns whether a label here changed in the round into whether one
-    /// changed anywhere.
-    pub fn spread(
-        &mut self,
-        graph: &Csr,
-        coords: &[f64],
-        mut exchange: impl FnMut(&mut Nearest) -> bool,
-        mut any: impl FnMut(bool) -> bool,
-    ) {
-        let n = self.dist.len();
-        let dim = self.dim;
-        let mut active: Vec<usize> = (0..n).filter(|&i| self.dist[i].is_finite()).collect();
-        let mut is_active = vec![false; n];
-        let mut marked = vec![false; n];
-        let mut targets = Vec::new();
-        // Per update: the node, its new distance and seed; the seed's point.
-        let mut updates: Vec<(usize, f64, u64)> = Vec::new();
-        let mut points: Vec<f64> = Vec::new();
-        let (mut prev_dist, mut prev_seed) = (self.dist.clone(), self.seed.clone());
-        loop {
-            for &i in &active {
-                is_active[i] = true;
-                for j in graph.entries(i) {
-                    if !std::mem::replace(&mut marked[j], true) {
-                        targets.push(j);
-                    }
+    /// Whether there is no seed.
+    pub fn is_empty(&self) -> bool {
+        self.ids.is_empty()
+    }
+
+    /// The squared distance from `x` to seed `k` (the terms summed in
+    /// order, as every distance here, so that equal pairs give equal bits).
+    fn squared(&self, x: &[f64], k: usize) -> f64 {
+        let p = &self.points[self.dim * k..self.dim * (k + 1)];
+        x.iter().zip(p).map(|(a, b)| (a - b) * (a - b)).sum()
+    }
+
+    /// Lowers `best` (squared distance, number, seed) to the smallest
+    /// `(squared distance, number)` over the seeds of `[lo, hi)`.
+    fn search(&self, x: &[f64], lo: usize, hi: usize, depth: usize, best: &mut (f64, u64, usize)) {
+        if hi - lo <= LEAF {
+            for k in lo..hi {
+                let d2 = self.squared(x, k);
+                if (d2, self.ids[k]) < (best.0, best.1) {
+                    *best = (d2, self.ids[k], k);
                 }
             }
-            for &j in &targets {
-                marked[j] = false;
-                let x = &coords[dim * j..dim * (j + 1)];
-                let mut best = (self.dist[j], self.seed[j], usize::MAX);
-                for i in graph.entries(j).filter(|&i| is_active[i]) {
-                    let d = distance(x, &self.point[dim * i..dim * (i + 1)]);
-                    if (d, self.seed[i]) < (best.0, best.1) {
-                        best = (d, self.seed[i], i);
-                    }
+            return;
+        }
+        let mid = (lo + hi) / 2;
+        let dx = x[depth % self.dim] - self.split[mid];
+        let (near, far) = if dx < 0.0 {
+            ((lo, mid), (mid, hi))
+        } else {
+            ((mid, hi), (lo, mid))
+        };
+        self.search(x, near.0, near.1, depth + 1, best);
+        // A seed beyond the plane is at least |dx| away; at exactly that
+        // distance it may still win on its number.
+        if dx * dx <= best.0 {
+            self.search(x, far.0, far.1, depth + 1, best);
+        }
+    }
+}
+
+/// Orders `order` (indices of `points`, the slice starting at `lo` of the
+/// whole) as [`Seeds`] keeps its points, recording the splits.
+fn arrange(
+    dim: usize,
+    points: &[f64],
+    order: &mut [usize],
+    depth: usize,
+    lo: usize,
+    split: &mut [f64],
+) {
+    if order.len() <= LEAF {
+        return;
+    }
+    let axis = depth % dim;
+    let mid = order.len() / 2;
+    order.select_nth_unstable_by(mid, |&a, &b| {
+        points[dim * a + axis].total_cmp(&points[dim * b + axis])
+    });
+    split[lo + mid] = points[dim * order[mid] + axis];
+    let (before, after) = order.split_at_mut(mid);
+    arrange(dim, points, before, depth + 1, lo, split);
+    arrange(dim, points, after, depth + 1, lo + mid, split);
+}
+
+/// For every node marked in `reached` (nodes at `coords`): the distance to
+/// its nearest seed of `seeds` and that seed's number; infinite and
+/// `u64::MAX` elsewhere. A node starts its search from the seed of a
+/// neighbour in `graph` already found, which bounds it.
+pub fn nearest_seeds(
+    seeds: &Seeds,
+    graph: &Csr,
+    coords: &[f64],
+    reached: &[bool],
+) -> (Vec<f64>, Vec<u64>) {
+    let n = reached.len();
+    let dim = seeds.dim;
+    let mut dist = vec![f64::INFINITY; n];
+    let mut seed = vec![u64::MAX; n];
+    let mut found = vec![usize::MAX; n];
+    if seeds.is_empty() {
+        return (dist, seed);
+    }
+    for j in (0..n).filter(|&j| reached[j]) {
+        let x = &coords[dim * j..dim * (j + 1)];
+        let mut best = (f64::INFINITY, u64::MAX, usize::MAX);
+        if let Some(k) = graph
+            .entries(j)
+            .map(|i| found[i])
+            .find(|&k| k != usize::MAX)
+        {
+            best = (seeds.squared(x, k), seeds.ids[k], k);
+        }
+        seeds.search(x, 0, seeds.len(), 0, &mut best);
+        dist[j] = best.0.sqrt();
+        seed[j] = best.1;
+        found[j] = best.2;
+    }
+    (dist, seed)
+}
+
+/// Marks in `reached` every node connected along the edges of `graph` to a
+/// marked one; repeats after each `sync` (which may mark more nodes) while
+/// it returns `true`.
+pub fn connect(graph: &Csr, reached: &mut [bool], mut sync: impl FnMut(&mut [bool]) -> bool) {
+    loop {
+        let mut queue: Vec<usize> = (0..reached.len()).filter(|&i| reached[i]).collect();
+        while let Some(i) = queue.pop() {
+            for j in graph.entries(i) {
+                if !std::mem::replace(&mut reached[j], true) {
+                    queue.push(j);
                 }
-                if best.2 != usize::MAX {
-                    updates.push((j, best.0, best.1));
-                    points.extend_from_slice(&self.point[dim * best.2..dim * (best.2 + 1)]);
-                }
             }
-            for &i in &active {
-                is_active[i] = false;
-            }
-            targets.clear();
-            active.clear();
-            for (k, &(j, d, seed)) in updates.iter().enumerate() {
-                self.dist[j] = d;
-                self.seed[j] = seed;
-                self.point[dim * j..dim * (j + 1)].copy_from_slice(&points[dim * k..dim * (k + 1)]);
-                // An update is always a change: a nearer or lower seed.
-                active.push(j);
-            }
-            updates.clear();
-            points.clear();
-            if exchange(self) {
-                // The exchange may have changed ghosts: find every change.
-                active.clear();
-                for i in 0..n {
-                    if self.dist[i] != prev_dist[i] || self.seed[i] != prev_seed[i] {
-                        active.push(i);
-                    }
-                }
-            }
-            for &i in &active {
-                prev_dist[i] = self.dist[i];
-                prev_seed[i] = self.seed[i];
-            }
-            if !any(!active.is_empty()) {
-                return;
-            }
+        }
+        if !sync(reached) {
+            return;
         }
     }
 }

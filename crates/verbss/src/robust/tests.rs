@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::deform::{Deformer, Settings};
+use crate::mesh::CellKind;
 use crate::motion::{Attachment, Motion, PositionSource};
 use std::path::Path;
 
@@ -112,7 +113,7 @@ fn no_cell_joins_the_layers_of_two_bodies_or_a_layer_and_the_far_field() {
         layer: Layer::Thickness(0.5),
         ..Robust::off()
     };
-    let t = prepare(&mesh, &plan_roles, &moving, &robust).unwrap();
+    let t = prepare(&mesh, None, &plan_roles, &moving, &robust).unwrap();
     assert!(!t.nodes.is_empty());
     // The body each node moves with: its own, or its layer's.
     let mut body = vec![usize::MAX; mesh.node_count()];
@@ -197,7 +198,7 @@ fn stiffening_is_one_within_the_layer_and_falls_as_a_power_of_the_distance() {
         stiffening: 2.0,
         ..Robust::off()
     };
-    let t = prepare(&mesh, d.roles(), &moving, &robust).unwrap();
+    let t = prepare(&mesh, None, d.roles(), &moving, &robust).unwrap();
     let graph = topology::edge_graph_from(
         &mesh.cells,
         &topology::node_cells(&mesh.cells, mesh.node_count()),
@@ -208,7 +209,7 @@ fn stiffening_is_one_within_the_layer_and_falls_as_a_power_of_the_distance() {
         let expected = if *d <= 0.1 { 1.0 } else { (0.1 / d).powi(2) };
         assert!((phi - expected).abs() < 1e-15 * expected.max(1.0));
     }
-    let off = prepare(&mesh, d.roles(), &moving, &Robust::off()).unwrap();
+    let off = prepare(&mesh, None, d.roles(), &moving, &Robust::off()).unwrap();
     assert_eq!(off, Treatment::default());
 }
 
@@ -350,4 +351,46 @@ fn the_nearest_seed_does_not_depend_on_the_node_order() {
         assert_eq!(seed[i], seed_back[back(i)], "node {i}");
     }
     assert!(dist.iter().all(|d| d.is_finite()));
+}
+
+/// The nearest seed is the straight-line nearest of the seeds connected to
+/// the node, ties going to the smaller seed number: on a 9 × 9 grid seeded
+/// on its left and right columns, whose middle column is as near to both
+/// (node numbers running against the tags), as a brute-force search finds;
+/// nodes of a second grid that no seed reaches keep no seed.
+#[test]
+fn the_nearest_seed_is_the_nearest_connected_seed_in_straight_line() {
+    let mut coords = Vec::new();
+    let mut cells = crate::mesh::Cells::new();
+    for (origin, side) in [(0.0, 9), (20.0, 3)] {
+        let first = coords.len() / 2;
+        for j in 0..side {
+            for i in 0..side {
+                coords.extend([origin + i as f64, j as f64 * 0.7]);
+            }
+        }
+        for j in 0..side - 1 {
+            for i in 0..side - 1 {
+                let a = first + i + side * j;
+                cells.push(CellKind::Quad, &[a, a + 1, a + 1 + side, a + side]);
+            }
+        }
+    }
+    let n = coords.len() / 2;
+    let tags: Vec<u64> = (0..n as u64).map(|i| 1000 - i).collect();
+    let seeds: Vec<usize> = (0..9).flat_map(|j| [9 * j, 9 * j + 8]).collect();
+    let graph = topology::edge_graph_from(&cells, &topology::node_cells(&cells, n));
+    let (dist, seed) = nearest_seed(&graph, 2, &coords, &seeds, &tags);
+    for j in 0..81 {
+        let x = &coords[2 * j..2 * j + 2];
+        let brute = seeds
+            .iter()
+            .map(|&s| (distance(x, &coords[2 * s..2 * s + 2]), tags[s]))
+            .min_by(|a, b| a.partial_cmp(b).unwrap())
+            .unwrap();
+        assert_eq!((dist[j], seed[j]), brute, "node {j}");
+    }
+    // The middle column is 4 from both sides: the larger node, smaller tag.
+    assert_eq!((dist[4], seed[4]), (4.0, tags[8]));
+    assert!((81..n).all(|j| dist[j] == f64::INFINITY && seed[j] == u64::MAX));
 }
