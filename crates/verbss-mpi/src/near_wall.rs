@@ -28,7 +28,7 @@
 
 use verbss::robust::spread::{connect, nearest_seeds, reach};
 use verbss::robust::Seeds;
-use verbss::robust::{layer_body, stiffness_factor, thickness, Bounds, Layer, Robust};
+use verbss::robust::{fixed_limit, layer_body, stiffness_factor, thickness, Bounds, Layer, Robust};
 use verbss::solve::NodeRole;
 use verbss::topology;
 use verbss::{Error, Mesh, Result};
@@ -134,7 +134,7 @@ pub fn near_wall(
         seeds.push(wall);
     }
     let graph = topology::edge_graph_from(&part.cells, &topology::node_cells(&part.cells, m));
-    let nearest = |seeds: &[usize]| -> (Vec<f64>, Vec<u64>) {
+    let nearest = |seeds: &[usize], limit: &dyn Fn(usize) -> f64| -> (Vec<f64>, Vec<u64>) {
         // Every rank's owned seeds go to every rank.
         let owned: Vec<usize> = seeds.iter().copied().filter(|&s| part.owns(s)).collect();
         let points: Vec<f64> = owned
@@ -154,13 +154,18 @@ pub fn near_wall(
         }
         let before = reached.clone();
         connect(&graph, &mut reached, mark_sync(comm, ghosts, before));
-        nearest_seeds(&all, &graph, &coords, &reached)
+        let limit: Vec<f64> = (0..m)
+            .map(|i| if reached[i] { limit(i) } else { -1.0 })
+            .collect();
+        nearest_seeds(&all, &graph, &coords, &limit)
     };
-    let fields: Vec<(Vec<f64>, Vec<u64>)> = seeds.iter().map(|s| nearest(s)).collect();
+    let fields: Vec<(Vec<f64>, Vec<u64>)> = seeds
+        .iter()
+        .map(|s| nearest(s, &|_| f64::INFINITY))
+        .collect();
     let other_fixed: Vec<usize> = (0..m)
         .filter(|&i| fixed_at(i) && body_at(i).is_none() && !in_wall[i])
         .collect();
-    let to_fixed = nearest(&other_fixed).0;
     let thickness: Vec<f64> = seeds
         .iter()
         .zip(&fields)
@@ -185,8 +190,21 @@ pub fn near_wall(
             })
         })
         .collect();
-    let stiffen = p > 0.0 && thickness.iter().any(|&t| t > 0.0);
+    let free = |i: usize| robust.layer != Layer::Off && !fixed_at(i);
     let mut at = vec![0.0; fields.len()];
+    let limits: Vec<f64> = (0..m)
+        .map(|i| {
+            if !free(i) {
+                return -1.0;
+            }
+            for (a, field) in at.iter_mut().zip(&fields) {
+                *a = field.0[i];
+            }
+            fixed_limit(&at, &thickness)
+        })
+        .collect();
+    let to_fixed = nearest(&other_fixed, &|i| limits[i]).0;
+    let stiffen = p > 0.0 && thickness.iter().any(|&t| t > 0.0);
     let mut factors = vec![1.0; m];
     let mut layer = vec![None; m];
     for i in 0..m {
@@ -196,7 +214,7 @@ pub fn near_wall(
         if stiffen {
             factors[i] = stiffness_factor(&at, &thickness, p);
         }
-        if robust.layer != Layer::Off && !fixed_at(i) {
+        if free(i) {
             layer[i] = layer_body(&at, to_fixed[i], &thickness).map(|b| (b < bodies).then_some(b));
         }
     }

@@ -237,9 +237,12 @@ pub fn prepare(
     let tags = &mesh.node_tags;
     let fields: Vec<(Vec<f64>, Vec<u64>)> = body_seeds
         .iter()
-        .map(|seeds| nearest_seed(graph, mesh.dim, &mesh.coords, seeds, tags))
+        .map(|seeds| {
+            nearest_seed(graph, mesh.dim, &mesh.coords, seeds, tags, |_| {
+                f64::INFINITY
+            })
+        })
         .collect();
-    let to_fixed = nearest_seed(graph, mesh.dim, &mesh.coords, &fixed, tags).0;
     let anchor_of_tag: HashMap<u64, usize> = moving
         .iter()
         .enumerate()
@@ -267,12 +270,31 @@ pub fn prepare(
             })
         })
         .collect();
+    let free = |i: usize| {
+        robust.layer != Layer::Off
+            && matches!(
+                roles[i],
+                NodeRole::Free | NodeRole::Slide(_) | NodeRole::Line(_)
+            )
+    };
+    let mut at = vec![0.0; fields.len()];
+    let limits: Vec<f64> = (0..n)
+        .map(|i| {
+            if !free(i) {
+                return -1.0;
+            }
+            for (a, (dist, _)) in at.iter_mut().zip(&fields) {
+                *a = dist[i];
+            }
+            fixed_limit(&at, &thickness)
+        })
+        .collect();
+    let to_fixed = nearest_seed(graph, mesh.dim, &mesh.coords, &fixed, tags, |i| limits[i]).0;
     // A body of no extent (a single moving node) has no thickness: it
     // stiffens nothing.
     let stiffen = p > 0.0 && thickness.iter().any(|&t| t > 0.0);
     let mut stiffness = Vec::new();
     let mut nodes = Vec::new();
-    let mut at = vec![0.0; fields.len()];
     for i in 0..n {
         for (a, (dist, _)) in at.iter_mut().zip(&fields) {
             *a = dist[i];
@@ -280,11 +302,7 @@ pub fn prepare(
         if stiffen {
             stiffness.push(stiffness_factor(&at, &thickness, p));
         }
-        let free = matches!(
-            roles[i],
-            NodeRole::Free | NodeRole::Slide(_) | NodeRole::Line(_)
-        );
-        if robust.layer == Layer::Off || !free {
+        if !free(i) {
             continue;
         }
         if let Some(b) = layer_body(&at, to_fixed[i], &thickness) {
@@ -361,14 +379,15 @@ fn fixed_walls(mesh: &Mesh, roles: &[NodeRole], anchor: &[usize]) -> Vec<Vec<usi
 /// For every node of `coords` connected to a seed of `seeds`: the distance
 /// to its nearest seed in straight line and that seed's number `ids[s]`
 /// (which breaks ties: node tags, so that a rank's part, numbering by tag,
-/// breaks them alike; [`spread::nearest_seeds`]). Other nodes keep an
-/// infinite distance.
+/// breaks them alike; [`spread::nearest_seeds`]), where that distance is
+/// at most `√limit(i)`. Other nodes keep an infinite distance.
 pub(crate) fn nearest_seed(
     graph: &Csr,
     dim: usize,
     coords: &[f64],
     seeds: &[usize],
     ids: &[u64],
+    limit: impl Fn(usize) -> f64,
 ) -> (Vec<f64>, Vec<u64>) {
     let points: Vec<f64> = seeds
         .iter()
@@ -381,7 +400,27 @@ pub(crate) fn nearest_seed(
         reached[s] = true;
     }
     spread::connect(graph, &mut reached, |_| false);
-    spread::nearest_seeds(&Seeds::new(dim, &points, &numbers), graph, coords, &reached)
+    let limit: Vec<f64> = (0..reached.len())
+        .map(|i| if reached[i] { limit(i) } else { -1.0 })
+        .collect();
+    spread::nearest_seeds(&Seeds::new(dim, &points, &numbers), graph, coords, &limit)
+}
+
+/// The squared distance to the other fixed boundary that can still change
+/// [`layer_body`]'s answer for a node at distance `dist[b]` from each body
+/// `b`: `(d_b / GAP_SHARE)²` (widened by 1e-9, above any rounding) for a
+/// node within its nearest body's thickness, and none (−1) for another
+/// node, which joins no layer whatever that distance. So the distance to
+/// the outer boundary, often equally far from every node near a body, is
+/// sought only where it counts.
+pub fn fixed_limit(dist: &[f64], thickness: &[f64]) -> f64 {
+    match dist.iter().enumerate().min_by(|x, y| x.1.total_cmp(y.1)) {
+        Some((b, &d)) if d <= thickness[b] => {
+            let r = d / GAP_SHARE * (1.0 + 1e-9);
+            r * r
+        }
+        _ => -1.0,
+    }
 }
 
 fn distance(a: &[f64], b: &[f64]) -> f64 {

@@ -30,27 +30,39 @@ use crate::topology::{self, Csr};
 
 use super::{distance, ANISOTROPIC};
 
-/// A k-d tree leaf's most points.
+/// A leaf box's most seeds.
 const LEAF: usize = 8;
 
-/// Seed points in a k-d tree, each with its number: the points of
-/// `[lo, hi)` split at the middle `m = (lo + hi) / 2` along axis
-/// `depth mod dim`, those before `m` not above `split[m]`, those from `m`
-/// on not below, down to leaves of at most [`LEAF`] points.
+/// Seed points, each with its number, in a tree of boxes: each box holds
+/// the seeds `[lo, hi)` (in the tree's order) and is their bounding box;
+/// a box of more than [`LEAF`] seeds is split in two halves at the median
+/// of its longest side.
 #[derive(Debug, Clone)]
 pub struct Seeds {
     dim: usize,
     points: Vec<f64>,
     ids: Vec<u64>,
-    split: Vec<f64>,
+    boxes: Vec<SeedBox>,
+}
+
+/// A box of [`Seeds`]: its seeds, their bounds and its halves (none for a leaf).
+#[derive(Debug, Clone)]
+struct SeedBox {
+    lo: usize,
+    hi: usize,
+    min: [f64; 3],
+    max: [f64; 3],
+    halves: Option<(usize, usize)>,
 }
 
 impl Seeds {
     /// The seeds at `points` (`dim` numbers each) numbered `ids`.
     pub fn new(dim: usize, points: &[f64], ids: &[u64]) -> Seeds {
         let mut order: Vec<usize> = (0..ids.len()).collect();
-        let mut split = vec![0.0; ids.len()];
-        arrange(dim, points, &mut order, 0, 0, &mut split);
+        let mut boxes = Vec::new();
+        if !order.is_empty() {
+            divide(dim, points, &mut order, 0, &mut boxes);
+        }
         Seeds {
             dim,
             points: order
@@ -59,7 +71,7 @@ impl Seeds {
                 .copied()
                 .collect(),
             ids: order.iter().map(|&k| ids[k]).collect(),
-            split,
+            boxes,
         }
     }
 
@@ -80,69 +92,95 @@ impl Seeds {
         x.iter().zip(p).map(|(a, b)| (a - b) * (a - b)).sum()
     }
 
+    /// The squared distance from `x` to box `b`, summed as [`Seeds::squared`]
+    /// sums: rounding is monotonic, so no seed in the box computes nearer.
+    fn squared_to_box(&self, x: &[f64], b: &SeedBox) -> f64 {
+        (0..self.dim)
+            .map(|k| {
+                let gap = (b.min[k] - x[k]).max(x[k] - b.max[k]).max(0.0);
+                gap * gap
+            })
+            .sum()
+    }
+
     /// Lowers `best` (squared distance, number, seed) to the smallest
-    /// `(squared distance, number)` over the seeds of `[lo, hi)`.
-    fn search(&self, x: &[f64], lo: usize, hi: usize, depth: usize, best: &mut (f64, u64, usize)) {
-        if hi - lo <= LEAF {
-            for k in lo..hi {
+    /// `(squared distance, number)` over the seeds of box `b`.
+    fn search(&self, x: &[f64], b: usize, best: &mut (f64, u64, usize)) {
+        let node = &self.boxes[b];
+        let Some((first, second)) = node.halves else {
+            for k in node.lo..node.hi {
                 let d2 = self.squared(x, k);
                 if (d2, self.ids[k]) < (best.0, best.1) {
                     *best = (d2, self.ids[k], k);
                 }
             }
             return;
-        }
-        let mid = (lo + hi) / 2;
-        let dx = x[depth % self.dim] - self.split[mid];
-        let (near, far) = if dx < 0.0 {
-            ((lo, mid), (mid, hi))
-        } else {
-            ((mid, hi), (lo, mid))
         };
-        self.search(x, near.0, near.1, depth + 1, best);
-        // A seed beyond the plane is at least |dx| away; at exactly that
-        // distance it may still win on its number.
-        if dx * dx <= best.0 {
-            self.search(x, far.0, far.1, depth + 1, best);
+        let mut halves = [first, second].map(|h| (self.squared_to_box(x, &self.boxes[h]), h));
+        if halves[1].0 < halves[0].0 {
+            halves.swap(0, 1);
+        }
+        // A seed at exactly the best distance may still win on its number.
+        for (d2, h) in halves {
+            if d2 <= best.0 {
+                self.search(x, h, best);
+            }
         }
     }
 }
 
-/// Orders `order` (indices of `points`, the slice starting at `lo` of the
-/// whole) as [`Seeds`] keeps its points, recording the splits.
-fn arrange(
+/// Pushes onto `boxes` the box of the seeds `order` (indices of `points`,
+/// the slice starting at `lo` of the tree's order) and, below it, its
+/// halves; returns its index.
+fn divide(
     dim: usize,
     points: &[f64],
     order: &mut [usize],
-    depth: usize,
     lo: usize,
-    split: &mut [f64],
-) {
-    if order.len() <= LEAF {
-        return;
+    boxes: &mut Vec<SeedBox>,
+) -> usize {
+    let (mut min, mut max) = ([0.0; 3], [0.0; 3]);
+    for k in 0..dim {
+        let values = order.iter().map(|&i| points[dim * i + k]);
+        min[k] = values.clone().fold(f64::INFINITY, f64::min);
+        max[k] = values.fold(f64::NEG_INFINITY, f64::max);
     }
-    let axis = depth % dim;
-    let mid = order.len() / 2;
-    order.select_nth_unstable_by(mid, |&a, &b| {
-        points[dim * a + axis].total_cmp(&points[dim * b + axis])
+    let at = boxes.len();
+    boxes.push(SeedBox {
+        lo,
+        hi: lo + order.len(),
+        min,
+        max,
+        halves: None,
     });
-    split[lo + mid] = points[dim * order[mid] + axis];
-    let (before, after) = order.split_at_mut(mid);
-    arrange(dim, points, before, depth + 1, lo, split);
-    arrange(dim, points, after, depth + 1, lo + mid, split);
+    if order.len() > LEAF {
+        let axis = (0..dim)
+            .max_by(|&a, &b| (max[a] - min[a]).total_cmp(&(max[b] - min[b])))
+            .unwrap_or(0);
+        let mid = order.len() / 2;
+        order.select_nth_unstable_by(mid, |&a, &b| {
+            points[dim * a + axis].total_cmp(&points[dim * b + axis])
+        });
+        let (before, after) = order.split_at_mut(mid);
+        let first = divide(dim, points, before, lo, boxes);
+        let second = divide(dim, points, after, lo + mid, boxes);
+        boxes[at].halves = Some((first, second));
+    }
+    at
 }
 
-/// For every node marked in `reached` (nodes at `coords`): the distance to
-/// its nearest seed of `seeds` and that seed's number; infinite and
-/// `u64::MAX` elsewhere. A node starts its search from the seed of a
-/// neighbour in `graph` already found, which bounds it.
+/// For every node `j` with `limit[j] ≥ 0` (nodes at `coords`): the
+/// distance to its nearest seed of `seeds` and that seed's number, where
+/// that distance is at most `√limit[j]`; infinite and `u64::MAX` elsewhere.
+/// A node starts its search from the seed of a neighbour in `graph`
+/// already found, which bounds it.
 pub fn nearest_seeds(
     seeds: &Seeds,
     graph: &Csr,
     coords: &[f64],
-    reached: &[bool],
+    limit: &[f64],
 ) -> (Vec<f64>, Vec<u64>) {
-    let n = reached.len();
+    let n = limit.len();
     let dim = seeds.dim;
     let mut dist = vec![f64::INFINITY; n];
     let mut seed = vec![u64::MAX; n];
@@ -150,20 +188,25 @@ pub fn nearest_seeds(
     if seeds.is_empty() {
         return (dist, seed);
     }
-    for j in (0..n).filter(|&j| reached[j]) {
+    for j in (0..n).filter(|&j| limit[j] >= 0.0) {
         let x = &coords[dim * j..dim * (j + 1)];
-        let mut best = (f64::INFINITY, u64::MAX, usize::MAX);
+        let mut best = (limit[j], u64::MAX, usize::MAX);
         if let Some(k) = graph
             .entries(j)
             .map(|i| found[i])
             .find(|&k| k != usize::MAX)
         {
-            best = (seeds.squared(x, k), seeds.ids[k], k);
+            let d2 = seeds.squared(x, k);
+            if (d2, seeds.ids[k]) < (best.0, best.1) {
+                best = (d2, seeds.ids[k], k);
+            }
         }
-        seeds.search(x, 0, seeds.len(), 0, &mut best);
-        dist[j] = best.0.sqrt();
-        seed[j] = best.1;
-        found[j] = best.2;
+        seeds.search(x, 0, &mut best);
+        if best.2 != usize::MAX {
+            dist[j] = best.0.sqrt();
+            seed[j] = best.1;
+            found[j] = best.2;
+        }
     }
     (dist, seed)
 }

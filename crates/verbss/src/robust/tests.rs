@@ -204,7 +204,14 @@ fn stiffening_is_one_within_the_layer_and_falls_as_a_power_of_the_distance() {
         &topology::node_cells(&mesh.cells, mesh.node_count()),
     );
     let seeds: Vec<usize> = moving.iter().map(|m| m.0).collect();
-    let (dist, _) = nearest_seed(&graph, mesh.dim, &mesh.coords, &seeds, &mesh.node_tags);
+    let (dist, _) = nearest_seed(
+        &graph,
+        mesh.dim,
+        &mesh.coords,
+        &seeds,
+        &mesh.node_tags,
+        |_| f64::INFINITY,
+    );
     for (phi, d) in t.stiffness.iter().zip(&dist) {
         let expected = if *d <= 0.1 { 1.0 } else { (0.1 / d).powi(2) };
         assert!((phi - expected).abs() < 1e-15 * expected.max(1.0));
@@ -335,6 +342,7 @@ fn the_nearest_seed_does_not_depend_on_the_node_order() {
         &mesh.coords,
         &seeds,
         &mesh.node_tags,
+        |_| f64::INFINITY,
     );
     let back = |i: usize| n - 1 - i;
     let mut cells = crate::mesh::Cells::new();
@@ -345,7 +353,9 @@ fn the_nearest_seed_does_not_depend_on_the_node_order() {
     let coords: Vec<f64> = (0..n).flat_map(|i| mesh.point(back(i)).to_vec()).collect();
     let tags: Vec<u64> = (0..n).map(|i| mesh.node_tags[back(i)]).collect();
     let seeds: Vec<usize> = seeds.iter().map(|&s| back(s)).collect();
-    let (dist_back, seed_back) = nearest_seed(&graph_of(&cells), 2, &coords, &seeds, &tags);
+    let (dist_back, seed_back) = nearest_seed(&graph_of(&cells), 2, &coords, &seeds, &tags, |_| {
+        f64::INFINITY
+    });
     for i in 0..n {
         assert_eq!(dist[i], dist_back[back(i)], "node {i}");
         assert_eq!(seed[i], seed_back[back(i)], "node {i}");
@@ -380,7 +390,7 @@ fn the_nearest_seed_is_the_nearest_connected_seed_in_straight_line() {
     let tags: Vec<u64> = (0..n as u64).map(|i| 1000 - i).collect();
     let seeds: Vec<usize> = (0..9).flat_map(|j| [9 * j, 9 * j + 8]).collect();
     let graph = topology::edge_graph_from(&cells, &topology::node_cells(&cells, n));
-    let (dist, seed) = nearest_seed(&graph, 2, &coords, &seeds, &tags);
+    let (dist, seed) = nearest_seed(&graph, 2, &coords, &seeds, &tags, |_| f64::INFINITY);
     for j in 0..81 {
         let x = &coords[2 * j..2 * j + 2];
         let brute = seeds
