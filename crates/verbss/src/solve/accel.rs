@@ -120,7 +120,13 @@ impl AccelState {
 /// What preconditions GMRES.
 enum Preconditioner {
     /// One multigrid V-cycle.
-    Multigrid(Box<Hierarchy>),
+    Multigrid {
+        hierarchy: Box<Hierarchy>,
+        /// Iterations of the first solve after the hierarchy was built.
+        baseline: Option<usize>,
+        /// Rebuild before the next solve.
+        stale: bool,
+    },
     /// One symmetric VerBSS sweep for `A e = r` from `e = 0` (forward, then
     /// backward): the V-cycle's finest smoothing alone, no hierarchy
     /// ([`super::Stage::Gmres`]).
@@ -131,10 +137,6 @@ enum Preconditioner {
 pub(crate) struct Accelerator {
     preconditioner: Preconditioner,
     method: Method,
-    /// Iterations of the first solve after the hierarchy was built.
-    baseline: Option<usize>,
-    /// Rebuild before the next solve.
-    stale: bool,
     workspace: Workspace,
     /// A zero right-hand side, for the product `A v = −ρ(v)` with `c = 0`.
     zeros: Vec<f64>,
@@ -143,9 +145,9 @@ pub(crate) struct Accelerator {
 impl Accelerator {
     /// Whether this accelerator can serve a solve of `method` on `layout`.
     fn fits(&self, method: Method, layout: &Layout) -> bool {
-        !self.stale
-            && self.method == method
-            && matches!(&self.preconditioner, Preconditioner::Multigrid(h) if h.order == layout.order)
+        self.method == method
+            && matches!(&self.preconditioner, Preconditioner::Multigrid { hierarchy, stale: false, .. }
+                if hierarchy.order == layout.order)
     }
 
     /// Builds the hierarchy for the system of `built` (on its pool).
@@ -156,10 +158,12 @@ impl Accelerator {
         let hierarchy = Hierarchy::new::<D>(blocks, &built.layout, &built.coords)?;
         let n = D * built.layout.order.len();
         Ok(Accelerator {
-            preconditioner: Preconditioner::Multigrid(Box::new(hierarchy)),
+            preconditioner: Preconditioner::Multigrid {
+                hierarchy: Box::new(hierarchy),
+                baseline: None,
+                stale: false,
+            },
             method,
-            baseline: None,
-            stale: false,
             workspace: Workspace::new(n, RESTART),
             zeros: vec![0.0; n],
         })
@@ -171,8 +175,6 @@ impl Accelerator {
         Accelerator {
             preconditioner: Preconditioner::Sweep,
             method,
-            baseline: None,
-            stale: false,
             workspace: Workspace::new(unknowns, GMRES_RESTART),
             zeros: vec![0.0; unknowns],
         }
@@ -224,7 +226,7 @@ impl Accelerator {
                 out.par_iter_mut().for_each(|x| *x = -*x);
             },
             |rhs, out| match preconditioner {
-                Preconditioner::Multigrid(hierarchy) => hierarchy.vcycle(
+                Preconditioner::Multigrid { hierarchy, .. } => hierarchy.vcycle(
                     rhs,
                     out,
                     &mut smooth,
@@ -241,9 +243,14 @@ impl Accelerator {
             chunked_dot,
             record_history.then_some(&mut history),
         );
-        match self.baseline {
-            None => self.baseline = Some(outcome.iterations),
-            Some(b) => self.stale = outcome.iterations > b + b / 2 + 2,
+        if let Preconditioner::Multigrid {
+            baseline, stale, ..
+        } = &mut self.preconditioner
+        {
+            match *baseline {
+                None => *baseline = Some(outcome.iterations),
+                Some(b) => *stale = outcome.iterations > b + b / 2 + 2,
+            }
         }
         SolveInfo {
             iterations: outcome.iterations,
@@ -253,7 +260,7 @@ impl Accelerator {
             solve_seconds: started.elapsed().as_secs_f64(),
             history,
             levels: match &self.preconditioner {
-                Preconditioner::Multigrid(h) => h.levels(),
+                Preconditioner::Multigrid { hierarchy, .. } => hierarchy.levels(),
                 Preconditioner::Sweep => 1,
             },
             ..SolveInfo::default()
