@@ -6,10 +6,11 @@
 //! * [`Seeds`] and [`nearest_seeds`]: every node's nearest seed in
 //!   straight line, `min_s (|x_j − x_s|, id_s)` over the seeds of its
 //!   connected part of the mesh (ties to the smaller seed number), found
-//!   in a k-d tree of the seeds. The answer is exact, so it depends neither
-//!   on the order of the nodes nor on how the mesh is cut: a rank holding
-//!   all seeds finds on its part what one process finds. [`connect`] marks
-//!   the nodes connected to a seed.
+//!   in a tree of the seeds' bounding boxes, up to a distance given per
+//!   node. The answer is exact, so it depends neither on the order of the
+//!   nodes nor on how the mesh is cut: a rank holding all seeds finds on
+//!   its part what one process finds. [`connect`] marks the nodes
+//!   connected to a seed.
 //! * [`heap_distances`]: the distance spread along the edges from a heap,
 //!   in order of distance, a node taking the nearest of its neighbours'
 //!   seeds. Cheaper still, but its answer depends on the order of its
