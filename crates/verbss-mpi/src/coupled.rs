@@ -135,6 +135,29 @@ impl<'c> LocalSolver<'c> {
         displacement: &mut [f64],
         params: &SolveParams,
     ) -> Result<SolveInfo> {
+        self.solve_with(coords, displacement, params, false)
+    }
+
+    /// The step solved to round-off from the guess in `displacement`
+    /// ([`Sweeper::solve_exact`]), as [`LocalSolver::solve`] takes its
+    /// arrays (collective).
+    pub fn solve_exact(
+        &mut self,
+        coords: &[f64],
+        displacement: &mut [f64],
+        params: &SolveParams,
+    ) -> Result<SolveInfo> {
+        self.solve_with(coords, displacement, params, true)
+    }
+
+    /// [`LocalSolver::solve`], or [`LocalSolver::solve_exact`] when `exact`.
+    fn solve_with(
+        &mut self,
+        coords: &[f64],
+        displacement: &mut [f64],
+        params: &SolveParams,
+        exact: bool,
+    ) -> Result<SolveInfo> {
         let dim = self.sweeper.part().dim;
         let n = self.local.len();
         if coords.len() != dim * n || displacement.len() != dim * n {
@@ -152,7 +175,12 @@ impl<'c> LocalSolver<'c> {
             u[dim * p..dim * (p + 1)].copy_from_slice(&displacement[dim * i..dim * (i + 1)]);
         }
         self.sweeper.exchange(&mut x, dim);
-        let info = self.sweeper.solve(&x, &self.colours, &mut u, params)?;
+        let info = if exact {
+            self.sweeper
+                .solve_exact(&x, &self.colours, &mut u, params)?
+        } else {
+            self.sweeper.solve(&x, &self.colours, &mut u, params)?
+        };
         for (i, &p) in self.local.iter().enumerate() {
             displacement[dim * i..dim * (i + 1)].copy_from_slice(&u[dim * p..dim * (p + 1)]);
         }

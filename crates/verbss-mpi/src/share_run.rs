@@ -24,12 +24,14 @@
 //! inverts a cell or whose solve does not converge is redone in increments
 //! (the step's prescribed displacements spread linearly, the springs on
 //! each increment's start), halved after a failure and doubled after a
-//! success down to `2^-K` of the step, as `verbss deform` does. A step that
-//! inverts a cell (in the smallest increment) stops the run with exit code
-//! 3 (the pieces hold the last valid mesh), a step that the sweeps, GMRES
-//! preconditioned by the sweep and the safe sweeps do not solve with exit
-//! code 4: without the whole mesh there is no multigrid or exact solve to
-//! escalate to. Unless `--quiet`, every rank says what it holds, rank 0 the
+//! success down to `2^-K` of the step, as `verbss deform` does. A converged
+//! solve that inverts a cell is solved again to round-off
+//! ([`LocalSolver::solve_exact`]) and judged on that where it converges. A
+//! step that inverts a cell (in the smallest increment) stops the run with
+//! exit code 3 (the pieces hold the last valid mesh), a step that the
+//! sweeps, GMRES preconditioned by the sweep and the safe sweeps do not
+//! solve with exit code 4: without the whole mesh there is no multigrid or
+//! direct solve to escalate to. Unless `--quiet`, every rank says what it holds, rank 0 the
 //! rigid layer's node count and thickness, and rank 0 prints
 //! the single-process progress line of each step, its quality reduced over
 //! the ranks ([`verbss_mpi::step_quality`]); `--report` writes the
@@ -240,11 +242,26 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
                     )
                 }
             };
-            let info = solver.solve(&springs, &mut u, &job.settings.solve)?;
-            let moved: Vec<f64> = springs.iter().zip(&u).map(|(x, du)| x + du).collect();
+            let mut info = solver.solve(&springs, &mut u, &job.settings.solve)?;
+            let mut moved: Vec<f64> = springs.iter().zip(&u).map(|(x, du)| x + du).collect();
             let check = Instant::now();
-            let r = step_quality(&world, mesh, &moved, &orientation);
+            let mut r = step_quality(&world, mesh, &moved, &orientation);
             check_seconds += check.elapsed().as_secs_f64();
+            // An inversion is never the solver's fault: a converged solve
+            // that inverts a cell is solved again to round-off, and that is
+            // judged where it converges (as on one process).
+            if job.settings.solve.escalate && info.converged && r.inverted > 0 {
+                let exact = solver.solve_exact(&springs, &mut u, &job.settings.solve)?;
+                if exact.converged {
+                    moved = springs.iter().zip(&u).map(|(x, du)| x + du).collect();
+                    let check = Instant::now();
+                    r = step_quality(&world, mesh, &moved, &orientation);
+                    check_seconds += check.elapsed().as_secs_f64();
+                    solves.push(std::mem::replace(&mut info, exact));
+                } else {
+                    solves.push(exact);
+                }
+            }
             let failed = !info.converged || r.inverted > 0;
             solves.push(info);
             if failed && h * 0.5 >= floor {
@@ -284,7 +301,7 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
             progress.finish();
             let message = format!(
                 "step {step}: the stages {} did not converge ({} iterations in all, the last \
-                 value {:e}){}; a partitioned input has no multigrid or exact solve to \
+                 value {:e}){}; a partitioned input has no multigrid or direct solve to \
                  escalate to: raise --max-iterations, or take more --steps",
                 Stage::names(&[&[Stage::Sweeps], &info.stages[..]].concat()),
                 info.iterations,

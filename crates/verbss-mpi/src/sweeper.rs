@@ -26,7 +26,7 @@ use verbss::geometry::{ldlt_factor, morton_keys, packed_len, point};
 use verbss::solve::verify::{block_estimate, check, heights};
 use verbss::solve::{
     coupled, relax, unit_directions, Accel, Frames, Method, NodeRole, SolveInfo, SolveParams,
-    Stage, ERROR_FRACTION,
+    Stage, ERROR_FRACTION, ROUND_OFF,
 };
 use verbss::springs::{self, CellTags, Connectivity, NodeBlocks, Springs};
 use verbss::topology;
@@ -180,6 +180,36 @@ impl<'c> Sweeper<'c> {
         displacement: &mut [f64],
         params: &SolveParams,
     ) -> Result<SolveInfo> {
+        self.solve_with(coords, colours, displacement, params, false)
+    }
+
+    /// [`Sweeper::solve`] to round-off, from the guess in `displacement`:
+    /// GMRES preconditioned by the sweep until the residual is [`ROUND_OFF`]
+    /// of the largest prescribed displacement, at most
+    /// [`gmres::EXACT_ITERATIONS`] (the iterative stage of
+    /// [`verbss::solve::Engine::solve_exact`]).
+    /// What a converged step that inverts a cell is solved with again
+    /// before the inversion is judged: an inversion is never the solver's
+    /// fault. `converged` says whether it got there (collective).
+    pub fn solve_exact(
+        &mut self,
+        coords: &[f64],
+        colours: &[u32],
+        displacement: &mut [f64],
+        params: &SolveParams,
+    ) -> Result<SolveInfo> {
+        self.solve_with(coords, colours, displacement, params, true)
+    }
+
+    /// [`Sweeper::solve`], or [`Sweeper::solve_exact`] when `exact`.
+    fn solve_with(
+        &mut self,
+        coords: &[f64],
+        colours: &[u32],
+        displacement: &mut [f64],
+        params: &SolveParams,
+        exact: bool,
+    ) -> Result<SolveInfo> {
         let start = Instant::now();
         self.check(coords, colours, displacement, params)?;
         let reuse = self.built.as_ref().is_some_and(|b| {
@@ -207,8 +237,8 @@ impl<'c> Sweeper<'c> {
         let solving = Instant::now();
         self.halo.exchange(self.comm, displacement, self.part.dim);
         let mut info = match self.part.dim {
-            2 => self.run::<2>(displacement, params),
-            _ => self.run::<3>(displacement, params),
+            2 => self.run::<2>(displacement, params, exact),
+            _ => self.run::<3>(displacement, params, exact),
         }?;
         info.form_seconds = form_seconds;
         info.solve_seconds = solving.elapsed().as_secs_f64();
@@ -353,6 +383,7 @@ impl<'c> Sweeper<'c> {
         &self,
         displacement: &mut [f64],
         params: &SolveParams,
+        exact: bool,
     ) -> Result<SolveInfo> {
         let b = self.built.as_ref().expect("built before the run");
         let owned = b.frames.len();
@@ -362,7 +393,14 @@ impl<'c> Sweeper<'c> {
             scale = scale.max(given.iter().map(|v| v * v).sum::<f64>().sqrt());
         }
         let global_scale = self.comm.max(scale);
-        let threshold = if params.absolute_tolerance || global_scale == 0.0 {
+        let threshold = if exact {
+            ROUND_OFF
+                * if global_scale == 0.0 {
+                    1.0
+                } else {
+                    global_scale
+                }
+        } else if params.absolute_tolerance || global_scale == 0.0 {
             params.tolerance
         } else {
             params.tolerance * global_scale
@@ -375,6 +413,18 @@ impl<'c> Sweeper<'c> {
         let mut info = SolveInfo::default();
         if b.dofs == 0 {
             info.converged = true;
+            return Ok(info);
+        }
+        if exact {
+            info.stages.push(Stage::Gmres);
+            let outcome = self.gmres::<D>(b, &constant, &mut work, threshold, true);
+            info.iterations = outcome.iterations;
+            info.residual = outcome.estimate;
+            if outcome.converged && !outcome.diverged {
+                info.error_ratio = self.error_ratio::<D>(b, &constant, &work);
+                info.converged = info.error_ratio <= ERROR_FRACTION;
+            }
+            self.scatter::<D>(b, &work, displacement);
             return Ok(info);
         }
         // Under escalation a stage that diverges or runs out of sweeps is
@@ -407,7 +457,7 @@ impl<'c> Sweeper<'c> {
         }
         if !info.converged && params.escalate {
             info.stages.push(Stage::Gmres);
-            let outcome = self.gmres::<D>(b, &constant, &mut work, threshold);
+            let outcome = self.gmres::<D>(b, &constant, &mut work, threshold, false);
             info.iterations += outcome.iterations;
             info.residual = outcome.estimate;
             if outcome.diverged {
@@ -425,10 +475,15 @@ impl<'c> Sweeper<'c> {
                 Swept::Diverged { .. } => work.copy_from_slice(&initial),
             }
         }
+        self.scatter::<D>(b, &work, displacement);
+        Ok(info)
+    }
+
+    /// The positions' values `work` back into the local nodes' `displacement`.
+    fn scatter<const D: usize>(&self, b: &Built, work: &[f64], displacement: &mut [f64]) {
         for (p, &i) in b.order.iter().enumerate() {
             displacement[D * i..D * (i + 1)].copy_from_slice(&work[D * p..D * (p + 1)]);
         }
-        Ok(info)
     }
 
     /// Sweeps of `work` with `omega` until the eq.-8 value falls below

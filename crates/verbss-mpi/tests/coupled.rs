@@ -17,7 +17,7 @@ mod common;
 
 fn mesh_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets/meshes/su2")
+        .join("../../assets/meshes")
         .join(name)
 }
 
@@ -85,9 +85,21 @@ fn worker() {
     let mut solver = LocalSolver::new(&world, &local_mesh, &global, &local_roles, &[]).unwrap();
     let mut displacement = pick(&u);
     let mut params = SolveParams::default();
-    params.tolerance = TOLERANCE;
-    params.max_iterations = 100_000;
-    let info = solver.solve(&coords, &mut displacement, &params).unwrap();
+    let info = if std::env::var("VERBSS_MPI_SOLVE").is_ok_and(|s| s == "exact") {
+        // Three plain sweeps, then the solve to round-off from there.
+        let mut rough = params.clone();
+        (rough.max_iterations, rough.escalate) = (3, false);
+        solver.solve(&coords, &mut displacement, &rough).unwrap();
+        let info = solver
+            .solve_exact(&coords, &mut displacement, &params)
+            .unwrap();
+        assert_eq!(info.stages, [verbss::solve::Stage::Gmres], "{info:?}");
+        info
+    } else {
+        params.tolerance = TOLERANCE;
+        params.max_iterations = 100_000;
+        solver.solve(&coords, &mut displacement, &params).unwrap()
+    };
     assert!(info.converged, "{info:?}");
     let mut text = String::new();
     for (k, &g) in used.iter().enumerate() {
@@ -100,12 +112,21 @@ fn worker() {
     std::fs::write(format!("{out}.{rank}"), text).unwrap();
 }
 
-/// Runs the worker on `np` ranks; every node's displacement (the copies on
-/// several ranks must be equal).
-fn distributed(np: usize, mesh: &str, group: &str, dim: usize, nodes: usize) -> Vec<f64> {
+/// Runs the worker on `np` ranks with `solve` (`sweeps` or `exact`, the
+/// solve to round-off after three sweeps); every node's displacement (the
+/// copies on several ranks must be equal).
+fn distributed(
+    np: usize,
+    mesh: &str,
+    group: &str,
+    solve: &str,
+    dim: usize,
+    nodes: usize,
+) -> Vec<f64> {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("u");
     let o = common::mpirun(np, dir.path())
+        .env("VERBSS_MPI_SOLVE", solve)
         .env("VERBSS_MPI_MESH", mesh)
         .env("VERBSS_MPI_GROUP", group)
         .env("VERBSS_MPI_OUT", &out)
@@ -154,21 +175,23 @@ fn max_difference(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
 }
 
-/// 1, 2 and 3 ranks against the direct solution (relative to the largest
-/// prescribed displacement, |(0.02, 0.01)|) and against each other.
-fn matches_direct(name: &str, group: &str, bound: f64) {
+/// 1, 2 and 3 ranks solving with `solve` against the direct solution
+/// (relative to the largest prescribed displacement, |(0.02, 0.01)|), and
+/// against each other within `spread_bound`.
+fn matches_direct(name: &str, group: &str, solve: &str, bound: f64, spread_bound: f64) {
     let mesh = verbss::io::read(&mesh_path(name)).unwrap();
     let exact = direct(&mesh, group);
     let scale = (0.02f64 * 0.02 + 0.01 * 0.01).sqrt();
-    let one = distributed(1, name, group, mesh.dim, mesh.node_count());
+    let (dim, n) = (mesh.dim, mesh.node_count());
+    let one = distributed(1, name, group, solve, dim, n);
     let error = max_difference(&one, &exact) / scale;
     assert!(error < bound, "1 rank: error {error:e}");
     for np in [2, 3] {
-        let u = distributed(np, name, group, mesh.dim, mesh.node_count());
+        let u = distributed(np, name, group, solve, dim, n);
         let error = max_difference(&u, &exact) / scale;
         assert!(error < bound, "{np} ranks: error {error:e}");
         let spread = max_difference(&u, &one) / scale;
-        assert!(spread < 1e-12, "{np} ranks against 1: {spread:e}");
+        assert!(spread < spread_bound, "{np} ranks against 1: {spread:e}");
     }
 }
 
@@ -177,7 +200,13 @@ fn naca0012_partitions_match_the_direct_solution() {
     if !common::mpi_ready() {
         return;
     }
-    matches_direct("mesh_NACA0012_inv.su2", "airfoil", 1e-10);
+    matches_direct(
+        "su2/mesh_NACA0012_inv.su2",
+        "airfoil",
+        "sweeps",
+        1e-10,
+        1e-12,
+    );
 }
 
 #[test]
@@ -185,5 +214,26 @@ fn tetrahedral_brick_partitions_match_the_direct_solution() {
     if !common::mpi_ready() {
         return;
     }
-    matches_direct("mesh_brick_tets_ffd.su2", "z_p", 1e-10);
+    matches_direct("su2/mesh_brick_tets_ffd.su2", "z_p", "sweeps", 1e-10, 1e-12);
+}
+
+/// The solve to round-off that judges an inverted cell (GMRES
+/// preconditioned by the sweep, from three sweeps) gives the direct
+/// solution on 1, 2 and 3 ranks: the hybrid channel around a hole (2D) and
+/// the tetrahedral box (3D), small, since this stage takes hundreds of
+/// iterations. Its inner products are summed in another order on each
+/// rank count, so the ranks agree to its round-off, not to the bit.
+#[test]
+fn the_solve_to_round_off_matches_the_direct_solution() {
+    if !common::mpi_ready() {
+        return;
+    }
+    matches_direct(
+        "gmsh/channel_hole_v41_ascii.msh",
+        "wall",
+        "exact",
+        1e-9,
+        1e-9,
+    );
+    matches_direct("gmsh/box_v41_ascii.msh", "inlet", "exact", 1e-9, 1e-9);
 }

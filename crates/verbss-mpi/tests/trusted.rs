@@ -216,3 +216,47 @@ fn sweeps_cut_short_go_on_to_the_distributed_gmres() {
         "{worst:e} from the exact solution"
     );
 }
+
+/// A converged step that inverts cells is solved again to round-off (the
+/// distributed `gmres`, from the accepted sweeps) before the inversion is
+/// judged, as on one process (an inversion is never the solver's fault):
+/// the NACA0012 pitched 60° in one step still inverts 2 cells, as on one
+/// process, and stops with exit code 3, its report naming both stages.
+#[test]
+fn an_inverting_step_is_solved_to_round_off_before_it_is_judged() {
+    if !ptscotch_ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = repo("assets/meshes/su2/mesh_NACA0012_inv.su2");
+    let whole = io::read(&mesh).unwrap();
+    let report = dir.path().join("report.json");
+    let args = [
+        "--moving",
+        "airfoil",
+        "--rotate",
+        "60",
+        "--center",
+        "0.25,0",
+        "--steps",
+        "1",
+        "--report",
+        report.to_str().unwrap(),
+    ];
+    let (o, _) = run(dir.path(), &mesh, "inverts", &args, &whole);
+    assert_eq!(
+        o.status.code(),
+        Some(3),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let step = &json["steps"][1];
+    assert_eq!(
+        step["stages"],
+        serde_json::json!(["sweeps", "gmres"]),
+        "{json}"
+    );
+    assert_eq!(step["inverted"], 2, "{json}");
+}

@@ -14,19 +14,28 @@ use verbss::solve::gmres::{self, Outcome, Workspace};
 use verbss::solve::{krylov_stop, residual, GMRES_ITERATIONS, GMRES_RESTART};
 
 use super::{Built, Sweeper};
+
+/// The iterations of a solve to round-off ([`Sweeper::solve_exact`]): four
+/// times the stage's, since without the whole mesh there is no multigrid or
+/// direct solve to do it (400 left the NACA0012 of `assets/meshes/su2` at
+/// a residual of 4e-11 of the move, 1,600 brought it to 1e-12).
+pub const EXACT_ITERATIONS: usize = 4 * GMRES_ITERATIONS;
 use crate::halo::swap;
 
 impl Sweeper<'_> {
     /// GMRES on the owned unknowns of `work` (the initial guess on entry,
     /// its ghosts from their owners; the result on return), with right-hand
     /// side `constant`, stopped at [`krylov_stop`] of `threshold` and the
-    /// smallest cell height of all ranks (collective).
+    /// smallest cell height of all ranks, after at most [`GMRES_ITERATIONS`];
+    /// or when `exact` (a solve to round-off) at `threshold` itself, after
+    /// at most [`EXACT_ITERATIONS`] (collective).
     pub(super) fn gmres<const D: usize>(
         &self,
         b: &Built,
         constant: &[f64],
         work: &mut [f64],
         threshold: f64,
+        exact: bool,
     ) -> Outcome {
         let owned = b.frames.len();
         let local = b.heights.iter().fold(f64::INFINITY, |a, &h| a.min(h));
@@ -54,8 +63,16 @@ impl Sweeper<'_> {
             &mut Workspace::new(work.len(), GMRES_RESTART),
             work,
             b.dofs as usize,
-            krylov_stop(threshold, smallest),
-            GMRES_ITERATIONS,
+            if exact {
+                threshold
+            } else {
+                krylov_stop(threshold, smallest)
+            },
+            if exact {
+                EXACT_ITERATIONS
+            } else {
+                GMRES_ITERATIONS
+            },
             |x, out| residual_into(constant, x, out, 1.0),
             |v, out| residual_into(&zeros, v, out, -1.0),
             |r, e| self.symmetric_sweep::<D>(b, r, e),

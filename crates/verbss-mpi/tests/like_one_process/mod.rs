@@ -477,6 +477,7 @@ pub fn deforms_like_one_process(
         robust: Robust::off(),
         args: &[],
         steps: 2,
+        stages: "sweeps",
     };
     deforms_like_one_process_with(mesh, group, motion, reference, scale, env, &near_wall).0
 }
@@ -490,6 +491,10 @@ pub struct NearWall<'a> {
     pub args: &'a [&'a str],
     /// The steps of both runs.
     pub steps: usize,
+    /// The stages rank 0's progress line names for every step: `sweeps`,
+    /// or `sweeps → gmres` where an increment inverted a cell and was
+    /// solved again to round-off before it was judged.
+    pub stages: &'a str,
 }
 
 /// [`deforms_like_one_process`] with the near-wall treatments
@@ -539,7 +544,7 @@ pub fn deforms_like_one_process_with(
         let stderr = String::from_utf8_lossy(&o.stderr);
         let steps = near_wall.steps;
         for step in 1..=steps {
-            let line = format!("step {step}/{steps}: sweeps (");
+            let line = format!("step {step}/{steps}: {} (", near_wall.stages);
             assert_eq!(stderr.matches(&line).count(), 1, "{stderr}");
         }
         stdouts.push(String::from_utf8_lossy(&o.stdout).into_owned());

@@ -56,7 +56,7 @@ pub const GMRES_FIRST_NODES_3D: usize = 150_000;
 const MULTIGRID_MARGIN: f64 = 0.1;
 /// An exact solve's iterative stages stop at this fraction of the step's
 /// largest prescribed displacement.
-const ROUND_OFF: f64 = 1e-12;
+pub const ROUND_OFF: f64 = 1e-12;
 
 /// [`run`] for one dimension.
 type RunIn = fn(

@@ -89,7 +89,7 @@ mod verbss;
 pub mod verify;
 pub use self::escalate::{
     krylov_stop, DIRECT_NODES_2D, DIRECT_NODES_3D, GMRES_FIRST_NODES_3D, GMRES_ITERATIONS,
-    GMRES_RESTART,
+    GMRES_RESTART, ROUND_OFF,
 };
 pub use self::frame::{unit_directions, Frame, Frames};
 pub use self::params::{
