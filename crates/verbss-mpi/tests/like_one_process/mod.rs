@@ -169,7 +169,8 @@ fn run(
     o
 }
 
-/// The pieces `dir/moved_RANK.EXT` of a run on `np` ranks hold every cell
+/// The pieces of a run on `np` ranks (`dir/moved_RANK.vtu`, or the split
+/// set `dir/moved_PARTITION.msh`, partitions from 1) hold every cell
 /// of `whole` once, with its tag and on the nodes of the same tags, and
 /// their nodes the single-process coordinates `one` to 1e-10 of the largest
 /// displacement `scale`; returns them.
@@ -184,7 +185,7 @@ fn pieces_like_one_process(
     let index = node_index(whole);
     let dim = whole.dim;
     let pieces: Vec<Mesh> = (0..np)
-        .map(|r| verbss::io::read(&dir.join(format!("moved_{r}.{ext}"))).unwrap())
+        .map(|r| verbss::io::read(&dir.join(piece_name(ext, r))).unwrap())
         .collect();
     let cell_index: HashMap<u64, usize> = whole
         .cell_tags
@@ -219,6 +220,15 @@ fn pieces_like_one_process(
     assert_eq!(cells, all, "{ext}: {np} ranks");
     assert!(worst < 1e-10 * scale, "{ext}: {np} ranks: {worst:e}");
     pieces
+}
+
+/// The piece of rank `r`: `moved_R.vtu`, or `moved_{R+1}.msh` (partition
+/// `R + 1` of a split set).
+pub fn piece_name(ext: &str, r: usize) -> String {
+    match ext {
+        "msh" => format!("moved_{}.msh", r + 1),
+        _ => format!("moved_{r}.{ext}"),
+    }
 }
 
 /// Opens each MSH piece given, then merges them all: prints, as JSON, the
@@ -319,7 +329,7 @@ pub fn msh_pieces_like_one_process(
         assert!(!out.exists(), "{}", out.display());
         let read = pieces_like_one_process(dir.path(), "msh", np, &whole, &one, scale);
         let paths: Vec<PathBuf> = (0..np)
-            .map(|r| dir.path().join(format!("moved_{r}.msh")))
+            .map(|r| dir.path().join(piece_name("msh", r)))
             .collect();
         for path in &paths {
             let head = std::fs::read(path).unwrap();
