@@ -226,9 +226,9 @@ pub fn decode_entities(all: &[Vec<f64>]) -> Vec<SplitEntity> {
         .flat_map(|e| e.chunks_exact(8))
         .map(|r| SplitEntity {
             partition: r[0] as usize,
-            parent: match r[1] {
-                p if p == -1.0 => SplitParent::Domain,
-                p if p == -2.0 => SplitParent::Boundary,
+            parent: match r[1] as i64 {
+                -1 => SplitParent::Domain,
+                -2 => SplitParent::Boundary,
                 g => SplitParent::Group(g as usize),
             },
             bbox: r[2..8].try_into().unwrap_or([0.0; 6]),
