@@ -39,7 +39,8 @@ fn worker() {
     let out = std::env::var("VERBSS_MPI_OUT").unwrap();
     let share = read_rank_split(&world, &path).unwrap();
     let dim = share.mesh.dim;
-    let (roles, _) = prescribe(&share, std::slice::from_ref(&group), |_| Ok(vec![0.0; dim])).unwrap();
+    let (roles, _) =
+        prescribe(&share, std::slice::from_ref(&group), |_| Ok(vec![0.0; dim])).unwrap();
     let global = global_numbers(&share);
     let solver = LocalSolver::new(&world, &share.mesh, &global, &roles, &[]).unwrap();
     let part = solver.part();

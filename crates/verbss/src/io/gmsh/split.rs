@@ -99,11 +99,14 @@ pub fn read_split(first: &Path, wanted: RangeInclusive<usize>) -> Result<Share> 
                 first.display()
             )));
         }
-        let share = read_share(&file, k..=k)?;
+        let other = || format!("is {} partition {k} of the set?", file.display());
+        let share = read_share(&file, k..=k)
+            .map_err(|e| Error::InvalidMesh(format!("{e} ({})", other())))?;
         if share.mesh.cell_count() == 0 {
             return Err(Error::InvalidMesh(format!(
-                "{}: no element of partition {k}: is it partition {k} of the set?",
-                file.display()
+                "{}: no element of partition {k}: {}",
+                file.display(),
+                other()
             )));
         }
         joined = Some(match joined {
