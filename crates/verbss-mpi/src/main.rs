@@ -76,8 +76,9 @@ struct MpiDeformArgs {
     #[arg(long, value_name = "FILE.vtu")]
     gather: Option<PathBuf>,
     /// From a partitioned MSH 4.1 or an SU2 input: no rank holds the whole
-    /// mesh, each writes its own cells as a piece beside OUT, OUT-STEM_RANK.msh
-    /// (MSH 4.1) for OUT.msh, OUT-STEM_RANK.vtu and OUT.pvtu for OUT.pvtu
+    /// mesh, each writes its own cells as a piece beside OUT: for OUT.msh,
+    /// partition RANK+1 of a split set OUT-STEM_1.msh … OUT-STEM_P.msh (MSH
+    /// 4.1, as `gmsh -part_split`); OUT-STEM_RANK.vtu and OUT.pvtu for OUT.pvtu
     /// (which implies --pieces).
     #[arg(long)]
     pieces: bool,
