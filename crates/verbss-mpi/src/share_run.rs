@@ -1,6 +1,8 @@
 //! `verbss-mpi deform` with a `.pvtu` output or `--pieces`, from a
 //! partitioned MSH 4.1 input, where every rank reads only its own partitions
-//! ([`verbss_mpi::share::read_rank_share`]), or from a single-zone SU2
+//! ([`verbss_mpi::share::read_rank_share`]; with `--split`, only its
+//! partitions' files of a split set, [`verbss_mpi::share::read_rank_split`]),
+//! or from a single-zone SU2
 //! input, which rank 0 reads in one pass and scatters and PT-Scotch cuts
 //! ([`verbss_mpi::scatter`], `verbss_mpi::repartition`), or from a
 //! single-zone CGNS input, of which every rank reads its own blocks
@@ -10,7 +12,8 @@
 //! `--stiffening` asks ([`verbss_mpi::near_wall`]), and the flow-solver
 //! entry ([`verbss_mpi::coupled::LocalSolver`]) sweeps,
 //! and every rank checks and writes its own cells, as a `.vtu` piece (rank 0
-//! the `.pvtu` joining them) or as an MSH 4.1 piece — no rank holds the
+//! the `.pvtu` joining them) or as its partition of a split MSH 4.1 set
+//! (the form of `gmsh -part_split`) — no rank holds the
 //! whole mesh (docs/distributed.md).
 //!
 //! Step `n` of `N` prescribes the moving nodes where the motion puts their
