@@ -359,4 +359,38 @@ mod tests {
         let none = share(PieceLabels::default());
         assert_eq!(msh_facet_tags(&none, 100), [vec![100], vec![101, 102]]);
     }
+
+    /// The set's groups are every share's, by name, with their own tags
+    /// unless taken or missing; the cells' group is the file's, else a
+    /// fresh `domain`; the partition entities come back in order.
+    #[test]
+    fn split_models_agree_across_shares() {
+        let s = share(PieceLabels::default());
+        let mut other = s.mesh.clone();
+        other.groups[0].name = "inlet".into();
+        other.groups[1].tag = None;
+        let encoded = [encode_groups(&s.mesh), encode_groups(&other)];
+        let (groups, domain) = split_groups(&encoded, None);
+        let named: Vec<(&str, usize, i32)> = groups
+            .iter()
+            .map(|g| (g.name.as_str(), g.dim, g.physical))
+            .collect();
+        // "inlet" and "wall" both say 1: the first by name keeps it.
+        assert_eq!(named, [("all", 1, 2), ("inlet", 1, 1), ("wall", 1, 3)]);
+        assert_eq!(domain, (4, "domain".to_string()));
+        let (_, domain) = split_groups(&encoded, Some((7, "fluid".into())));
+        assert_eq!(domain, (7, "fluid".to_string()));
+        let entity = |partition, parent| SplitEntity {
+            partition,
+            parent,
+            bbox: [0.0, 1.0, 2.0, 3.0, 4.0, 5.0],
+        };
+        let two = vec![
+            entity(2, SplitParent::Group(1)),
+            entity(2, SplitParent::Domain),
+        ];
+        let one = vec![entity(1, SplitParent::Boundary)];
+        let back = decode_entities(&[encode_entities(&two), encode_entities(&one)]);
+        assert_eq!(back, [one[0].clone(), two[1].clone(), two[0].clone()]);
+    }
 }
