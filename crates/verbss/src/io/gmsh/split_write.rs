@@ -215,7 +215,12 @@ pub fn write_split_piece_to(
 
     out.text("$Elements\n")?;
     let own = |parent| model.tag_of(piece.partition, parent);
-    let domain = own(SplitParent::Domain).ok_or_else(|| invalid("no domain entity".into()))?;
+    let domain = own(SplitParent::Domain).ok_or_else(|| {
+        invalid(format!(
+            "the set's partition entities have no piece of the domain in partition {}",
+            piece.partition
+        ))
+    })?;
     let mut blocks = vec![(mesh.dim, domain, &mesh.cells, mesh.cell_tags.as_slice())];
     for ((g, &k), tags) in mesh.groups.iter().zip(piece.groups).zip(piece.facet_tags) {
         if let Some(tag) = own(SplitParent::Group(k)).filter(|_| !g.facets.is_empty()) {
