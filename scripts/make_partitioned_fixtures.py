@@ -15,6 +15,9 @@ It partitions each model as `gmsh -part N -format msh41` does
   where Gmsh puts
   nodes that elements of one partition use on partition boundary entities
   that do not list that partition (four such references);
+* channel_hole_split3_v41_ascii_1.msh to _3.msh: the channel of
+  channel_hole_part3_v41_ascii.msh, the same 3 partitions, one file a
+  partition, as `gmsh -part 3 -part_split` writes them;
 * partitions.json: per file and partition, Gmsh's own numbers: the cells
   of the mesh dimension and the nodes on the partition's entities.
 """
@@ -57,18 +60,22 @@ def main():
     gmsh.initialize(sys.argv[:1])
     gmsh.option.setNumber("General.Terminal", 0)
     files = {}
-    for make, name, parts, binary, ghosts in [
-        (channel_with_hole, "channel_hole_part3_v41_ascii.msh", 3, False, False),
-        (box, "box_part3_v41_binary.msh", 3, True, True),
-        (box_as_written, "box_part6_v41_ascii.msh", 6, False, False),
+    for make, name, parts, binary, ghosts, split in [
+        (channel_with_hole, "channel_hole_part3_v41_ascii.msh", 3, False, False, False),
+        (box, "box_part3_v41_binary.msh", 3, True, True, False),
+        (box_as_written, "box_part6_v41_ascii.msh", 6, False, False, False),
+        (channel_with_hole, "channel_hole_split3_v41_ascii.msh", 3, False, False, True),
     ]:
         make()
         gmsh.option.setNumber("Mesh.PartitionCreateGhostCells", 1 if ghosts else 0)
         gmsh.model.mesh.partition(parts)
         gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
         gmsh.option.setNumber("Mesh.Binary", 1 if binary else 0)
+        # -part_split: NAME_1.msh to NAME_K.msh, one file a partition.
+        gmsh.option.setNumber("Mesh.PartitionSplitMeshFiles", 1 if split else 0)
         gmsh.write(os.path.join(OUT, name))
-        files[name] = partition_counts()
+        if not split:
+            files[name] = partition_counts()
         gmsh.clear()
     gmsh.finalize()
     with open(os.path.join(OUT, "partitions.json"), "w") as f:

@@ -15,7 +15,9 @@
 //! every rank reads only its own partitions (MSH), rank 0 streams the file
 //! to the others (SU2, [`su2`]) or every rank reads its own blocks (CGNS,
 //! [`cgns`]) and PT-Scotch cuts it; every rank writes only its own cells
-//! (a `.vtu` or an MSH 4.1 piece), and no rank holds the whole mesh.
+//! (a `.vtu` or an MSH 4.1 piece), and no rank holds the whole mesh. With
+//! `--split`, the MSH input is a set of files, one a partition (`gmsh
+//! -part_split`, or the pieces of an earlier run), each rank reading its own.
 //!
 //! Exit codes as `verbss`: 0 success, 2 bad input, 3 an inverted element,
 //! 4 a step no solver could solve. Built without MPI or METIS (see
@@ -74,11 +76,18 @@ struct MpiDeformArgs {
     #[arg(long, value_name = "FILE.vtu")]
     gather: Option<PathBuf>,
     /// From a partitioned MSH 4.1 or an SU2 input: no rank holds the whole
-    /// mesh, each writes its own cells as a piece beside OUT, OUT-STEM_RANK.msh
-    /// (MSH 4.1) for OUT.msh, OUT-STEM_RANK.vtu and OUT.pvtu for OUT.pvtu
+    /// mesh, each writes its own cells as a piece beside OUT: for OUT.msh,
+    /// partition RANK+1 of a split set OUT-STEM_1.msh … OUT-STEM_P.msh (MSH
+    /// 4.1, as `gmsh -part_split`); OUT-STEM_RANK.vtu and OUT.pvtu for OUT.pvtu
     /// (which implies --pieces).
     #[arg(long)]
     pieces: bool,
+    /// MESH is the first file NAME_1.msh of a split set, NAME_1.msh to
+    /// NAME_K.msh (`gmsh -part K -part_split`, or the MSH pieces of --pieces):
+    /// each rank reads only its partitions' files. Needs --pieces or a .pvtu
+    /// output.
+    #[arg(long)]
+    split: bool,
 }
 
 #[cfg(with_mpi)]
@@ -90,8 +99,12 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Deform(args) if args.pieces || share_run::applies(&args.deform) => {
-            share_run::run_shares(args.deform, args.gather)
+            share_run::run_shares(args.deform, args.gather, args.split)
         }
+        Command::Deform(args) if args.split => Err(anyhow::anyhow!(
+            "--split {}: a split set is read rank by rank, for --pieces or a .pvtu output",
+            args.deform.mesh().display()
+        )),
         Command::Deform(args) => match args.gather {
             Some(path) => Err(anyhow::anyhow!(
                 "--gather {}: only a .pvtu output or --pieces (from a partitioned MSH 4.1, an \

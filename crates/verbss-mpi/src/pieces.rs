@@ -5,14 +5,19 @@
 //! it owns, [`Part::own_cells`]) with their nodes, point data
 //! `displacement` and `node_tag`, cell data `quality`, `rank`, `cell_tag`
 //! and `group`. Rank 0 writes `NAME.pvtu` listing the pieces. Or, where no
-//! rank holds the whole mesh, rank `r` writes its share as `NAME_r.msh`
-//! ([`write_msh_piece`]).
+//! rank holds the whole mesh, rank `r` writes its share as partition `r + 1`
+//! of a split set, `NAME_{r+1}.msh` ([`write_msh_piece`]), in the form of
+//! `gmsh -part P -part_split`.
 
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
 use verbss::io::gmsh::partitioned::Share;
-use verbss::io::gmsh::{write_piece_to, PieceLabels};
+use verbss::io::gmsh::split_write::{
+    write_split_piece_to, SplitEntity, SplitGroup, SplitModel, SplitParent, SplitPiece,
+};
+#[cfg(test)]
+use verbss::io::gmsh::PieceLabels;
 use verbss::io::{vtu, write_atomic};
 use verbss::mesh::FileOrigin;
 use verbss::{Cells, Mesh, Result};
@@ -108,29 +113,129 @@ pub fn piece_path(dir: &Path, name: &str, rank: i32) -> PathBuf {
     dir.join(format!("{name}_{rank}.vtu"))
 }
 
-/// Writes rank `rank`'s piece `dir/NAME_RANK.msh`, MSH 4.1 (binary or
-/// ASCII as the input): `share`'s cells and group facets, its nodes at
-/// `coords`, with the input's node and cell tags, the facet tags of
-/// [`msh_facet_tags`] from `fresh` on, and the input's physical groups
-/// ([`verbss::io::gmsh::write_piece_to`]); Gmsh merges the ranks' pieces
-/// into the whole mesh (a node on several pieces has one tag).
+/// Writes partition `partition` of the split set of `model`,
+/// `dir/NAME_PARTITION.msh`, MSH 4.1 (binary or ASCII as the input):
+/// `share`'s cells and group facets (those of group `k` of the share being
+/// group `groups[k]` of the model), its nodes at `coords`, with the input's
+/// node and cell tags and the facet tags `facet_tags`
+/// ([`msh_facet_tags`]).
 pub fn write_msh_piece(
-    dir: &Path,
-    name: &str,
-    rank: i32,
+    (dir, name): (&Path, &str),
     share: &Share,
-    fresh: u64,
+    model: &SplitModel,
+    (partition, groups, facet_tags): (usize, &[usize], &[Vec<u64>]),
     coords: &[f64],
 ) -> Result<PathBuf> {
-    let path = dir.join(format!("{name}_{rank}.msh"));
-    let labels = PieceLabels {
-        facet_tags: Some(msh_facet_tags(share, fresh)),
-        domain: share.labels.domain.clone(),
+    let path = split_path(dir, name, partition);
+    let piece = SplitPiece {
+        mesh: &share.mesh,
+        coords,
+        boundary: &share.boundary,
+        groups,
+        facet_tags,
+        partition,
     };
     write_atomic(&path, |w| {
-        write_piece_to(w, &share.mesh, coords, &labels, share.binary)
+        write_split_piece_to(w, model, &piece, share.binary)
     })?;
     Ok(path)
+}
+
+/// `dir/NAME_PARTITION.msh`, a file of a split set.
+pub fn split_path(dir: &Path, name: &str, partition: usize) -> PathBuf {
+    dir.join(format!("{name}_{partition}.msh"))
+}
+
+/// A share's groups for the model of a split set: per group, its
+/// dimension, tag (0 for none) and name, each ended by a zero byte.
+pub fn encode_groups(mesh: &Mesh) -> Vec<u8> {
+    let mut out = Vec::new();
+    for g in &mesh.groups {
+        let dim = g.facets.kinds.first().map_or(mesh.dim - 1, |k| k.dim());
+        out.extend(format!("{dim}\t{}\t{}\0", g.tag.unwrap_or(0), g.name).bytes());
+    }
+    out
+}
+
+/// The groups of a split set from every share's [`encode_groups`]: by
+/// name, each with its tag where positive and unique within its dimension,
+/// else a fresh one above every tag; and the cells' physical group,
+/// `domain` where given, else a fresh tag named `domain`.
+pub fn split_groups(
+    encoded: &[Vec<u8>],
+    domain: Option<(i32, String)>,
+) -> (Vec<SplitGroup>, (i32, String)) {
+    let mut seen: Vec<(String, usize, i32)> = Vec::new();
+    for record in encoded.iter().flat_map(|e| e.split(|&b| b == 0)) {
+        let text = String::from_utf8_lossy(record);
+        let mut fields = text.splitn(3, '\t');
+        let (Some(dim), Some(tag), Some(name)) = (fields.next(), fields.next(), fields.next())
+        else {
+            continue;
+        };
+        if !seen.iter().any(|(n, ..)| n == name) {
+            let parse = |s: &str| s.parse().unwrap_or(0);
+            seen.push((name.to_string(), parse(dim) as usize, parse(tag)));
+        }
+    }
+    seen.sort();
+    let mut next = seen.iter().map(|g| g.2).max().unwrap_or(0).max(0) + 1;
+    let mut used = HashSet::new();
+    let mut groups = Vec::new();
+    for (name, dim, tag) in seen {
+        let physical = if tag > 0 && used.insert((dim, tag)) {
+            tag
+        } else {
+            next += 1;
+            next - 1
+        };
+        groups.push(SplitGroup {
+            name,
+            dim,
+            physical,
+        });
+    }
+    let domain = domain
+        .filter(|(t, n)| *t > 0 && !n.contains(['"', '\n', '\r']))
+        .unwrap_or((next, "domain".into()));
+    (groups, domain)
+}
+
+/// Partition entities as numbers for an all-gather: per entity its
+/// partition, parent (−1 the domain, −2 the boundary, else the group) and
+/// bounding box.
+pub fn encode_entities(entities: &[SplitEntity]) -> Vec<f64> {
+    let mut out = Vec::new();
+    for e in entities {
+        let parent = match e.parent {
+            SplitParent::Domain => -1.0,
+            SplitParent::Boundary => -2.0,
+            SplitParent::Group(g) => g as f64,
+        };
+        out.extend([e.partition as f64, parent]);
+        out.extend(e.bbox);
+    }
+    out
+}
+
+/// The partition entities of every rank's [`encode_entities`], in order
+/// of partition and parent.
+pub fn decode_entities(all: &[Vec<f64>]) -> Vec<SplitEntity> {
+    let mut out: Vec<SplitEntity> = all
+        .iter()
+        .flat_map(|e| e.chunks_exact(8))
+        .map(|r| SplitEntity {
+            partition: r[0] as usize,
+            parent: match r[1] as i64 {
+                -1 => SplitParent::Domain,
+                -2 => SplitParent::Boundary,
+                g => SplitParent::Group(g as usize),
+            },
+            bbox: r[2..8].try_into().unwrap_or([0.0; 6]),
+        })
+        .collect();
+    out.sort_by_key(|e| (e.partition, e.parent));
+    out
 }
 
 /// The element tags of the group facets of `share` in its MSH piece: the
@@ -253,5 +358,39 @@ mod tests {
         assert_eq!(msh_facet_tags(&share(file), 100), [vec![7], vec![100, 9]]);
         let none = share(PieceLabels::default());
         assert_eq!(msh_facet_tags(&none, 100), [vec![100], vec![101, 102]]);
+    }
+
+    /// The set's groups are every share's, by name, with their own tags
+    /// unless taken or missing; the cells' group is the file's, else a
+    /// fresh `domain`; the partition entities come back in order.
+    #[test]
+    fn split_models_agree_across_shares() {
+        let s = share(PieceLabels::default());
+        let mut other = s.mesh.clone();
+        other.groups[0].name = "inlet".into();
+        other.groups[1].tag = None;
+        let encoded = [encode_groups(&s.mesh), encode_groups(&other)];
+        let (groups, domain) = split_groups(&encoded, None);
+        let named: Vec<(&str, usize, i32)> = groups
+            .iter()
+            .map(|g| (g.name.as_str(), g.dim, g.physical))
+            .collect();
+        // "inlet" and "wall" both say 1: the first by name keeps it.
+        assert_eq!(named, [("all", 1, 2), ("inlet", 1, 1), ("wall", 1, 3)]);
+        assert_eq!(domain, (4, "domain".to_string()));
+        let (_, domain) = split_groups(&encoded, Some((7, "fluid".into())));
+        assert_eq!(domain, (7, "fluid".to_string()));
+        let entity = |partition, parent| SplitEntity {
+            partition,
+            parent,
+            bbox: [0.0, 1.0, 2.0, 3.0, 4.0, 5.0],
+        };
+        let two = vec![
+            entity(2, SplitParent::Group(1)),
+            entity(2, SplitParent::Domain),
+        ];
+        let one = vec![entity(1, SplitParent::Boundary)];
+        let back = decode_entities(&[encode_entities(&two), encode_entities(&one)]);
+        assert_eq!(back, [one[0].clone(), two[1].clone(), two[0].clone()]);
     }
 }

@@ -95,7 +95,7 @@ pub fn prescribe(
 }
 
 #[cfg(with_mpi)]
-pub use with_mpi::{agree, read_rank_share};
+pub use with_mpi::{agree, read_rank_share, read_rank_split};
 
 #[cfg(with_mpi)]
 mod with_mpi {
@@ -103,6 +103,7 @@ mod with_mpi {
     use std::path::Path;
 
     use verbss::io::gmsh::partitioned::{partition_count, read_share, Share};
+    use verbss::io::gmsh::split::{read_split, split_count};
     use verbss::{Error, Result};
 
     use super::partitions_of;
@@ -121,7 +122,26 @@ mod with_mpi {
             let wanted = partitions_of(count, comm.size() as usize, comm.rank() as usize, path)?;
             read_share(path, wanted)
         };
-        let mut share = agree(comm, read(), "could not read its share")?;
+        joined(comm, read())
+    }
+
+    /// Reads this rank's share of the split set whose first file is
+    /// `first` (`NAME_1.msh`, [`verbss::io::gmsh::split`]): partition `k`
+    /// from `NAME_k.msh`, only the files of this rank's partitions
+    /// (collective, as [`read_rank_share`]).
+    pub fn read_rank_split(comm: &Comm, first: &Path) -> Result<Share> {
+        let read = || -> Result<Share> {
+            let count = split_count(first)?;
+            let wanted = partitions_of(count, comm.size() as usize, comm.rank() as usize, first)?;
+            read_split(first, wanted)
+        };
+        joined(comm, read())
+    }
+
+    /// `read` on every rank where every rank read its share, with the
+    /// ranks' roles joined (collective).
+    fn joined(comm: &Comm, read: Result<Share>) -> Result<Share> {
+        let mut share = agree(comm, read, "could not read its share")?;
         join_roles(comm, &mut share);
         Ok(share)
     }

@@ -1,6 +1,8 @@
 //! `verbss-mpi deform` with a `.pvtu` output or `--pieces`, from a
 //! partitioned MSH 4.1 input, where every rank reads only its own partitions
-//! ([`verbss_mpi::share::read_rank_share`]), or from a single-zone SU2
+//! ([`verbss_mpi::share::read_rank_share`]; with `--split`, only its
+//! partitions' files of a split set, [`verbss_mpi::share::read_rank_split`]),
+//! or from a single-zone SU2
 //! input, which rank 0 reads in one pass and scatters and PT-Scotch cuts
 //! ([`verbss_mpi::scatter`], `verbss_mpi::repartition`), or from a
 //! single-zone CGNS input, of which every rank reads its own blocks
@@ -10,7 +12,8 @@
 //! `--stiffening` asks ([`verbss_mpi::near_wall`]), and the flow-solver
 //! entry ([`verbss_mpi::coupled::LocalSolver`]) sweeps,
 //! and every rank checks and writes its own cells, as a `.vtu` piece (rank 0
-//! the `.pvtu` joining them) or as an MSH 4.1 piece — no rank holds the
+//! the `.pvtu` joining them) or as its partition of a split MSH 4.1 set
+//! (the form of `gmsh -part_split`) — no rank holds the
 //! whole mesh (docs/distributed.md).
 //!
 //! Step `n` of `N` prescribes the moving nodes where the motion puts their
@@ -45,6 +48,7 @@ use std::time::Instant;
 use anyhow::bail;
 use verbss::deform::Reference;
 use verbss::io::gmsh::partitioned::{partition_count, Share};
+use verbss::io::gmsh::split_write::{SplitModel, SplitPiece};
 use verbss::motion::{Clock, Frame, Motion};
 use verbss::quality;
 use verbss::robust::Layer;
@@ -55,8 +59,13 @@ use verbss_cli::progress::Progress;
 use verbss_cli::run::{file_stem, output_dir};
 use verbss_mpi::coupled::{Ghosts, LocalSolver};
 use verbss_mpi::near_wall::near_wall;
-use verbss_mpi::pieces::{write_local_piece, write_msh_piece};
-use verbss_mpi::share::{agree, global_numbers, partitions_of, prescribe, read_rank_share};
+use verbss_mpi::pieces::{
+    decode_entities, encode_entities, encode_groups, msh_facet_tags, split_groups,
+    write_local_piece, write_msh_piece,
+};
+use verbss_mpi::share::{
+    agree, global_numbers, partitions_of, prescribe, read_rank_share, read_rank_split,
+};
 use verbss_mpi::step_quality::step_quality;
 use verbss_mpi::Comm;
 
@@ -95,15 +104,22 @@ fn check_partitioned(input: &Path, output: &Path) -> anyhow::Result<()> {
 
 /// This rank's share of the input, and what it says of where the share
 /// comes from (the start of its line).
-fn read_input(world: &Comm, input: &Path, output: &Path) -> anyhow::Result<(Share, String)> {
-    if has_extension(input, "su2") {
+fn read_input(
+    world: &Comm,
+    input: &Path,
+    output: &Path,
+    split: bool,
+) -> anyhow::Result<(Share, String)> {
+    let share = if split {
+        read_rank_split(world, input)?
+    } else if has_extension(input, "su2") {
         return su2::read(world, input);
-    }
-    if has_extension(input, "cgns") {
+    } else if has_extension(input, "cgns") {
         return cgns::read(world, input);
-    }
-    check_partitioned(input, output)?;
-    let share = read_rank_share(world, input)?;
+    } else {
+        check_partitioned(input, output)?;
+        read_rank_share(world, input)?
+    };
     let size = world.size() as usize;
     let partitions = partitions_of(share.partitions, size, world.rank() as usize, input)?;
     let from = format!(
@@ -141,7 +157,12 @@ fn moving_body(share: &Share, moving: &[String]) -> Vec<Option<usize>> {
 
 /// Runs the job on every rank (see the module documentation); with
 /// `gather`, rank 0 also writes the whole moved mesh there ([`gather`]).
-pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<ExitCode> {
+/// With `split`, the input is the first file of a split set.
+pub fn run_shares(
+    args: DeformArgs,
+    gather: Option<PathBuf>,
+    split: bool,
+) -> anyhow::Result<ExitCode> {
     let world = Comm::world();
     let root = world.rank() == 0;
     if let Some(path) = gather.as_ref().filter(|p| !has_extension(p, "vtu")) {
@@ -150,7 +171,7 @@ pub fn run_shares(args: DeformArgs, gather: Option<PathBuf>) -> anyhow::Result<E
             path.display()
         );
     }
-    let (share, from) = read_input(&world, args.mesh(), args.output())?;
+    let (share, from) = read_input(&world, args.mesh(), args.output(), split)?;
     let job = args.share_job(share.mesh.dim)?;
     if let Some(path) = &gather {
         gather::check_tags(&world, path, &share.mesh)?;
@@ -355,12 +376,12 @@ fn smallest(floor: f64) -> String {
 }
 
 /// What the output line names: `output`, or for MSH pieces their pattern
-/// `OUT-STEM_RANK.msh`.
+/// `OUT-STEM_K.msh`, partitions `K` from 1.
 fn written_name(output: &Path) -> PathBuf {
     if has_extension(output, "pvtu") {
         return output.to_path_buf();
     }
-    output_dir(output).join(format!("{}_RANK.msh", file_stem(output)))
+    output_dir(output).join(format!("{}_K.msh", file_stem(output)))
 }
 
 /// The first fresh element tag of this rank's MSH piece (collective): above
@@ -393,6 +414,44 @@ fn first_fresh_tag(world: &Comm, share: &Share) -> anyhow::Result<u64> {
     Ok(largest + 1 + counts[..world.rank() as usize].iter().sum::<u64>())
 }
 
+/// The model of the split set the ranks write (collective): every rank's
+/// groups and partition entities ([`verbss::io::gmsh::split_write`]), the
+/// same on every rank; and per group of this rank's share, its index in
+/// the model.
+fn split_model(
+    world: &Comm,
+    share: &Share,
+    coords: &[f64],
+    facet_tags: &[Vec<u64>],
+) -> (SplitModel, Vec<usize>) {
+    let mesh = &share.mesh;
+    let encoded = world.all_gather(&encode_groups(mesh));
+    let (groups, domain) = split_groups(&encoded, share.labels.domain.clone());
+    let index: Vec<usize> = mesh
+        .groups
+        .iter()
+        .map(|g| groups.iter().position(|m| m.name == g.name).unwrap_or(0))
+        .collect();
+    let mut model = SplitModel {
+        dim: mesh.dim,
+        groups,
+        domain,
+        partitions: world.size() as usize,
+        entities: Vec::new(),
+    };
+    let piece = SplitPiece {
+        mesh,
+        coords,
+        boundary: &share.boundary,
+        groups: &index,
+        facet_tags,
+        partition: world.rank() as usize + 1,
+    };
+    let all = world.all_gather(&encode_entities(&piece.entities()));
+    model.entities = decode_entities(&all);
+    (model, index)
+}
+
 /// Every rank writes its cells at `coords` as its piece beside `output`:
 /// an MSH 4.1 piece for a `.msh` output, else a `.vtu` piece and rank 0 the
 /// `.pvtu` joining them. Where a rank fails, every rank stops with the
@@ -410,7 +469,14 @@ fn write(
     let name = file_stem(output);
     if has_extension(output, "msh") {
         let fresh = first_fresh_tag(world, share)?;
-        let written = write_msh_piece(&dir, &name, world.rank(), share, fresh, coords).map(drop);
+        let facet_tags = msh_facet_tags(share, fresh);
+        let (model, groups) = split_model(world, share, coords, &facet_tags);
+        let piece = (
+            world.rank() as usize + 1,
+            groups.as_slice(),
+            facet_tags.as_slice(),
+        );
+        let written = write_msh_piece((&dir, &name), share, &model, piece, coords).map(drop);
         return agree(world, written, "could not write its piece").map_err(|e| match e {
             // Another rank's failure, told as it is: not a mesh error.
             verbss::Error::InvalidMesh(told) => anyhow::anyhow!(told),

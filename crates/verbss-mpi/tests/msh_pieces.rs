@@ -1,5 +1,6 @@
 //! `verbss-mpi deform --pieces -o OUT.msh` on 1, 2 and 3 ranks: every rank
-//! writes its own cells as an MSH 4.1 piece `OUT_RANK.msh`, from a
+//! writes its own cells as partition `RANK + 1` of a split set,
+//! `OUT_{RANK+1}.msh` (the form of `gmsh -part_split`), from a
 //! partitioned MSH 4.1 input (ASCII and binary) or an SU2 input
 //! (docs/distributed.md).
 //!
@@ -97,7 +98,7 @@ fn a_piece_one_rank_cannot_write_stops_every_rank() {
     }
     let dir = tempfile::tempdir().unwrap();
     let mesh = asset("gmsh/channel_hole_part3_v41_ascii.msh");
-    let blocked = dir.path().join("moved_1.msh");
+    let blocked = dir.path().join("moved_2.msh");
     std::fs::create_dir(&blocked).unwrap();
     let deform = |out: &Path| {
         let args = [
@@ -168,7 +169,7 @@ fn an_inverted_cell_leaves_the_input_in_the_pieces() {
     );
     let mut cells = 0;
     for r in 0..2 {
-        let piece = io::read(&dir.path().join(format!("moved_{r}.msh"))).unwrap();
+        let piece = io::read(&dir.path().join(format!("moved_{}.msh", r + 1))).unwrap();
         cells += piece.cell_count();
         for (i, t) in piece.node_tags.iter().enumerate() {
             let g = whole.node_tags.iter().position(|w| w == t).unwrap();

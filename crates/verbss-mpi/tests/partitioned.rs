@@ -54,14 +54,17 @@ fn translation(dim: usize) -> Vec<f64> {
 #[ignore = "run under mpirun by the other tests"]
 fn worker() {
     use verbss_mpi::coupled::LocalSolver;
-    use verbss_mpi::share::{global_numbers, prescribe, read_rank_share};
+    use verbss_mpi::share::{global_numbers, prescribe, read_rank_share, read_rank_split};
 
     let mpi = verbss_mpi::Mpi::init().unwrap();
     let world = mpi.world();
     let path = PathBuf::from(std::env::var("VERBSS_MPI_MESH").unwrap());
     let group = std::env::var("VERBSS_MPI_GROUP").unwrap();
     let out = std::env::var("VERBSS_MPI_OUT").unwrap();
-    let share = read_rank_share(&world, &path).unwrap();
+    let share = match std::env::var_os("VERBSS_MPI_SPLIT") {
+        Some(_) => read_rank_split(&world, &path).unwrap(),
+        None => read_rank_share(&world, &path).unwrap(),
+    };
     let dim = share.mesh.dim;
     let (roles, mut u) = prescribe(&share, &[group], |_| Ok(translation(dim))).unwrap();
     let global = global_numbers(&share);
@@ -97,12 +100,17 @@ struct Rank {
     u: HashMap<u64, Vec<f64>>,
 }
 
-/// Runs the worker on `np` ranks.
-fn distributed(np: usize, name: &str, group: &str) -> Vec<Rank> {
+/// Runs the worker on `np` ranks, reading `name` or, when given, the split
+/// set whose first file is `split`.
+fn distributed(np: usize, name: &str, split: Option<&str>, group: &str) -> Vec<Rank> {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("u");
-    let o = common::mpirun(np, dir.path())
-        .env("VERBSS_MPI_MESH", fixture(name))
+    let mut mpirun = common::mpirun(np, dir.path());
+    if split.is_some() {
+        mpirun.env("VERBSS_MPI_SPLIT", "1");
+    }
+    let o = mpirun
+        .env("VERBSS_MPI_MESH", fixture(split.unwrap_or(name)))
         .env("VERBSS_MPI_GROUP", group)
         .env("VERBSS_MPI_OUT", &out)
         .arg(std::env::current_exe().unwrap())
@@ -209,8 +217,9 @@ fn direct(whole: &Mesh, group: &str) -> HashMap<u64, Vec<f64>> {
 
 /// On 1, 2 and 3 ranks: the counts, and the displacements against the
 /// single-process exact solution (relative to the translation's length)
-/// and against 1 rank.
-fn reads_and_solves(name: &str, group: &str) {
+/// and against 1 rank; the ranks read `name`, or the split set of the same
+/// partitions whose first file is `split`.
+fn reads_and_solves(name: &str, split: Option<&str>, group: &str) {
     let whole = verbss::io::read(&fixture(name)).unwrap();
     let exact = direct(&whole, group);
     let scale = translation(whole.dim)
@@ -220,7 +229,7 @@ fn reads_and_solves(name: &str, group: &str) {
         .sqrt();
     let mut one: HashMap<u64, Vec<f64>> = HashMap::new();
     for np in 1..=3 {
-        let ranks = distributed(np, name, group);
+        let ranks = distributed(np, name, split, group);
         let want = expected_counts(&whole, name, np);
         for (r, rank) in ranks.iter().enumerate() {
             assert_eq!(rank.counts, want[r], "{name}: rank {r} of {np}");
@@ -272,7 +281,19 @@ fn gmsh_partitioned_channel_read_on_one_to_three_ranks() {
     if !common::mpi_ready() {
         return;
     }
-    reads_and_solves("channel_hole_part3_v41_ascii.msh", "wall");
+    reads_and_solves("channel_hole_part3_v41_ascii.msh", None, "wall");
+}
+
+/// The same channel in the files of `gmsh -part 3 -part_split`, one a
+/// partition: each rank reads only its partitions' files and holds what it
+/// holds from the single file.
+#[test]
+fn gmsh_split_channel_read_on_one_to_three_ranks() {
+    if !common::mpi_ready() {
+        return;
+    }
+    let first = "channel_hole_split3_v41_ascii_1.msh";
+    reads_and_solves("channel_hole_part3_v41_ascii.msh", Some(first), "wall");
 }
 
 #[test]
@@ -280,7 +301,7 @@ fn gmsh_partitioned_box_read_on_one_to_three_ranks() {
     if !common::mpi_ready() {
         return;
     }
-    reads_and_solves("box_part3_v41_binary.msh", "inlet");
+    reads_and_solves("box_part3_v41_binary.msh", None, "inlet");
 }
 
 #[test]

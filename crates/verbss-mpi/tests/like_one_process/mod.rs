@@ -169,7 +169,8 @@ fn run(
     o
 }
 
-/// The pieces `dir/moved_RANK.EXT` of a run on `np` ranks hold every cell
+/// The pieces of a run on `np` ranks (`dir/moved_RANK.vtu`, or the split
+/// set `dir/moved_PARTITION.msh`, partitions from 1) hold every cell
 /// of `whole` once, with its tag and on the nodes of the same tags, and
 /// their nodes the single-process coordinates `one` to 1e-10 of the largest
 /// displacement `scale`; returns them.
@@ -184,7 +185,7 @@ fn pieces_like_one_process(
     let index = node_index(whole);
     let dim = whole.dim;
     let pieces: Vec<Mesh> = (0..np)
-        .map(|r| verbss::io::read(&dir.join(format!("moved_{r}.{ext}"))).unwrap())
+        .map(|r| verbss::io::read(&dir.join(piece_name(ext, r))).unwrap())
         .collect();
     let cell_index: HashMap<u64, usize> = whole
         .cell_tags
@@ -221,11 +222,21 @@ fn pieces_like_one_process(
     pieces
 }
 
+/// The piece of rank `r`: `moved_R.vtu`, or `moved_{R+1}.msh` (partition
+/// `R + 1` of a split set).
+pub fn piece_name(ext: &str, r: usize) -> String {
+    match ext {
+        "msh" => format!("moved_{}.msh", r + 1),
+        _ => format!("moved_{r}.{ext}"),
+    }
+}
+
 /// Opens each MSH piece given, then merges them all: prints, as JSON, the
 /// node count of each piece alone, and of the merged mesh every node entry
 /// (tag and x y z, a node of several pieces once per piece) and, for its
 /// elements of the top dimension and for those below, how many there are
-/// and how many distinct tags they have.
+/// and how many distinct tags they have, and per physical group (by name)
+/// how many distinct element tags it has.
 const GMSH_MERGE: &str = r#"
 import json, sys
 import gmsh
@@ -244,7 +255,15 @@ top = gmsh.model.getDimension()
 def tags(dims):
     found = [int(t) for d in dims for block in gmsh.model.mesh.getElements(d)[1] for t in block]
     return [len(found), len(set(found))]
-summary = {"alone": alone, "nodes": nodes, "cells": tags([top]), "facets": tags(range(top))}
+groups = {}
+for d, p in gmsh.model.getPhysicalGroups():
+    found = set()
+    for e in set(gmsh.model.getEntitiesForPhysicalGroup(d, p)):
+        for block in gmsh.model.mesh.getElements(d, e)[1]:
+            found.update(int(t) for t in block)
+    groups[gmsh.model.getPhysicalName(d, p)] = len(found)
+summary = {"alone": alone, "nodes": nodes, "cells": tags([top]), "facets": tags(range(top)),
+           "groups": groups}
 print(json.dumps(summary))
 gmsh.finalize()
 "#;
@@ -252,7 +271,9 @@ gmsh.finalize()
 /// Gmsh opens each of the MSH `pieces` (read by verbss as `read`) with
 /// their node counts, and merges them into the whole mesh: every node of
 /// `whole` (one node per tag) at the single-process coordinates `one` to
-/// 1e-10 of `scale`, every cell once, no two facets with one tag.
+/// 1e-10 of `scale`, every cell once, no two facets with one tag, and the
+/// pieces' physical groups with the facets of `whole`'s, the cells' with
+/// every cell.
 fn gmsh_merges(pieces: &[PathBuf], read: &[Mesh], whole: &Mesh, one: &Mesh, scale: f64) {
     let o = std::process::Command::new("python3")
         .args(["-c", GMSH_MERGE])
@@ -287,6 +308,20 @@ fn gmsh_merges(pieces: &[PathBuf], read: &[Mesh], whole: &Mesh, one: &Mesh, scal
     let cells = whole.cell_count();
     assert_eq!(merged["cells"], serde_json::json!([cells, cells]));
     assert_eq!(merged["facets"][0], merged["facets"][1]);
+    // The pieces' groups (none from SU2) with all their facets, and the
+    // cells' own group with every cell.
+    let groups = merged["groups"].as_object().unwrap();
+    let names: BTreeSet<&str> = read
+        .iter()
+        .flat_map(|p| &p.groups)
+        .map(|g| g.name.as_str())
+        .collect();
+    for name in &names {
+        let facets = whole.group(name).unwrap().facets.len();
+        assert_eq!(groups[*name], facets, "group {name}");
+    }
+    assert_eq!(groups.len(), names.len() + 1, "{groups:?}");
+    assert!(groups.values().any(|n| *n == cells), "{groups:?}");
 }
 
 /// `verbss-mpi deform --pieces -o moved.msh` on `mesh` on 1, 2 and 3 ranks
@@ -319,7 +354,7 @@ pub fn msh_pieces_like_one_process(
         assert!(!out.exists(), "{}", out.display());
         let read = pieces_like_one_process(dir.path(), "msh", np, &whole, &one, scale);
         let paths: Vec<PathBuf> = (0..np)
-            .map(|r| dir.path().join(format!("moved_{r}.msh")))
+            .map(|r| dir.path().join(piece_name("msh", r)))
             .collect();
         for path in &paths {
             let head = std::fs::read(path).unwrap();

@@ -47,7 +47,9 @@
 //! excepted: they have no elements to carry them). A piece of a larger mesh
 //! (a rank's share of a partitioned file) is written anew in MSH 4.1 by
 //! [`write_piece_to`], keeping the file's facet tags and cells' physical
-//! group ([`PieceLabels`]).
+//! group ([`PieceLabels`]); or as one file of a set of partitions, as
+//! `gmsh -part K -part_split` writes them ([`split_write`]), which
+//! [`split`] reads back.
 //!
 //! # Why a reader of our own
 //!
@@ -63,6 +65,8 @@ mod entities;
 mod model;
 pub mod partitioned;
 mod source;
+pub mod split;
+pub mod split_write;
 mod stream;
 mod v22;
 mod v41;
@@ -70,6 +74,8 @@ mod write;
 
 #[cfg(test)]
 mod hostile_tests;
+#[cfg(test)]
+mod split_tests;
 #[cfg(test)]
 mod tests;
 
