@@ -45,11 +45,10 @@
 //! the shortest text that reads back to the same `f64`, so writing and reading
 //! back gives the same mesh, bit for bit, in all four encodings (empty groups
 //! excepted: they have no elements to carry them). A piece of a larger mesh
-//! (a rank's share of a partitioned file) is written anew in MSH 4.1 by
-//! [`write_piece_to`], keeping the file's facet tags and cells' physical
-//! group ([`PieceLabels`]); or as one file of a set of partitions, as
-//! `gmsh -part K -part_split` writes them ([`split_write`]), which
-//! [`split`] reads back.
+//! (a rank's share of a partitioned file) is written as one file of a set
+//! of partitions, as `gmsh -part K -part_split` writes them
+//! ([`split_write`]), keeping the file's facet tags and cells' physical
+//! group ([`PieceLabels`]), and [`split`] reads such a set back.
 //!
 //! # Why a reader of our own
 //!
@@ -215,37 +214,6 @@ pub struct PieceLabels {
     /// The file's physical tag and name of the cells; `None` gives them a
     /// fresh tag named `domain`.
     pub domain: Option<(i32, String)>,
-}
-
-/// Writes `mesh`, a piece of a larger mesh (a rank's share), with its
-/// nodes at `coords` as MSH 4.1, ASCII or binary: written anew, as a mesh
-/// read from no file (see the module documentation), but with the facet
-/// tags and the cells' physical group of `labels` where they fit the mesh.
-/// Pieces of one mesh then share its node, element and physical tags, and
-/// Gmsh merges them into the mesh.
-pub fn write_piece_to(
-    w: &mut dyn Write,
-    mesh: &Mesh,
-    coords: &[f64],
-    labels: &PieceLabels,
-    binary: bool,
-) -> std::io::Result<()> {
-    if coords.len() != mesh.coords.len() {
-        return Err(write::invalid(format!(
-            "{} coordinates for the {} nodes of a {}D mesh",
-            coords.len(),
-            mesh.node_count(),
-            mesh.dim
-        )));
-    }
-    let labels = write::Labels {
-        facet_tags: labels.facet_tags.as_deref(),
-        domain: labels.domain.as_ref().map(|(t, n)| (*t, n.as_str())),
-    };
-    let plan = write::Plan::labelled(mesh, coords, labels)?;
-    let mut out = write::Out::new(w, binary);
-    v41::write(&mut out, &plan)?;
-    out.finish()
 }
 
 /// Reads `$MeshFormat … $EndMeshFormat`; switches the cursor to binary mode

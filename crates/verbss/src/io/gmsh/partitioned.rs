@@ -78,7 +78,7 @@ pub struct Share {
     pub binary: bool,
     /// The file's element tags of the group facets of [`Share::mesh`] and
     /// the cells' physical group, for writing the share as a piece
-    /// ([`super::write_piece_to`]).
+    /// ([`super::split_write`]).
     pub labels: PieceLabels,
 }
 

@@ -6,9 +6,8 @@
 use std::collections::{BTreeSet, HashMap};
 use std::path::Path;
 
-use super::{assert_same, fixture_dir, read_fixture};
+use super::{fixture_dir, read_fixture};
 use crate::io::gmsh::partitioned::{partition_count, read_share, Share};
-use crate::io::gmsh::{parse, write_piece_to, PieceLabels};
 use crate::topology::boundary_nodes;
 use crate::Error;
 
@@ -205,63 +204,4 @@ fn errors_name_the_line_or_byte() {
     let e = share_error(&short, 1..=1);
     assert!(e.contains(": byte "), "{e}");
     assert!(e.contains("unexpected end of file"), "{e}");
-}
-
-/// A share written as a piece ([`write_piece_to`]) reads back as the share
-/// at the new coordinates, in the file's encoding, with the file's facet
-/// tags (where a facet is in one group: the channel; the box's are in two,
-/// one element written twice, and take fresh tags) and cells' physical
-/// group; labels that do not fit the mesh give fresh facet tags, and
-/// coordinates of the wrong length are refused.
-#[test]
-fn a_share_is_written_as_a_piece_with_the_files_tags() {
-    // Numbered on from the largest cell tag.
-    let fresh_tags = |s: &Share, piece: &crate::Mesh| -> Vec<Vec<u64>> {
-        let mut next = s.mesh.cell_tags.iter().max().unwrap() + 1..;
-        piece
-            .groups
-            .iter()
-            .map(|g| next.by_ref().take(g.facets.len()).collect())
-            .collect()
-    };
-    for (name, _) in FILES {
-        let s = share(name, 2..=2);
-        let moved: Vec<f64> = s.mesh.coords.iter().map(|x| 2.0 * x + 0.5).collect();
-        let mut bytes = Vec::new();
-        write_piece_to(&mut bytes, &s.mesh, &moved, &s.labels, s.binary).unwrap();
-        let piece = parse(&bytes, Path::new(name)).unwrap();
-        let mut want = s.mesh.clone();
-        want.coords = moved.clone();
-        assert_same(&piece, &want);
-        let source = piece.origin.gmsh.as_ref().unwrap();
-        assert_eq!(source.binary(), s.binary, "{name}");
-        let file_tags = s.labels.facet_tags.clone().unwrap();
-        let once: BTreeSet<u64> = file_tags.iter().flatten().copied().collect();
-        let in_one_group = once.len() == file_tags.iter().map(Vec::len).sum::<usize>();
-        assert_eq!(in_one_group, name == FILES[0].0, "{name}");
-        let want_tags = match in_one_group {
-            true => file_tags,
-            false => fresh_tags(&s, &piece),
-        };
-        assert_eq!(source.facet_tags(&piece).unwrap(), want_tags, "{name}");
-        let domain = s.labels.domain.as_ref().unwrap();
-        assert_eq!(source.domain(), Some((domain.0, domain.1.as_str())));
-
-        let misfit = PieceLabels {
-            facet_tags: Some(vec![vec![1]]),
-            domain: None,
-        };
-        let mut bytes = Vec::new();
-        write_piece_to(&mut bytes, &s.mesh, &moved, &misfit, false).unwrap();
-        let piece = parse(&bytes, Path::new(name)).unwrap();
-        let source = piece.origin.gmsh.as_ref().unwrap();
-        let fresh = fresh_tags(&s, &piece);
-        assert_eq!(source.facet_tags(&piece).unwrap(), fresh, "{name}");
-        // A fresh physical tag: after the groups' own.
-        let tag = s.mesh.groups.iter().filter_map(|g| g.tag).max().unwrap() + 1;
-        assert_eq!(source.domain(), Some((tag, super::super::write::DOMAIN)));
-
-        let e = write_piece_to(&mut Vec::new(), &s.mesh, &moved[1..], &s.labels, false);
-        assert_eq!(e.unwrap_err().kind(), std::io::ErrorKind::InvalidInput);
-    }
 }
