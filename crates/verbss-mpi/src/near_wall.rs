@@ -12,9 +12,9 @@
 //!   A body's size is the diagonal of its all-reduced box.
 //! * **Wall distances.** Per body (and for the other fixed boundary) every
 //!   rank all-gathers the seeds it owns — coordinates and global numbers —
-//!   and finds for each node of its part, connected to a seed
-//!   ([`connect`], with ghost exchanges until an all-reduce finds no new
-//!   node), the nearest seed in straight line ([`nearest_seeds`]). That
+//!   and finds for each node of its part, connected to a seed (with
+//!   ghost exchanges until an all-reduce finds no new node), the nearest
+//!   seed in straight line ([`nearest_connected`]). That
 //!   answer is exact, ties going to the smaller global number as they go
 //!   to the smaller node tag on one process, so it is one process's.
 //! * **Thickness.** [`Layer::Auto`]'s boundary layer is the reach through
@@ -26,9 +26,11 @@
 //!   [`stiffness_factor`]), on every node of the part, so that a node has
 //!   the same answer on every rank holding it.
 
-use verbss::robust::spread::{connect, nearest_seeds, reach};
+use verbss::robust::spread::{nearest_connected, reach};
 use verbss::robust::Seeds;
-use verbss::robust::{fixed_limit, layer_body, stiffness_factor, thickness, Bounds, Layer, Robust};
+use verbss::robust::{
+    fixed_limits, layer_body, stiffness_factor, thickness, Bounds, Layer, Robust,
+};
 use verbss::solve::NodeRole;
 use verbss::topology;
 use verbss::{Error, Mesh, Result};
@@ -69,7 +71,7 @@ pub fn near_wall(
 ) -> Result<NearWall> {
     robust.validate()?;
     let p = robust.stiffening;
-    if robust.layer == Layer::Off && p == 0.0 {
+    if !robust.treats() {
         return Ok(NearWall::default());
     }
     let count = groups.len() as u64;
@@ -148,16 +150,7 @@ pub fn near_wall(
             &comm.all_gather(&points).concat(),
             &comm.all_gather(&ids).concat(),
         );
-        let mut reached = vec![false; m];
-        for &s in seeds {
-            reached[s] = true;
-        }
-        let before = reached.clone();
-        connect(&graph, &mut reached, mark_sync(comm, ghosts, before));
-        let limit: Vec<f64> = (0..m)
-            .map(|i| if reached[i] { limit(i) } else { -1.0 })
-            .collect();
-        nearest_seeds(&all, &graph, &coords, &limit)
+        nearest_connected(&all, &graph, &coords, seeds, limit, mark_sync(comm, ghosts))
     };
     let fields: Vec<(Vec<f64>, Vec<u64>)> = seeds
         .iter()
@@ -176,7 +169,6 @@ pub fn near_wall(
                 for &s in seeds {
                     reached[s] = true;
                 }
-                let before = reached.clone();
                 let layer = reach(
                     &part.cells,
                     &coords,
@@ -184,27 +176,17 @@ pub fn near_wall(
                     &field.0,
                     cap,
                     &mut reached,
-                    mark_sync(comm, ghosts, before),
+                    mark_sync(comm, ghosts),
                 );
                 comm.max(layer)
             })
         })
         .collect();
     let free = |i: usize| robust.layer != Layer::Off && !fixed_at(i);
-    let mut at = vec![0.0; fields.len()];
-    let limits: Vec<f64> = (0..m)
-        .map(|i| {
-            if !free(i) {
-                return -1.0;
-            }
-            for (a, field) in at.iter_mut().zip(&fields) {
-                *a = field.0[i];
-            }
-            fixed_limit(&at, &thickness)
-        })
-        .collect();
+    let limits = fixed_limits(m, &fields, &thickness, free);
     let to_fixed = nearest(&other_fixed, &|i| limits[i]).0;
     let stiffen = p > 0.0 && thickness.iter().any(|&t| t > 0.0);
+    let mut at = vec![0.0; fields.len()];
     let mut factors = vec![1.0; m];
     let mut layer = vec![None; m];
     for i in 0..m {
@@ -245,14 +227,11 @@ fn reduced(comm: &Comm, b: Bounds) -> Bounds {
     }
 }
 
-/// The `sync` of a walk that marks nodes, `before` its marks at the start:
-/// a ghost exchange of the marks, saying whether a rank's owned mark changed
-/// since the last call (collective).
-fn mark_sync<'a>(
-    comm: &'a Comm,
-    ghosts: &'a Ghosts,
-    mut before: Vec<bool>,
-) -> impl FnMut(&mut [bool]) -> bool + 'a {
+/// The `sync` of a walk that only ever marks more nodes: a ghost exchange
+/// of the marks, saying whether the ranks' owned marks grew since the last
+/// call (at the first, whether there is any) (collective).
+fn mark_sync<'a>(comm: &'a Comm, ghosts: &'a Ghosts) -> impl FnMut(&mut [bool]) -> bool + 'a {
+    let mut last = 0;
     move |marks| {
         let mut flat: Vec<f64> = marks.iter().map(|&x| f64::from(u8::from(x))).collect();
         ghosts.halo.exchange(comm, &mut flat, 1);
@@ -260,10 +239,10 @@ fn mark_sync<'a>(
             *x = *f == 1.0;
         }
         let part = &ghosts.part;
-        let changed = (0..marks.len())
-            .filter(|&i| part.owns(i) && marks[i] != before[i])
+        let owned = (0..marks.len())
+            .filter(|&i| part.owns(i) && marks[i])
             .count();
-        before.copy_from_slice(marks);
-        comm.sum(changed as u64) > 0
+        let total = comm.sum(owned as u64);
+        std::mem::replace(&mut last, total) != total
     }
 }

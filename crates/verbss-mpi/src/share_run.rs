@@ -263,21 +263,23 @@ pub fn run_shares(
                     )
                 }
             };
+            // The moved mesh of a solution and its collective check.
+            let mut judge = |u: &[f64]| {
+                let moved: Vec<f64> = springs.iter().zip(u).map(|(x, du)| x + du).collect();
+                let check = Instant::now();
+                let r = step_quality(&world, mesh, &moved, &orientation);
+                check_seconds += check.elapsed().as_secs_f64();
+                (moved, r)
+            };
             let mut info = solver.solve(&springs, &mut u, &job.settings.solve)?;
-            let mut moved: Vec<f64> = springs.iter().zip(&u).map(|(x, du)| x + du).collect();
-            let check = Instant::now();
-            let mut r = step_quality(&world, mesh, &moved, &orientation);
-            check_seconds += check.elapsed().as_secs_f64();
+            let (mut moved, mut r) = judge(&u);
             // An inversion is never the solver's fault: a converged solve
             // that inverts a cell is solved again to round-off, and that is
             // judged where it converges (as on one process).
             if job.settings.solve.escalate && info.converged && r.inverted > 0 {
                 let exact = solver.solve_exact(&springs, &mut u, &job.settings.solve)?;
                 if exact.converged {
-                    moved = springs.iter().zip(&u).map(|(x, du)| x + du).collect();
-                    let check = Instant::now();
-                    r = step_quality(&world, mesh, &moved, &orientation);
-                    check_seconds += check.elapsed().as_secs_f64();
+                    (moved, r) = judge(&u);
                     solves.push(std::mem::replace(&mut info, exact));
                 } else {
                     solves.push(exact);

@@ -225,11 +225,13 @@ impl<S: SpringSolver> Deformer<S> {
         }
         let mut plan = plan_roles(mesh, attachments)?;
         // The edge graph, built once for the near-wall treatments, the
-        // blend and the springs.
-        let edge_graph = Arc::new(topology::edge_graph(&mesh.cells, mesh.node_count()));
+        // blend and the springs, where the treatments or the blend need it.
+        let blending = settings.robust.blend && !plan.moving.is_empty();
+        let edge_graph = (settings.robust.treats() || blending)
+            .then(|| Arc::new(topology::edge_graph(&mesh.cells, mesh.node_count())));
         let rigid = robust::prepare(
             mesh,
-            Some(&edge_graph),
+            edge_graph.as_deref(),
             &plan.roles,
             &plan.moving,
             &settings.robust,
@@ -243,10 +245,10 @@ impl<S: SpringSolver> Deformer<S> {
                 (i, k, role)
             })
             .collect();
-        let blend = (settings.robust.blend && !plan.moving.is_empty()).then(|| {
+        let blend = edge_graph.as_ref().filter(|_| blending).map(|graph| {
             Blend::new(
                 mesh,
-                Arc::clone(&edge_graph),
+                Arc::clone(graph),
                 &plan.roles,
                 &plan.normals,
                 blend::bodies(&plan.moving, &rigid.nodes),
@@ -257,7 +259,7 @@ impl<S: SpringSolver> Deformer<S> {
             roles: &plan.roles,
             normals: &plan.normals,
             stiffness: &rigid.stiffness,
-            edge_graph: Some(&edge_graph),
+            edge_graph: edge_graph.as_ref(),
         })?;
         let orientation = quality::orientation(mesh);
         let start = Instant::now();

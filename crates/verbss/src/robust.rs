@@ -124,6 +124,12 @@ pub struct Robust {
 }
 
 impl Robust {
+    /// Whether a rigid layer or a stiffening is asked for: what needs the
+    /// wall distances ([`prepare`]).
+    pub fn treats(&self) -> bool {
+        self.layer != Layer::Off || self.stiffening != 0.0
+    }
+
     /// Checks the treatments: a stiffening exponent ≥ 0, a positive layer
     /// thickness, at most 30 sub-step halvings.
     pub fn validate(&self) -> Result<()> {
@@ -195,7 +201,7 @@ pub fn prepare(
 ) -> Result<Treatment> {
     robust.validate()?;
     let p = robust.stiffening;
-    if robust.layer == Layer::Off && p == 0.0 {
+    if !robust.treats() {
         return Ok(Treatment::default());
     }
     let n = mesh.node_count();
@@ -277,24 +283,14 @@ pub fn prepare(
                 NodeRole::Free | NodeRole::Slide(_) | NodeRole::Line(_)
             )
     };
-    let mut at = vec![0.0; fields.len()];
-    let limits: Vec<f64> = (0..n)
-        .map(|i| {
-            if !free(i) {
-                return -1.0;
-            }
-            for (a, (dist, _)) in at.iter_mut().zip(&fields) {
-                *a = dist[i];
-            }
-            fixed_limit(&at, &thickness)
-        })
-        .collect();
+    let limits = fixed_limits(n, &fields, &thickness, free);
     let to_fixed = nearest_seed(graph, mesh.dim, &mesh.coords, &fixed, tags, |i| limits[i]).0;
     // A body of no extent (a single moving node) has no thickness: it
     // stiffens nothing.
     let stiffen = p > 0.0 && thickness.iter().any(|&t| t > 0.0);
     let mut stiffness = Vec::new();
     let mut nodes = Vec::new();
+    let mut at = vec![0.0; fields.len()];
     for i in 0..n {
         for (a, (dist, _)) in at.iter_mut().zip(&fields) {
             *a = dist[i];
@@ -395,25 +391,41 @@ pub(crate) fn nearest_seed(
         .copied()
         .collect();
     let numbers: Vec<u64> = seeds.iter().map(|&s| ids[s]).collect();
-    let mut reached = vec![false; graph.rows()];
-    for &s in seeds {
-        reached[s] = true;
-    }
-    spread::connect(graph, &mut reached, |_| false);
-    let limit: Vec<f64> = (0..reached.len())
-        .map(|i| if reached[i] { limit(i) } else { -1.0 })
-        .collect();
-    spread::nearest_seeds(&Seeds::new(dim, &points, &numbers), graph, coords, &limit)
+    let all = Seeds::new(dim, &points, &numbers);
+    spread::nearest_connected(&all, graph, coords, seeds, limit, |_| false)
 }
 
-/// The squared distance to the other fixed boundary that can still change
-/// [`layer_body`]'s answer for a node at distance `dist[b]` from each body
-/// `b`: `(d_b / GAP_SHARE)²` (widened by 1e-9, above any rounding) for a
-/// node within its nearest body's thickness, and none (−1) for another
-/// node, which joins no layer whatever that distance. So the distance to
-/// the outer boundary, often equally far from every node near a body, is
-/// sought only where it counts.
-pub fn fixed_limit(dist: &[f64], thickness: &[f64]) -> f64 {
+/// Per node `i` of `n`, given the bodies' distance fields `fields` (distance, seed),
+/// the squared distance to the other fixed boundary that can still change
+/// [`layer_body`]'s answer, none (−1) where `free(i)` is false (a node that
+/// joins no layer) ([`fixed_limit`]). So the distance to the outer
+/// boundary, often equally far from every node near a body, is sought only
+/// where it counts.
+pub fn fixed_limits(
+    n: usize,
+    fields: &[(Vec<f64>, Vec<u64>)],
+    thickness: &[f64],
+    free: impl Fn(usize) -> bool,
+) -> Vec<f64> {
+    let mut at = vec![0.0; fields.len()];
+    (0..n)
+        .map(|i| {
+            if !free(i) {
+                return -1.0;
+            }
+            for (a, (dist, _)) in at.iter_mut().zip(fields) {
+                *a = dist[i];
+            }
+            fixed_limit(&at, thickness)
+        })
+        .collect()
+}
+
+/// For a node at distance `dist[b]` from each body `b`: `(d_b /
+/// GAP_SHARE)²` (widened by 1e-9, above any rounding) for a node within
+/// its nearest body's thickness, and none (−1) for another node, which
+/// joins no layer whatever its distance to the other fixed boundary.
+fn fixed_limit(dist: &[f64], thickness: &[f64]) -> f64 {
     match dist.iter().enumerate().min_by(|x, y| x.1.total_cmp(y.1)) {
         Some((b, &d)) if d <= thickness[b] => {
             let r = d / GAP_SHARE * (1.0 + 1e-9);

@@ -10,7 +10,7 @@
 //!   node. The answer is exact, so it depends neither on the order of the
 //!   nodes nor on how the mesh is cut: a rank holding all seeds finds on
 //!   its part what one process finds. [`connect`] marks the nodes
-//!   connected to a seed.
+//!   connected to a seed, [`nearest_connected`] does both.
 //! * [`heap_distances`]: the distance spread along the edges from a heap,
 //!   in order of distance, a node taking the nearest of its neighbours'
 //!   seeds. Cheaper still, but its answer depends on the order of its
@@ -210,6 +210,28 @@ pub fn nearest_seeds(
         }
     }
     (dist, seed)
+}
+
+/// [`nearest_seeds`] for the nodes connected along `graph` to the nodes
+/// `marked` (the seeds' own, where the part holds them), each up to
+/// `√limit(i)`; `sync` makes the connection global as [`connect`]'s.
+pub fn nearest_connected(
+    seeds: &Seeds,
+    graph: &Csr,
+    coords: &[f64],
+    marked: &[usize],
+    limit: impl Fn(usize) -> f64,
+    sync: impl FnMut(&mut [bool]) -> bool,
+) -> (Vec<f64>, Vec<u64>) {
+    let mut reached = vec![false; graph.rows()];
+    for &s in marked {
+        reached[s] = true;
+    }
+    connect(graph, &mut reached, sync);
+    let limit: Vec<f64> = (0..reached.len())
+        .map(|i| if reached[i] { limit(i) } else { -1.0 })
+        .collect();
+    nearest_seeds(seeds, graph, coords, &limit)
 }
 
 /// Marks in `reached` every node connected along the edges of `graph` to a
