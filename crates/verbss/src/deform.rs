@@ -32,6 +32,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use crate::collective::Whole;
 use crate::error::{format_point, Error, Result, Unconverged};
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Clock, Motion};
@@ -41,7 +42,8 @@ use crate::solve::{Engine, NodeRole, SolveInfo, SolverSetup, SpringSolver, Stage
 use crate::topology;
 
 mod attempt;
-mod blend;
+pub mod blend;
+mod distances;
 mod harmonic;
 mod roles;
 mod settings;
@@ -247,11 +249,14 @@ impl<S: SpringSolver> Deformer<S> {
             .collect();
         let blend = edge_graph.as_ref().filter(|_| blending).map(|graph| {
             Blend::new(
-                mesh,
+                mesh.dim,
+                &mesh.coords,
+                &mesh.node_tags,
                 Arc::clone(graph),
                 &plan.roles,
                 &plan.normals,
                 blend::bodies(&plan.moving, &rigid.nodes),
+                &Whole,
             )
         });
         let solver = make(&SolverSetup {

@@ -58,6 +58,7 @@
 #![deny(unsafe_code)]
 
 pub mod case;
+pub mod collective;
 pub mod deform;
 pub mod error;
 pub mod generate;

@@ -31,6 +31,7 @@
 
 use std::collections::HashMap;
 
+use crate::collective::Collective;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::solve::NodeRole;
@@ -38,7 +39,6 @@ use crate::topology::{self, Csr};
 
 pub mod spread;
 
-pub(crate) use self::spread::heap_distances;
 pub use self::spread::Seeds;
 
 /// Cells at least this stretched (longest over shortest edge) belong to a
@@ -477,6 +477,18 @@ impl Bounds {
             .map(|d| (self.hi[d] - self.lo[d]).powi(2))
             .sum::<f64>()
             .sqrt()
+    }
+
+    /// The box of every process's box (collective).
+    pub fn reduced(self, on: &dyn Collective) -> Bounds {
+        let mut values: Vec<f64> = self.hi.to_vec();
+        values.extend(self.lo.iter().map(|x| -x));
+        on.max(&mut values);
+        Bounds {
+            dim: self.dim,
+            lo: [-values[3], -values[4], -values[5]],
+            hi: [values[0], values[1], values[2]],
+        }
     }
 
     /// Whether it lies strictly inside `outer`.

@@ -15,6 +15,7 @@
 use std::time::Instant;
 
 use super::{blend, Deformer, Reference};
+use crate::collective::Whole;
 use crate::error::Result;
 use crate::quality::{self, Inversion};
 use crate::solve::{clear_prescribed, SolveInfo, SpringSolver, Stage};
@@ -99,7 +100,7 @@ impl<S: SpringSolver> Deformer<S> {
         let Some(blend) = &mut self.blend else {
             return reference.to_vec();
         };
-        let mut moved = blend.apply(reference, targets);
+        let mut moved = blend.apply(reference, targets, &Whole);
         blend::keep_in_planes(
             self.mesh.dim,
             &self.roles,

@@ -33,16 +33,17 @@
 
 use std::sync::Arc;
 
+use super::distances::Nearest;
 use super::harmonic::Laplace;
+use crate::collective::Collective;
 use crate::geometry::{cross, dot, norm};
-use crate::mesh::Mesh;
-use crate::robust::{self, heap_distances};
+use crate::robust::Bounds;
 use crate::solve::{Frame, NodeRole};
 use crate::topology::Csr;
 
 /// Prescribed nodes this fraction of the mesh's size from their targets
 /// are there: what the fit of an exactly rigid motion leaves.
-pub(super) const ROUND_OFF: f64 = 1e-12;
+pub const ROUND_OFF: f64 = 1e-12;
 
 /// The angle's weight falls off over `ρ =` this many times the body's
 /// radius about the centre it turns about: the best minimum quality of 0.5,
@@ -55,18 +56,22 @@ const ANGLE_SCALE: f64 = 2.0;
 struct Body {
     fitted: Vec<usize>,
     held: Vec<usize>,
-    /// The prescribed nodes not held: where both weights are 0.
-    others: Vec<usize>,
     /// Half the body's size (its wall nodes' bounding-box diagonal).
     radius: f64,
     /// The translation's last weights, the next increment's initial
     /// guesses: sliding nodes held at 0, and sliding nodes free.
     held_slides: Vec<f64>,
     free_slides: Vec<f64>,
+    /// The angle's weight's nearest held node and nearest other
+    /// prescribed node of every node.
+    near_held: Nearest,
+    near_others: Nearest,
 }
 
-/// The bodies of a run and the problem their weights solve.
-pub(super) struct Blend {
+/// The bodies of a run and the problem their weights solve, on a whole
+/// mesh or on one process's part of it (its local nodes, owned and ghosts,
+/// with every cell around the owned ones).
+pub struct Blend {
     dim: usize,
     /// The diagonal of the input mesh's bounding box.
     extent: f64,
@@ -93,20 +98,28 @@ struct Rigid {
 }
 
 impl Blend {
-    /// The blend for bodies given as `(targets fitted, nodes held)`;
-    /// `roles` are the deformer's (rigid-layer nodes prescribed),
-    /// `edge_graph` the mesh's ([`crate::topology::edge_graph`]).
-    pub(super) fn new(
-        mesh: &Mesh,
+    /// The blend for bodies given as `(targets fitted, nodes held)` of
+    /// the local nodes at `coords` (`dim` numbers each), numbered `ids`
+    /// (the same number for a node on every process), held nodes owned
+    /// or not, shared by the processes `on` (collective): `roles` are the
+    /// deformer's (rigid-layer nodes prescribed), `edge_graph` the local
+    /// cells' ([`crate::topology::edge_graph`]).
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        dim: usize,
+        coords: &[f64],
+        ids: &[u64],
         edge_graph: Arc<Csr>,
         roles: &[NodeRole],
         normals: &[[f64; 3]],
         bodies: Vec<(Vec<usize>, Vec<usize>)>,
+        on: &dyn Collective,
     ) -> Blend {
-        let n = mesh.node_count();
-        let laplace = Laplace::new(mesh.dim, edge_graph);
+        let n = roles.len();
+        let laplace = Laplace::new(dim, edge_graph);
         let slide_along = common_slide_directions(roles, normals);
-        let extent = robust::size(mesh, &(0..n).collect::<Vec<_>>());
+        let size = |nodes: &[usize]| Bounds::of(dim, coords, nodes).reduced(on).diagonal();
+        let extent = size(&(0..n).collect::<Vec<_>>());
         let bodies = bodies
             .into_iter()
             .map(|(fitted, held)| {
@@ -114,15 +127,17 @@ impl Blend {
                 for &i in &held {
                     is_held[i] = true;
                 }
-                let others = (0..n)
+                let others: Vec<usize> = (0..n)
                     .filter(|&i| roles[i] == NodeRole::Fixed && !is_held[i])
                     .collect();
                 let wall: Vec<usize> = held[..fitted.len()].to_vec();
+                let graph = laplace.graph();
                 Body {
-                    radius: 0.5 * robust::size(mesh, &wall),
+                    near_held: Nearest::new(on, graph, dim, coords, ids, &held),
+                    near_others: Nearest::new(on, graph, dim, coords, ids, &others),
+                    radius: 0.5 * size(&wall),
                     fitted,
                     held,
-                    others,
                     held_slides: vec![0.0; n],
                     free_slides: vec![0.0; n],
                 }
@@ -133,26 +148,33 @@ impl Blend {
             unknown_slides: roles.iter().map(|r| *r != NodeRole::Fixed).collect(),
             slide_along,
             laplace,
-            dim: mesh.dim,
+            dim,
             extent,
             bodies,
         }
     }
 
     /// `coords` moved by every body's blended rigid motion towards
-    /// `targets` (the prescribed nodes' positions, moving nodes first).
-    pub(super) fn apply(&mut self, coords: &[f64], targets: &[(usize, Vec<f64>)]) -> Vec<f64> {
+    /// `targets` (the prescribed nodes' positions, moving nodes first),
+    /// over the processes `on` (collective).
+    pub fn apply(
+        &mut self,
+        coords: &[f64],
+        targets: &[(usize, Vec<f64>)],
+        on: &dyn Collective,
+    ) -> Vec<f64> {
         let dim = self.dim;
         let mut moved = coords.to_vec();
         for body in &mut self.bodies {
-            let still = body.fitted.iter().all(|&k| {
+            let mut moving = [f64::from(u8::from(body.fitted.iter().any(|&k| {
                 let (i, q) = &targets[k];
-                q.as_slice() == &coords[dim * i..dim * (i + 1)]
-            });
-            if still {
+                q.as_slice() != &coords[dim * i..dim * (i + 1)]
+            })))];
+            on.max(&mut moving);
+            if moving[0] == 0.0 {
                 continue;
             }
-            let rigid = fit(dim, coords, targets, &body.fitted).about_axis(body.radius);
+            let rigid = fit(on, dim, coords, targets, &body.fitted).about_axis(body.radius);
             // The translation's part across the sliding planes and along them.
             let t = rigid.translation;
             let along: [f64; 3] = std::array::from_fn(|r| dot(&self.slide_along[r], &t));
@@ -173,10 +195,10 @@ impl Blend {
                 for &i in &body.held {
                     w[i] = 1.0;
                 }
-                self.laplace.solve(coords, unknown, w);
+                self.laplace.solve(on, coords, unknown, w);
             }
             // The body's radius about the centre it turns about.
-            let reach = body
+            let mut reach = [body
                 .fitted
                 .iter()
                 .map(|&k| {
@@ -186,8 +208,12 @@ impl Blend {
                         .sum::<f64>()
                         .sqrt()
                 })
-                .fold(0.0, f64::max);
-            let rotation = angle_weights(self.laplace.graph(), dim, coords, body, reach);
+                .fold(0.0, f64::max)];
+            on.max(&mut reach);
+            let graph = self.laplace.graph();
+            let to_held = body.near_held.distances(on, graph, coords);
+            let to_others = body.near_others.distances(on, graph, coords);
+            let rotation = angle_weights(&to_held, &to_others, reach[0]);
             let (across_on, along_on) = (moves(&across), moves(&along));
             for i in 0..coords.len() / dim {
                 let wa = if across_on { body.held_slides[i] } else { 0.0 };
@@ -212,7 +238,7 @@ impl Blend {
 /// motions, each as the indices (into `moving`, the order of the step's
 /// targets) its rigid motion is fitted to and the mesh nodes it holds at
 /// weight 1 — its moving nodes and the rigid-layer nodes that follow them.
-pub(super) fn bodies(
+pub fn bodies(
     moving: &[(usize, Vec<usize>)],
     layer: &[(usize, Option<usize>)],
 ) -> Vec<(Vec<usize>, Vec<usize>)> {
@@ -276,7 +302,7 @@ fn common_slide_directions(roles: &[NodeRole], directions: &[[f64; 3]]) -> [[f64
 
 /// Removes from the move `moved − reference` of every sliding node its
 /// components along the normals of its plane or line.
-pub(super) fn keep_in_planes(
+pub fn keep_in_planes(
     dim: usize,
     roles: &[NodeRole],
     normals: &[[f64; 3]],
@@ -289,15 +315,15 @@ pub(super) fn keep_in_planes(
     }
 }
 
-/// The angle's weight `v` of every node (see the module documentation).
-fn angle_weights(graph: &Csr, dim: usize, coords: &[f64], body: &Body, rho: f64) -> Vec<f64> {
-    let to_body = heap_distances(graph, dim, coords, &body.held);
-    let to_others = heap_distances(graph, dim, coords, &body.others);
+/// The angle's weight `v` of every node (see the module documentation),
+/// from its distances to the body's held nodes and to the other prescribed
+/// nodes, the body's radius about its centre `rho`.
+fn angle_weights(to_body: &[f64], to_others: &[f64], rho: f64) -> Vec<f64> {
     let rho = ANGLE_SCALE * rho.max(f64::MIN_POSITIVE);
     to_body
         .iter()
-        .zip(&to_others)
-        .map(|(&d, &e)| {
+        .zip(to_others)
+        .map(|(&d, &e): (&f64, &f64)| {
             if e == 0.0 || d.is_infinite() {
                 0.0
             } else {
@@ -308,27 +334,43 @@ fn angle_weights(graph: &Csr, dim: usize, coords: &[f64], body: &Body, rho: f64)
 }
 
 /// The rigid motion that best maps the nodes `fitted` (indices into
-/// `targets`) from `coords` to their targets.
-fn fit(dim: usize, coords: &[f64], targets: &[(usize, Vec<f64>)], fitted: &[usize]) -> Rigid {
-    let count = fitted.len() as f64;
-    let (mut c, mut c_moved) = ([0.0; 3], [0.0; 3]);
-    for &k in fitted {
-        let (i, q) = &targets[k];
+/// `targets`) from `coords` to their targets, the sums over the nodes
+/// every process owns (collective).
+fn fit(
+    on: &dyn Collective,
+    dim: usize,
+    coords: &[f64],
+    targets: &[(usize, Vec<f64>)],
+    fitted: &[usize],
+) -> Rigid {
+    let owned: Vec<&(usize, Vec<f64>)> = fitted
+        .iter()
+        .map(|&k| &targets[k])
+        .filter(|(i, _)| on.owns(*i))
+        .collect();
+    // The count, Σ p and Σ q.
+    let mut sums = [0.0; 7];
+    for (i, q) in &owned {
+        sums[0] += 1.0;
         for d in 0..dim {
-            c[d] += coords[dim * i + d] / count;
-            c_moved[d] += q[d] / count;
+            sums[1 + d] += coords[dim * i + d];
+            sums[4 + d] += q[d];
         }
     }
+    on.sum(&mut sums);
+    let c: [f64; 3] = std::array::from_fn(|d| sums[1 + d] / sums[0]);
+    let c_moved: [f64; 3] = std::array::from_fn(|d| sums[4 + d] / sums[0]);
     // Cross-covariance S_ab = Σ (p − c)_a (q − c')_b.
-    let mut s = [[0.0; 3]; 3];
-    for &k in fitted {
-        let (i, q) = &targets[k];
+    let mut flat = [0.0; 9];
+    for (i, q) in &owned {
         for a in 0..dim {
             for b in 0..dim {
-                s[a][b] += (coords[dim * i + a] - c[a]) * (q[b] - c_moved[b]);
+                flat[3 * a + b] += (coords[dim * i + a] - c[a]) * (q[b] - c_moved[b]);
             }
         }
     }
+    on.sum(&mut flat);
+    let s: [[f64; 3]; 3] = std::array::from_fn(|a| std::array::from_fn(|b| flat[3 * a + b]));
     let translation = [c_moved[0] - c[0], c_moved[1] - c[1], c_moved[2] - c[2]];
     let (axis, angle) = if dim == 2 {
         (
@@ -461,6 +503,7 @@ fn largest_eigenvector(mut m: [[f64; 4]; 4]) -> [f64; 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::collective::Whole;
 
     fn rotated(p: [f64; 3], axis: [f64; 3], angle: f64) -> Vec<f64> {
         let mut x = p.to_vec();
@@ -494,7 +537,7 @@ mod tests {
                 (i, q)
             })
             .collect();
-        let rigid = fit(3, &coords, &targets, &[0, 1, 2, 3]);
+        let rigid = fit(&Whole, 3, &coords, &targets, &[0, 1, 2, 3]);
         assert!((rigid.angle - 0.7).abs() < 1e-12, "{}", rigid.angle);
         assert!(dot(&rigid.axis, &axis) > 1.0 - 1e-12);
         // The fitted motion maps every node onto its target.
@@ -519,11 +562,11 @@ mod tests {
                 (i, p)
             })
             .collect();
-        let rigid = fit(2, &coords, &targets, &[0, 1, 2]).about_axis(0.6);
+        let rigid = fit(&Whole, 2, &coords, &targets, &[0, 1, 2]).about_axis(0.6);
         assert!((rigid.centre[0] - 1.0).abs() < 1e-12 && rigid.centre[1].abs() < 1e-12);
         assert!(norm(&rigid.translation) < 1e-12);
         // Within a smaller radius the centre stops on the way there.
-        let near = fit(2, &coords, &targets, &[0, 1, 2]).about_axis(0.25);
+        let near = fit(&Whole, 2, &coords, &targets, &[0, 1, 2]).about_axis(0.25);
         assert!((near.centre[0] - 0.75).abs() < 1e-12);
         for (i, q) in &targets {
             let mut p = coords[2 * i..2 * i + 2].to_vec();
@@ -536,7 +579,7 @@ mod tests {
     #[test]
     fn the_fit_of_a_single_node_is_its_translation() {
         let targets = vec![(0, vec![3.0, 4.0])];
-        let rigid = fit(2, &[1.0, 1.0], &targets, &[0]);
+        let rigid = fit(&Whole, 2, &[1.0, 1.0], &targets, &[0]);
         assert_eq!(rigid.angle, 0.0);
         assert_eq!(&rigid.translation[..2], &[2.0, 3.0]);
     }

@@ -4,13 +4,20 @@
 //! docs/method.md, "Blended rigid motion"). Short edges couple strongly, so
 //! small and compressed cells take less of the change. Solved by conjugate
 //! gradients with a Jacobi preconditioner, from the previous increment's
-//! weights.
+//! weights, on a whole mesh or on one process's part: the products are
+//! exact on the owned nodes (every edge around them is local), the ghosts
+//! take their owners' values after each update, and the dot products sum
+//! the owned nodes over the processes.
 
 use std::sync::Arc;
 
+use crate::collective::Collective;
 use crate::topology::{self, Csr};
 
-/// Conjugate gradients stop at this reduction of the residual…
+/// Conjugate gradients stop at this reduction of the residual (so that
+/// processes summing in another order agree to about this much of the
+/// move; with the fixed and anchored references the weights are solved
+/// once a run)…
 const REDUCTION: f64 = 1e-8;
 /// …or after this many iterations (the guard judges the mesh a weight makes).
 const MAX_ITERATIONS: usize = 4000;
@@ -39,8 +46,16 @@ impl Laplace {
 
     /// Solves for `w` on `coords` with unknowns where `unknown` is set (and
     /// the node is on an edge): on entry the prescribed values and the
-    /// unknowns' initial guess, on exit the solution (clamped to `[0, 1]`).
-    pub(super) fn solve(&self, coords: &[f64], unknown: &[bool], w: &mut [f64]) {
+    /// unknowns' initial guess, on exit the solution (clamped to `[0, 1]`),
+    /// over the processes `on` (collective; the ghosts' values on entry
+    /// their owners').
+    pub(super) fn solve(
+        &self,
+        on: &dyn Collective,
+        coords: &[f64],
+        unknown: &[bool],
+        w: &mut [f64],
+    ) {
         let dim = self.dim;
         let unknown: Vec<bool> = unknown
             .iter()
@@ -74,8 +89,19 @@ impl Laplace {
                 y[b] -= f;
             }
         };
-        // r, z and p stay 0 at the prescribed entries, so their dot products
-        // need no mask (the sums add the same terms, in the same order).
+        // r, z and p stay 0 at the prescribed entries; the dot products
+        // take the owned entries (all of them on one process).
+        let owned: Vec<f64> = (0..n).map(|i| f64::from(u8::from(on.owns(i)))).collect();
+        let dot = |x: &[f64], y: &[f64]| {
+            let mut sum = [x
+                .iter()
+                .zip(y)
+                .zip(&owned)
+                .map(|((a, b), o)| a * b * o)
+                .sum()];
+            on.sum(&mut sum);
+            sum[0]
+        };
         let mut r = vec![0.0; n];
         apply(w, &mut r);
         for (ri, &u) in r.iter_mut().zip(&unknown) {
@@ -88,11 +114,12 @@ impl Laplace {
             .map(|i| if unknown[i] { 0.0 } else { w[i] })
             .collect();
         apply(&prescribed, &mut pull);
-        let scale = (0..n)
-            .filter(|&i| unknown[i])
+        let mut scale = [(0..n)
+            .filter(|&i| unknown[i] && on.owns(i))
             .map(|i| pull[i] * pull[i])
-            .sum::<f64>()
-            .sqrt();
+            .sum::<f64>()];
+        on.sum(&mut scale);
+        let scale = scale[0].sqrt();
         if scale == 0.0 {
             for i in (0..n).filter(|&i| unknown[i]) {
                 w[i] = 0.0;
@@ -107,6 +134,7 @@ impl Laplace {
         }
         let mut z: Vec<f64> = r.iter().zip(&diag).map(|(ri, di)| ri / di).collect();
         let mut p = z.clone();
+        on.refresh(&mut p, 1);
         let mut q = vec![0.0; n];
         let mut rz = dot(&r, &z);
         let mut rr = dot(&r, &r);
@@ -120,28 +148,25 @@ impl Laplace {
                 break;
             }
             let alpha = rz / pq;
-            let (mut next, mut next_rr) = (0.0, 0.0);
+            let mut next = [0.0; 2];
             for i in 0..n {
                 w[i] += alpha * p[i];
                 r[i] -= alpha * q[i] * mask[i];
                 z[i] = r[i] / diag[i];
-                next += r[i] * z[i];
-                next_rr += r[i] * r[i];
+                next[0] += r[i] * z[i] * owned[i];
+                next[1] += r[i] * r[i] * owned[i];
             }
-            let beta = next / rz;
-            rz = next;
-            rr = next_rr;
+            on.sum(&mut next);
+            let beta = next[0] / rz;
+            rz = next[0];
+            rr = next[1];
             for (pi, zi) in p.iter_mut().zip(&z) {
                 *pi = zi + beta * *pi;
             }
+            on.refresh(&mut p, 1);
         }
         for wi in w.iter_mut() {
             *wi = wi.clamp(0.0, 1.0);
         }
     }
-}
-
-/// `x · y`, summed in order.
-fn dot(x: &[f64], y: &[f64]) -> f64 {
-    x.iter().zip(y).map(|(a, b)| a * b).sum()
 }

@@ -11,20 +11,9 @@
 //!   nodes nor on how the mesh is cut: a rank holding all seeds finds on
 //!   its part what one process finds. [`connect`] marks the nodes
 //!   connected to a seed, [`nearest_connected`] does both.
-//! * [`heap_distances`]: the distance spread along the edges from a heap,
-//!   in order of distance, a node taking the nearest of its neighbours'
-//!   seeds. Cheaper still, but its answer depends on the order of its
-//!   steps (the straight-line distance to a seed is not a path length), so
-//!   it is what the blended rigid motion uses for its weights at every
-//!   increment (docs/method.md, "Blended rigid motion"), while the rigid
-//!   layer and the stiffening, which ranks must find alike, use
-//!   [`nearest_seeds`].
 //! * [`reach`]: the nodes reached from the labelled ones through cells of
 //!   aspect ratio at least [`super::ANISOTROPIC`], the boundary layer of
 //!   the automatic rigid layer's thickness.
-
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
 
 use crate::mesh::Cells;
 use crate::topology::{self, Csr};
@@ -251,41 +240,6 @@ pub fn connect(graph: &Csr, reached: &mut [bool], mut sync: impl FnMut(&mut [boo
             return;
         }
     }
-}
-
-/// For every node of `coords` the distance to its nearest seed of `seeds`,
-/// spread along the edges of `graph` in order of distance (a node takes the
-/// nearest, in straight line, of its neighbours' seeds, until nothing
-/// changes). Nodes no seed reaches keep an infinite distance.
-pub(crate) fn heap_distances(graph: &Csr, dim: usize, coords: &[f64], seeds: &[usize]) -> Vec<f64> {
-    let n = graph.rows();
-    let mut dist = vec![f64::INFINITY; n];
-    let mut seed = vec![usize::MAX; n];
-    let mut heap = BinaryHeap::new();
-    for &s in seeds {
-        dist[s] = 0.0;
-        seed[s] = s;
-        heap.push(Reverse((0u64, s)));
-    }
-    // Non-negative f64s order like their bit patterns.
-    while let Some(Reverse((bits, i))) = heap.pop() {
-        if f64::from_bits(bits) > dist[i] {
-            continue;
-        }
-        let s = seed[i];
-        for j in graph.entries(i) {
-            let d = distance(
-                &coords[dim * j..dim * (j + 1)],
-                &coords[dim * s..dim * (s + 1)],
-            );
-            if d < dist[j] {
-                dist[j] = d;
-                seed[j] = s;
-                heap.push(Reverse((d.to_bits(), j)));
-            }
-        }
-    }
-    dist
 }
 
 /// Marks in `reached` every node reached from the marked ones through cells
