@@ -201,13 +201,9 @@ mod tests {
         let mut moved = mesh.coords.clone();
         moved[2 * (6 * 13 + 6)] -= 0.3;
         let d = nearest.distances(&Whole, &graph, &moved);
-        for i in 0..mesh.node_count() {
+        for (i, &di) in d.iter().enumerate() {
             let exact = brute(&moved, &seeds, i);
-            assert!(
-                d[i] >= exact && d[i] <= exact + 0.3,
-                "node {i}: {} {exact}",
-                d[i]
-            );
+            assert!(di >= exact && di <= exact + 0.3, "node {i}: {di} {exact}");
         }
         assert_eq!(d[6 * 13 + 6], 0.0);
         assert_eq!(d[6 * 13 + 2], brute(&moved, &seeds, 6 * 13 + 2));
