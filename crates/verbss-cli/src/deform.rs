@@ -333,24 +333,21 @@ impl DeformArgs {
     /// docs/distributed.md): refuses, with the reason, what needs the whole
     /// mesh or is not written rank by rank.
     pub fn share_job(&self, dim: usize) -> anyhow::Result<ShareJob> {
-        if !matches!(self.method, Preset::Verbss | Preset::Spring) {
+        if !matches!(
+            self.method,
+            Preset::Robust | Preset::Verbss | Preset::Spring
+        ) {
             bail!(
-                "{}: a partitioned input is read rank by rank, which runs --method verbss or \
-                 spring, with --rigid-layer, --stiffening and --substeps if asked (the blend of \
-                 robust needs the whole mesh)",
+                "{}: a partitioned input is read rank by rank, which runs --method robust, \
+                 verbss or spring",
                 self.mesh.display()
             );
         }
         let whole_mesh = [
             (self.positions.is_some(), "--positions"),
             (!self.slide.is_empty(), "--slide"),
-            (self.blend == Some(true), "--blend on"),
             (self.solver.is_some(), "--solver"),
             (self.accel.is_some(), "--accel"),
-            (
-                self.reference == Some(Reference::Anchored),
-                "--reference anchored",
-            ),
             (self.predictor != Predictor::Previous, "--predictor"),
             (self.zone.zone.is_some(), "--zone"),
             (self.every.is_some(), "--every"),

@@ -113,13 +113,34 @@ impl Ghosts {
     /// The caller's per-local-node values (`width` each) spread over the
     /// part, the ghosts' from their owners (collective).
     pub fn spread(&self, comm: &Comm, values: &[f64], width: usize) -> Vec<f64> {
-        let mut out = vec![0.0; width * self.part.node_count()];
-        for (i, &p) in self.local.iter().enumerate() {
-            out[width * p..width * (p + 1)].copy_from_slice(&values[width * i..width * (i + 1)]);
-        }
-        self.halo.exchange(comm, &mut out, width);
-        out
+        spread(
+            comm,
+            &self.halo,
+            &self.local,
+            self.part.node_count(),
+            values,
+            width,
+        )
     }
+}
+
+/// The caller's per-local-node values (`width` each) spread over a part of
+/// `nodes` nodes, caller's node `i` its node `local[i]`, the ghosts' from
+/// their owners through `halo` (collective).
+pub fn spread(
+    comm: &Comm,
+    halo: &Halo,
+    local: &[usize],
+    nodes: usize,
+    values: &[f64],
+    width: usize,
+) -> Vec<f64> {
+    let mut out = vec![0.0; width * nodes];
+    for (i, &p) in local.iter().enumerate() {
+        out[width * p..width * (p + 1)].copy_from_slice(&values[width * i..width * (i + 1)]);
+    }
+    halo.exchange(comm, &mut out, width);
+    out
 }
 
 /// The owner of each local node: the lowest rank holding its global number.

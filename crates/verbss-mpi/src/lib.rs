@@ -21,10 +21,13 @@
 //!   scattered blocks for the same cut;
 //! * [`ghosts`] adds a rank's ghost layer, and [`near_wall`] finds the
 //!   rigid layer and the wall-distance stiffening on it;
-//! * [`step_quality`] reduces a step's quality report over the ranks.
+//! * [`step_quality`] reduces a step's quality report over the ranks;
+//! * [`ranks::Ranks`] gives the computations written once for a whole mesh
+//!   or a part ([`verbss::collective::Collective`]: the blended rigid
+//!   motion, the wall distances' walks) their sums and ghost values.
 //!
 //! The MPI parts ([`Comm`], [`cgns_read`], [`coupled`], [`ghosts`], [`halo`],
-//! [`near_wall`], [`partition`],
+//! [`near_wall`], [`partition`], [`ranks`],
 //! [`scatter`], [`step_quality`], [`stepper`], [`sweeper`]) are built when `build.rs` finds
 //! MPI and METIS ([`missing`] says why they were not), `repartition` when it
 //! also finds PT-Scotch ([`ptscotch_missing`]); [`colouring`], [`cost`], [`part`],
@@ -54,6 +57,8 @@ pub mod part;
 #[cfg(with_mpi)]
 pub mod partition;
 pub mod pieces;
+#[cfg(with_mpi)]
+pub mod ranks;
 #[cfg(with_ptscotch)]
 pub mod repartition;
 #[cfg(with_mpi)]

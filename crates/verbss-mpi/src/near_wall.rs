@@ -26,6 +26,7 @@
 //!   [`stiffness_factor`]), on every node of the part, so that a node has
 //!   the same answer on every rank holding it.
 
+use verbss::collective::mark_sync;
 use verbss::robust::spread::{nearest_connected, reach};
 use verbss::robust::Seeds;
 use verbss::robust::{
@@ -36,6 +37,7 @@ use verbss::topology;
 use verbss::{Error, Mesh, Result};
 
 use crate::ghosts::Ghosts;
+use crate::ranks::Ranks;
 use crate::Comm;
 
 /// The rigid layer and the stiffness factors of a rank's nodes.
@@ -82,6 +84,7 @@ pub fn near_wall(
     }
     let dim = mesh.dim;
     let part = &ghosts.part;
+    let ranks = Ranks::of(comm, part, &ghosts.halo);
     let m = part.node_count();
     let coords = ghosts.spread(comm, &mesh.coords, dim);
     // Per part node: prescribed or not, and the moving body (−1: none).
@@ -112,7 +115,7 @@ pub fn near_wall(
         }
     }
     let all: Vec<usize> = (0..mesh.node_count()).collect();
-    let outer = reduced(comm, Bounds::of(dim, &mesh.coords, &all));
+    let outer = Bounds::of(dim, &mesh.coords, &all).reduced(&ranks);
     let mut in_wall = vec![false; m];
     for (_, nodes) in groups {
         let prescribed = nodes
@@ -120,7 +123,7 @@ pub fn near_wall(
             .all(|&i| roles[i] == NodeRole::Fixed && body[i].is_none());
         let held = comm.sum(nodes.len() as u64);
         let all_prescribed = comm.min(u64::from(prescribed)) == 1;
-        let bounds = reduced(comm, Bounds::of(dim, &mesh.coords, nodes));
+        let bounds = Bounds::of(dim, &mesh.coords, nodes).reduced(&ranks);
         if held == 0 || !all_prescribed || !bounds.inside(&outer) {
             continue;
         }
@@ -150,7 +153,7 @@ pub fn near_wall(
             &comm.all_gather(&points).concat(),
             &comm.all_gather(&ids).concat(),
         );
-        nearest_connected(&all, &graph, &coords, seeds, limit, mark_sync(comm, ghosts))
+        nearest_connected(&all, &graph, &coords, seeds, limit, mark_sync(&ranks))
     };
     let fields: Vec<(Vec<f64>, Vec<u64>)> = seeds
         .iter()
@@ -163,7 +166,7 @@ pub fn near_wall(
         .iter()
         .zip(&fields)
         .map(|(seeds, field)| {
-            let size = reduced(comm, Bounds::of(dim, &coords, seeds)).diagonal();
+            let size = Bounds::of(dim, &coords, seeds).reduced(&ranks).diagonal();
             thickness(robust.layer, size, |cap| {
                 let mut reached = vec![false; m];
                 for &s in seeds {
@@ -176,7 +179,7 @@ pub fn near_wall(
                     &field.0,
                     cap,
                     &mut reached,
-                    mark_sync(comm, ghosts),
+                    mark_sync(&ranks),
                 );
                 comm.max(layer)
             })
@@ -213,36 +216,4 @@ pub fn near_wall(
         thickness,
         layer_nodes: comm.sum(owned as u64),
     })
-}
-
-/// The box of all ranks' boxes `b` (collective).
-fn reduced(comm: &Comm, b: Bounds) -> Bounds {
-    let mut values = b.lo.to_vec();
-    values.extend(b.hi.iter().map(|x| -x));
-    let all = comm.mins(&values);
-    Bounds {
-        dim: b.dim,
-        lo: [all[0], all[1], all[2]],
-        hi: [-all[3], -all[4], -all[5]],
-    }
-}
-
-/// The `sync` of a walk that only ever marks more nodes: a ghost exchange
-/// of the marks, saying whether the ranks' owned marks grew since the last
-/// call (at the first, whether there is any) (collective).
-fn mark_sync<'a>(comm: &'a Comm, ghosts: &'a Ghosts) -> impl FnMut(&mut [bool]) -> bool + 'a {
-    let mut last = 0;
-    move |marks| {
-        let mut flat: Vec<f64> = marks.iter().map(|&x| f64::from(u8::from(x))).collect();
-        ghosts.halo.exchange(comm, &mut flat, 1);
-        for (x, f) in marks.iter_mut().zip(&flat) {
-            *x = *f == 1.0;
-        }
-        let part = &ghosts.part;
-        let owned = (0..marks.len())
-            .filter(|&i| part.owns(i) && marks[i])
-            .count();
-        let total = comm.sum(owned as u64);
-        std::mem::replace(&mut last, total) != total
-    }
 }

@@ -46,14 +46,13 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::bail;
-use verbss::deform::Reference;
+use verbss::deform::{Reference, StepReport, QUALITY_DROP};
 use verbss::io::gmsh::partitioned::{partition_count, Share};
 use verbss::io::gmsh::split_write::{SplitModel, SplitPiece};
 use verbss::motion::{Clock, Frame, Motion};
 use verbss::quality;
-use verbss::robust::Layer;
-use verbss::solve::NodeRole;
-use verbss::solve::Stage;
+use verbss::robust::{Bounds, Layer};
+use verbss::solve::{NodeRole, SolveInfo, SolveParams, Stage};
 use verbss_cli::deform::DeformArgs;
 use verbss_cli::progress::Progress;
 use verbss_cli::run::{file_stem, output_dir};
@@ -63,6 +62,7 @@ use verbss_mpi::pieces::{
     decode_entities, encode_entities, encode_groups, msh_facet_tags, split_groups,
     write_local_piece, write_msh_piece,
 };
+use verbss_mpi::ranks::Ranks;
 use verbss_mpi::share::{
     agree, global_numbers, partitions_of, prescribe, read_rank_share, read_rank_split,
 };
@@ -72,6 +72,7 @@ use verbss_mpi::Comm;
 use crate::cgns;
 use crate::gather;
 use crate::run::join_pieces;
+use crate::share_blend::{nothing_left, PartBlend};
 use crate::share_report::StepLog;
 use crate::su2;
 
@@ -210,10 +211,29 @@ pub fn run_shares(
         Ok((roles, u))
     };
     let (roles, mut before) = at(0)?;
+    let orientation = quality::orientation(mesh);
+    let moving = moving_body(&share, &job.moving);
+    let blend = (robust.blend && comm_any(&world, moving.iter().any(Option::is_some))).then(|| {
+        let moving: Vec<bool> = moving.iter().map(Option::is_some).collect();
+        let follows: Vec<bool> = near
+            .layer
+            .iter()
+            .map(|l| matches!(l, Some(Some(_))))
+            .collect();
+        PartBlend::new(&world, mesh, &ghosts, &roles, &moving, &follows)
+    });
+    let size = {
+        let all: Vec<usize> = (0..mesh.node_count()).collect();
+        let ranks = Ranks::of(&world, &ghosts.part, &ghosts.halo);
+        Bounds::of(mesh.dim, &mesh.coords, &all)
+            .reduced(&ranks)
+            .diagonal()
+    };
     let part_nodes = ghosts.part.node_count();
     let part_cells = ghosts.part.cells.len();
     let mut solver = LocalSolver::with_ghosts(&world, ghosts, &roles, &[])?;
     solver.set_stiffness(&near.stiffness)?;
+    let mut blend = blend;
     if !job.quiet {
         println!(
             "rank {}: {from}: {} nodes and {} cells read; with the ghost layer {part_nodes} \
@@ -231,62 +251,106 @@ pub fn run_shares(
             );
         }
     }
-    let orientation = quality::orientation(mesh);
     let mut coords = mesh.coords.clone();
     let mut report = StepLog::new(&world, &job, mesh, solver.part(), &orientation);
+    let input_quality = report.last().min_quality;
     let progress = Progress::new(steps, job.quiet || !root);
     let mut sweeps = 0;
+    let reference = job.settings.reference;
+    let settings = &job.settings.solve;
+    let mut solve = |springs: &[f64], base: &[f64], u: Vec<f64>, nothing: bool| {
+        let to = Solve {
+            springs,
+            base,
+            nothing,
+        };
+        attempt(&world, &mut solver, mesh, &orientation, settings, to, u)
+    };
     for step in 1..=steps {
         let start = Instant::now();
         let (_, target) = at(step)?;
         let delta: Vec<f64> = target.iter().zip(&before).map(|(a, b)| a - b).collect();
         // Increments of the step, halved after a failure down to `floor`
         // and doubled after a success (with a total unknown, none).
-        let floor = match job.settings.reference {
+        let floor = match reference {
             Reference::Updated => 0.5f64.powi(job.settings.robust.substeps as i32),
             _ => 1.0,
         };
         let (mut done, mut h) = (0.0, 1.0);
         let mut current = coords.clone();
+        let mut current_quality = report.last().min_quality;
         let mut solves = Vec::new();
         let mut increments = 0;
         let mut check_seconds = 0.0;
+        // Whether the springs solved anything (else the blend moved the mesh).
+        let mut swept = false;
         let (moved, mut r) = loop {
             let end = if done + h >= 1.0 { 1.0 } else { done + h };
-            let (springs, mut u) = match job.settings.reference {
-                Reference::Fixed => (mesh.coords.clone(), target.clone()),
-                _ => {
-                    let fraction = end - done;
-                    (
-                        current.clone(),
-                        delta.iter().map(|d| d * fraction).collect(),
-                    )
+            // The configuration the increment starts from and the
+            // prescribed displacement from it (zero at the free nodes).
+            let (from, du): (&[f64], Vec<f64>) = match reference {
+                Reference::Updated => (&current, delta.iter().map(|d| d * (end - done)).collect()),
+                _ => (&mesh.coords, target.clone()),
+            };
+            // The springs are on the start of the increment, with the fixed
+            // reference on the input mesh.
+            let springs_on = |start: &'_ [f64]| -> Vec<f64> {
+                match reference {
+                    Reference::Fixed => mesh.coords.clone(),
+                    _ => start.to_vec(),
                 }
             };
-            // The moved mesh of a solution and its collective check.
-            let mut judge = |u: &[f64]| {
-                let moved: Vec<f64> = springs.iter().zip(u).map(|(x, du)| x + du).collect();
-                let check = Instant::now();
-                let r = step_quality(&world, mesh, &moved, &orientation);
-                check_seconds += check.elapsed().as_secs_f64();
-                (moved, r)
-            };
-            let mut info = solver.solve(&springs, &mut u, &job.settings.solve)?;
-            let (mut moved, mut r) = judge(&u);
-            // An inversion is never the solver's fault: a converged solve
-            // that inverts a cell is solved again to round-off, and that is
-            // judged where it converges (as on one process).
-            if job.settings.solve.escalate && info.converged && r.inverted > 0 {
-                let exact = solver.solve_exact(&springs, &mut u, &job.settings.solve)?;
-                if exact.converged {
-                    (moved, r) = judge(&u);
-                    solves.push(std::mem::replace(&mut info, exact));
-                } else {
-                    solves.push(exact);
+            let plain_springs = springs_on(from);
+            let chosen = match blend.as_mut() {
+                None => solve(&plain_springs, from, du.clone(), false)?,
+                Some(b) => {
+                    let targets: Vec<f64> = from.iter().zip(&du).map(|(x, d)| x + d).collect();
+                    let start = b.start(&world, from, &targets);
+                    let mut u = vec![0.0; targets.len()];
+                    let dim = mesh.dim;
+                    for (i, role) in roles.iter().enumerate() {
+                        if *role == NodeRole::Fixed {
+                            for k in dim * i..dim * (i + 1) {
+                                u[k] = targets[k] - start[k];
+                            }
+                        }
+                    }
+                    let nothing = nothing_left(&world, &roles, &start, &targets, size);
+                    let blended = solve(&springs_on(&start), &start, u, nothing)?;
+                    let reference_quality = match reference {
+                        Reference::Updated => current_quality,
+                        _ => input_quality,
+                    };
+                    let weak = blended.report.inverted > 0
+                        || blended.report.min_quality < QUALITY_DROP * reference_quality;
+                    if weak {
+                        let plain = solve(&plain_springs, from, du.clone(), false)?;
+                        let (kept, mut dropped) = if plain.better_than(&blended) {
+                            (plain, blended)
+                        } else {
+                            (blended, plain)
+                        };
+                        check_seconds += dropped.check_seconds;
+                        swept |= dropped.swept;
+                        solves.append(&mut dropped.solves);
+                        kept
+                    } else {
+                        blended
+                    }
                 }
-            }
+            };
+            let Attempt {
+                moved,
+                report: r,
+                solves: mut made,
+                check_seconds: checked,
+                swept: solved,
+            } = chosen;
+            check_seconds += checked;
+            swept |= solved;
+            let info = made.last().expect("a solve per attempt").clone();
+            solves.append(&mut made);
             let failed = !info.converged || r.inverted > 0;
-            solves.push(info);
             if failed && h * 0.5 >= floor {
                 h *= 0.5;
                 continue;
@@ -295,6 +359,7 @@ pub fn run_shares(
             if failed || end >= 1.0 {
                 break (moved, r);
             }
+            current_quality = r.min_quality;
             current = moved;
             done = end;
             h = (2.0 * h).min(1.0 - done);
@@ -304,7 +369,9 @@ pub fn run_shares(
         r.check_seconds = check_seconds;
         r.step = step;
         r.substeps = increments;
-        r.stages.push(Stage::Sweeps);
+        if swept {
+            r.stages.push(Stage::Sweeps);
+        }
         for earlier in &solves {
             r.add(earlier);
         }
@@ -365,6 +432,100 @@ pub fn run_shares(
         );
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Whether any rank says `yes` (collective).
+fn comm_any(world: &Comm, yes: bool) -> bool {
+    world.max(u64::from(yes)) == 1
+}
+
+/// Where one solve of an increment is: the springs' coordinates, the
+/// configuration its displacement starts from, and whether that already
+/// puts every prescribed node at its target (nothing to solve).
+struct Solve<'a> {
+    springs: &'a [f64],
+    base: &'a [f64],
+    nothing: bool,
+}
+
+/// One solve of an increment and its collective check.
+struct Attempt {
+    /// The moved mesh.
+    moved: Vec<f64>,
+    /// Its quality, reduced over the ranks.
+    report: StepReport,
+    /// The solves made, the one judged last.
+    solves: Vec<SolveInfo>,
+    /// Seconds of the checks.
+    check_seconds: f64,
+    /// Whether the springs were solved (not when nothing was left).
+    swept: bool,
+}
+
+impl Attempt {
+    /// Whether it converged without inverting a cell.
+    fn valid(&self) -> bool {
+        self.solves.last().is_some_and(|s| s.converged) && self.report.inverted == 0
+    }
+
+    /// Whether it is valid and `other` is not, or has a lower minimum
+    /// quality (the guard's choice between the blended and the plain
+    /// start, as one process's).
+    fn better_than(&self, other: &Attempt) -> bool {
+        self.valid() && (!other.valid() || self.report.min_quality > other.report.min_quality)
+    }
+}
+
+/// One solve (collective): the springs at `to.springs`, the displacement
+/// `u` from `to.base` (prescribed values and the initial guess), the moved
+/// mesh `base + u` checked over the ranks. A converged solve that inverts a
+/// cell is solved again to round-off ([`LocalSolver::solve_exact`]) and
+/// judged on that where it converges: an inversion is never the solver's
+/// fault (as on one process).
+fn attempt(
+    world: &Comm,
+    solver: &mut LocalSolver,
+    mesh: &verbss::Mesh,
+    orientation: &[i8],
+    settings: &SolveParams,
+    to: Solve,
+    mut u: Vec<f64>,
+) -> anyhow::Result<Attempt> {
+    let mut check_seconds = 0.0;
+    let mut judge = |u: &[f64]| {
+        let moved: Vec<f64> = to.base.iter().zip(u).map(|(x, du)| x + du).collect();
+        let check = Instant::now();
+        let r = step_quality(world, mesh, &moved, orientation);
+        check_seconds += check.elapsed().as_secs_f64();
+        (moved, r)
+    };
+    let mut info = if to.nothing {
+        u.fill(0.0);
+        let mut none = SolveInfo::default();
+        none.converged = true;
+        none
+    } else {
+        solver.solve(to.springs, &mut u, settings)?
+    };
+    let (mut moved, mut report) = judge(&u);
+    let mut solves = Vec::new();
+    if settings.escalate && info.converged && report.inverted > 0 && !to.nothing {
+        let exact = solver.solve_exact(to.springs, &mut u, settings)?;
+        if exact.converged {
+            (moved, report) = judge(&u);
+            solves.push(std::mem::replace(&mut info, exact));
+        } else {
+            solves.push(exact);
+        }
+    }
+    solves.push(info);
+    Ok(Attempt {
+        moved,
+        report,
+        solves,
+        check_seconds,
+        swept: !to.nothing,
+    })
 }
 
 /// What a failed step's message says of its increments: nothing without

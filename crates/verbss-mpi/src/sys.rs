@@ -309,6 +309,12 @@ impl Comm {
         self.reduce(&[value], 1)[0]
     }
 
+    /// The largest over the ranks of each of `values`, of the same length
+    /// on every rank (collective).
+    pub fn maxs<T: Scalar>(&self, values: &[T]) -> Vec<T> {
+        self.reduce(values, 1)
+    }
+
     /// The smallest `value` of the ranks (collective).
     pub fn min<T: Scalar>(&self, value: T) -> T {
         self.reduce(&[value], 2)[0]

@@ -10,7 +10,7 @@
 
 use std::path::Path;
 
-use verbss::deform::Reference;
+use verbss::deform::{Preset, Reference};
 use verbss::io::gmsh::partitioned::read_share;
 use verbss::robust::{Layer, Robust};
 use verbss_mpi::share::partitions_of;
@@ -29,6 +29,7 @@ fn treatments<'a>(layer: Layer, args: &'a [&'a str]) -> NearWall<'a> {
     robust.layer = layer;
     robust.stiffening = 1.0;
     NearWall {
+        method: "verbss",
         robust,
         args,
         steps: 2,
@@ -218,11 +219,20 @@ fn sub_steps_lift_the_channel_hole_as_on_one_process() {
     let translation = Motion::Translation {
         displacement: [0.0, 0.27, 0.0],
     };
-    let (_, reports, _) = single_with(&whole, "wall", translation, 1, Reference::Updated, robust);
+    let (_, reports, _) = single_with(
+        &whole,
+        "wall",
+        translation,
+        1,
+        Reference::Updated,
+        robust,
+        Preset::Verbss,
+    );
     assert_eq!(reports[1].substeps, 2);
     // The first increment inverts a cell and is solved again to round-off
     // (stage gmres) before it is halved.
     let near_wall = NearWall {
+        method: "verbss",
         robust,
         args: &["--substeps", "6"],
         steps: 1,
@@ -238,4 +248,89 @@ fn sub_steps_lift_the_channel_hole_as_on_one_process() {
         &near_wall,
     );
     assert_eq!(stdouts.len(), 3);
+}
+
+/// The default method, `robust`: the automatic rigid layer, the
+/// stiffening and the blended rigid motion, in `steps` steps whose
+/// progress lines name `stages`.
+fn default_method(steps: usize, stages: &str) -> NearWall<'_> {
+    NearWall {
+        method: "robust",
+        robust: Robust::recommended(),
+        args: &[],
+        steps,
+        stages,
+    }
+}
+
+/// The default method moves the channel's hole by the blend alone (its
+/// translation's weight a distributed harmonic solve), and where the
+/// blended start is weak (the hole pushed 0.3 along the channel in one
+/// step) solves the springs from the plain start instead, as one process.
+#[test]
+fn the_default_method_moves_the_channel_hole_as_on_one_process() {
+    if !common::mpi_ready() {
+        return;
+    }
+    let mesh = asset("gmsh/channel_hole_part3_v41_ascii.msh");
+    let blended = default_method(2, "blended motion only");
+    let motion = ["--translate", "0.02,0.01"];
+    deforms_like_one_process_with(
+        &mesh,
+        "wall",
+        &motion,
+        Reference::Updated,
+        0.022,
+        &[],
+        &blended,
+    );
+    let plain = default_method(1, "sweeps");
+    let motion = ["--translate", "0.3,0"];
+    deforms_like_one_process_with(&mesh, "wall", &motion, Reference::Updated, 0.3, &[], &plain);
+}
+
+/// The default method turns the NACA0012 airfoil by the blend: its rigid
+/// fit summed over the ranks and its angle's weight from each node's
+/// nearest wall and far-field node, the same on every cut.
+#[test]
+fn the_default_method_turns_the_naca0012_as_on_one_process() {
+    if !ptscotch_ready() {
+        return;
+    }
+    // The trailing edge moves by 0.75·sin 10° ≈ 0.13.
+    let motion = ["--rotate", "10", "--center", "0.25,0"];
+    let (_, layer) = deforms_like_one_process_with(
+        &asset("su2/mesh_NACA0012_inv.su2"),
+        "airfoil",
+        &motion,
+        Reference::Updated,
+        0.13,
+        &[],
+        &default_method(2, "blended motion only"),
+    );
+    assert!(layer > 100, "{layer}");
+}
+
+/// The default method turns the three-element airfoil's flap between the
+/// slat and the main element, fixed walls whose nodes are the angle
+/// weight's other prescribed nodes.
+#[test]
+fn the_default_method_turns_the_flap_between_fixed_walls_as_on_one_process() {
+    if !ptscotch_ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let su2 = dir.path().join("three.su2");
+    let msh = verbss::io::read(&asset("../../cases/meshes/three-element.msh")).unwrap();
+    verbss::io::write(&su2, &msh, &verbss::io::WriteOptions::default()).unwrap();
+    let motion = ["--rotate", "10", "--center", "1,0"];
+    deforms_like_one_process_with(
+        &su2,
+        "flap",
+        &motion,
+        Reference::Updated,
+        0.043,
+        &[],
+        &default_method(2, "blended motion only"),
+    );
 }

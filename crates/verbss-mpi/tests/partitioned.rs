@@ -406,8 +406,8 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
     refused(
         2,
         &fixture(name),
-        &[],
-        "which runs --method verbss or spring",
+        &["--method", "laplacian"],
+        "which runs --method robust, verbss or spring",
     );
     let slide = ["--method", "verbss", "--slide", "sides"];
     refused(2, &fixture(name), &slide, "where --slide is not available");

@@ -176,8 +176,8 @@ fn a_bad_su2_file_stops_every_rank_with_one_message() {
                 .count();
         assert_eq!(said, 1, "{name}: {stderr}");
     }
-    // What the partitioned MSH path refuses, this path refuses: the default
-    // --method robust, which needs the whole mesh.
+    // What the partitioned MSH path refuses, this path refuses: a method
+    // with no partitioned form.
     let mesh = asset("su2/mesh_NACA0012_inv.su2");
     let out = dir.path().join("moved.pvtu");
     let args = [
@@ -189,10 +189,12 @@ fn a_bad_su2_file_stops_every_rank_with_one_message() {
         "airfoil",
         "--translate",
         "0.01,0",
+        "--method",
+        "ball-vertex",
     ];
     let o = verbss_mpi_with(2, &args, dir.path(), &[]);
     assert_eq!(o.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&o.stderr);
-    let refused = "which runs --method verbss or spring";
+    let refused = "which runs --method robust, verbss or spring";
     assert_eq!(stderr.matches(refused).count(), 1, "{stderr}");
 }

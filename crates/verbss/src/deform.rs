@@ -51,6 +51,7 @@ mod settings;
 mod tests;
 
 use self::attempt::Attempt;
+pub use self::attempt::QUALITY_DROP;
 use self::blend::Blend;
 use self::roles::{duplicate_nodes, plan_roles};
 pub use self::settings::{Predictor, Preset, Reference, Settings};

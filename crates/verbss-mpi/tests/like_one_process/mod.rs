@@ -72,12 +72,20 @@ pub fn single(
     steps: usize,
     reference: Reference,
 ) -> (Mesh, Vec<StepReport>) {
-    let (mesh, reports, _) = single_with(whole, group, motion, steps, reference, Robust::off());
+    let (mesh, reports, _) = single_with(
+        whole,
+        group,
+        motion,
+        steps,
+        reference,
+        Robust::off(),
+        Preset::Verbss,
+    );
     (mesh, reports)
 }
 
-/// [`single`] with the near-wall treatments `robust`; also the number of
-/// rigid-layer nodes.
+/// [`single`] with the near-wall treatments `robust` and the preset
+/// `preset`; also the number of rigid-layer nodes.
 pub fn single_with(
     whole: &Mesh,
     group: &str,
@@ -85,8 +93,9 @@ pub fn single_with(
     steps: usize,
     reference: Reference,
     robust: Robust,
+    preset: Preset,
 ) -> (Mesh, Vec<StepReport>, usize) {
-    let mut settings = Preset::Verbss.settings(steps);
+    let mut settings = preset.settings(steps);
     settings.reference = reference;
     settings.robust = robust;
     settings.solve.tolerance = TOLERANCE;
@@ -129,14 +138,16 @@ fn motion_of(motion: &[&str]) -> Motion {
     }
 }
 
-/// `verbss-mpi deform MESH -o OUT --moving GROUP --method verbss
+/// `verbss-mpi deform MESH -o OUT --moving GROUP --method METHOD
 /// --reference REFERENCE` on `np` ranks with the tests' tolerance and
 /// `extra` arguments (the steps among them); asserts that it succeeds.
+#[allow(clippy::too_many_arguments)]
 fn run(
     np: usize,
     mesh: &Path,
     out: &Path,
     group: &str,
+    method: &str,
     reference: Reference,
     extra: &[&str],
     env: &[(&str, &str)],
@@ -154,7 +165,7 @@ fn run(
         "--moving",
         group,
         "--method",
-        "verbss",
+        method,
         "--reference",
         reference,
         "--tolerance",
@@ -350,7 +361,7 @@ pub fn msh_pieces_like_one_process(
         let out = dir.path().join("moved.msh");
         let mut args = vec!["--pieces", "-q", "--steps", "2"];
         args.extend_from_slice(motion);
-        run(np, mesh, &out, group, reference, &args, env);
+        run(np, mesh, &out, group, "verbss", reference, &args, env);
         assert!(!out.exists(), "{}", out.display());
         let read = pieces_like_one_process(dir.path(), "msh", np, &whole, &one, scale);
         let paths: Vec<PathBuf> = (0..np)
@@ -509,6 +520,7 @@ pub fn deforms_like_one_process(
     env: &[(&str, &str)],
 ) -> Vec<String> {
     let near_wall = NearWall {
+        method: "verbss",
         robust: Robust::off(),
         args: &[],
         steps: 2,
@@ -520,6 +532,10 @@ pub fn deforms_like_one_process(
 /// Near-wall treatments of both runs: the single process's `robust`, the
 /// same as the distributed run's arguments `args`; and the number of steps.
 pub struct NearWall<'a> {
+    /// The method of both runs: `verbss` (with `robust`'s treatments) or
+    /// `robust` (with its own, `robust` then being
+    /// [`Robust::recommended`]).
+    pub method: &'a str,
     /// The single-process treatments.
     pub robust: Robust,
     /// The same as `verbss-mpi deform` arguments.
@@ -551,6 +567,7 @@ pub fn deforms_like_one_process_with(
         near_wall.steps,
         reference,
         near_wall.robust,
+        near_wall.method.parse().unwrap(),
     );
     let index = node_index(&whole);
     let mut stdouts = Vec::new();
@@ -570,7 +587,16 @@ pub fn deforms_like_one_process_with(
         ];
         args.extend_from_slice(motion);
         args.extend_from_slice(near_wall.args);
-        let o = run(np, mesh, &out, group, reference, &args, env);
+        let o = run(
+            np,
+            mesh,
+            &out,
+            group,
+            near_wall.method,
+            reference,
+            &args,
+            env,
+        );
         pieces_like_one_process(dir.path(), "vtu", np, &whole, &one, scale);
         let pvtu = std::fs::read_to_string(&out).unwrap();
         assert_eq!(pvtu.matches("<Piece ").count(), np);

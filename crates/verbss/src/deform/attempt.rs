@@ -22,7 +22,7 @@ use crate::solve::{clear_prescribed, SolveInfo, SpringSolver, Stage};
 
 /// A blended solve whose minimum quality falls below this fraction of the
 /// reference configuration's is compared with the solve without the blend.
-pub(super) const QUALITY_DROP: f64 = 0.5;
+pub const QUALITY_DROP: f64 = 0.5;
 
 impl<S: SpringSolver> Deformer<S> {
     /// The solve of the (sub-)step from `coords` to `targets`, `fraction` of
