@@ -8,8 +8,8 @@
 //! the JSON), `error_ratio` too unless an escalating solve accepted the
 //! step (the sweeper's estimate, docs/distributed.md, "Escalation without
 //! the whole mesh"), `stages` is `["sweeps"]`, `["sweeps", "gmres"]` or
-//! `["sweeps", "gmres", "safe-sweeps"]` and `substeps` 1 (there is no
-//! sub-step on this path).
+//! `["sweeps", "gmres", "safe-sweeps"]` (none where the blend alone moved
+//! the mesh) and `substeps` the increments the step took.
 
 use std::path::PathBuf;
 use std::process::ExitCode;

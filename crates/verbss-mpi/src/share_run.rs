@@ -9,7 +9,9 @@
 //! ([`verbss_mpi::cgns_read`]) before the same cut. Then the ghost layer is
 //! added ([`verbss_mpi::coupled::Ghosts`]), the rigid layer and the
 //! wall-distance stiffening found on it when `--rigid-layer` or
-//! `--stiffening` asks ([`verbss_mpi::near_wall`]), and the flow-solver
+//! `--stiffening` asks (both with the default `--method robust`,
+//! [`verbss_mpi::near_wall`]), the blended rigid motion set up on each
+//! part ([`crate::share_blend`]), and the flow-solver
 //! entry ([`verbss_mpi::coupled::LocalSolver`]) sweeps,
 //! and every rank checks and writes its own cells, as a `.vtu` piece (rank 0
 //! the `.pvtu` joining them) or as its partition of a split MSH 4.1 set
@@ -27,7 +29,13 @@
 //! inverts a cell or whose solve does not converge is redone in increments
 //! (the step's prescribed displacements spread linearly, the springs on
 //! each increment's start), halved after a failure and doubled after a
-//! success down to `2^-K` of the step, as `verbss deform` does. A converged
+//! success down to `2^-K` of the step, as `verbss deform` does. With the
+//! blend, an increment starts from its reference configuration (the
+//! current mesh, or the input mesh with the fixed and anchored references)
+//! moved by the blend and the springs solve what is left; where that start
+//! is weak (an inverted cell, or a minimum quality below
+//! [`QUALITY_DROP`] of the reference's) the plain start is solved too and
+//! the better kept, as `verbss deform` does. A converged
 //! solve that inverts a cell is solved again to round-off
 //! ([`LocalSolver::solve_exact`]) and judged on that where it converges. A
 //! step that inverts a cell (in the smallest increment) stops the run with

@@ -17,6 +17,8 @@ use crate::topology::Csr;
 
 /// No seed is connected to the node.
 const NONE: u32 = u32::MAX;
+/// The node is in the set, away from its edge: at distance 0.
+const INSIDE: u32 = u32::MAX - 1;
 
 /// The nearest seed of every local node, as a slot of the seeds of all
 /// processes.
@@ -33,19 +35,31 @@ pub(super) struct Nearest {
 }
 
 impl Nearest {
-    /// The nearest of the local nodes `seeds` (every process's together,
-    /// `on`; collective) to each local node at `coords`, connected along
-    /// `graph`, the nodes numbered `ids` (the same number for a node on
-    /// every process).
+    /// The nearest node of the set `set` (local nodes, every process's
+    /// together, `on`; collective) to each local node at `coords`,
+    /// connected along `graph`, the nodes numbered `ids` (the same number
+    /// for a node on every process). Only the set's nodes on its edge,
+    /// with a neighbour outside it, are seeds: the others are at distance
+    /// 0, and no node outside is nearer to them, so the seeds every
+    /// process holds grow with the set's surface, not its volume.
     pub(super) fn new(
         on: &dyn Collective,
         graph: &Csr,
         dim: usize,
         coords: &[f64],
         ids: &[u64],
-        seeds: &[usize],
+        set: &[usize],
     ) -> Nearest {
-        let mine: Vec<usize> = seeds.iter().copied().filter(|&s| on.owns(s)).collect();
+        let mut inside = vec![false; graph.rows()];
+        for &i in set {
+            inside[i] = true;
+        }
+        // The owned nodes hold every neighbour: they know their edge.
+        let mine: Vec<usize> = set
+            .iter()
+            .copied()
+            .filter(|&s| on.owns(s) && graph.entries(s).any(|j| !inside[j]))
+            .collect();
         let points: Vec<f64> = mine
             .iter()
             .flat_map(|&s| &coords[dim * s..dim * (s + 1)])
@@ -56,7 +70,7 @@ impl Nearest {
         let numbers: Vec<u64> = on.gather(&numbers).iter().map(|&x| x as u64).collect();
         let all = Seeds::new(dim, &on.gather(&points), &numbers);
         let infinite = |_| f64::INFINITY;
-        let (_, nearest) = nearest_connected(&all, graph, coords, seeds, infinite, mark_sync(on));
+        let (_, nearest) = nearest_connected(&all, graph, coords, &mine, infinite, mark_sync(on));
         let mut by_number: Vec<(u64, u32)> = numbers
             .iter()
             .enumerate()
@@ -68,9 +82,16 @@ impl Nearest {
                 .binary_search_by_key(&x, |p| p.0)
                 .map_or(NONE, |k| by_number[k].1)
         };
+        let edge: Vec<u32> = nearest.iter().map(|&x| slot_of(x)).collect();
         Nearest {
             dim,
-            slot: nearest.iter().map(|&x| slot_of(x)).collect(),
+            slot: (0..edge.len())
+                .map(|i| match edge[i] {
+                    k if inside[i] && k != NONE && numbers[k as usize] != ids[i] => INSIDE,
+                    _ if inside[i] && edge[i] == NONE => INSIDE,
+                    k => k,
+                })
+                .collect(),
             owned: mine.iter().map(|&s| (s, slot_of(ids[s]))).collect(),
             count: numbers.len(),
             numbers,
@@ -96,8 +117,10 @@ impl Nearest {
         }
         on.sum(&mut at);
         let to = |i: usize, k: u32| -> (f64, u64) {
-            if k == NONE {
-                return (f64::INFINITY, u64::MAX);
+            match k {
+                NONE => return (f64::INFINITY, u64::MAX),
+                INSIDE => return (0.0, 0),
+                _ => {}
             }
             let k = k as usize;
             let squared = coords[dim * i..dim * (i + 1)]
@@ -115,7 +138,7 @@ impl Nearest {
             let mut changed: Vec<(usize, u32, (f64, u64))> = Vec::new();
             for &j in &active {
                 let mut found = (best[j], NONE);
-                for i in graph.entries(j) {
+                for i in graph.entries(j).filter(|&i| self.slot[i] != INSIDE) {
                     let candidate = to(j, self.slot[i]);
                     if candidate < found.0 {
                         found = (candidate, self.slot[i]);
