@@ -18,6 +18,8 @@ It partitions each model as `gmsh -part N -format msh41` does
 * channel_hole_split3_v41_ascii_1.msh to _3.msh: the channel of
   channel_hole_part3_v41_ascii.msh, the same 3 partitions, one file a
   partition, as `gmsh -part 3 -part_split` writes them;
+* box_split6_v41_ascii_1.msh to _6.msh: the box of box_part6_v41_ascii.msh,
+  the same 6 partitions, one file a partition;
 * partitions.json: per file and partition, Gmsh's own numbers: the cells
   of the mesh dimension and the nodes on the partition's entities.
 """
@@ -65,6 +67,7 @@ def main():
         (box, "box_part3_v41_binary.msh", 3, True, True, False),
         (box_as_written, "box_part6_v41_ascii.msh", 6, False, False, False),
         (channel_with_hole, "channel_hole_split3_v41_ascii.msh", 3, False, False, True),
+        (box_as_written, "box_split6_v41_ascii.msh", 6, False, False, True),
     ]:
         make()
         gmsh.option.setNumber("Mesh.PartitionCreateGhostCells", 1 if ghosts else 0)
