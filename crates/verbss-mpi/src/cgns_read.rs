@@ -31,7 +31,7 @@ use verbss::io::cgns::blocks::{Blocks, Condition, Numbers};
 use verbss::mesh::{CellKind, Cells};
 use verbss::{Error, Result};
 
-use crate::scatter::{block, CellsAt, Scattered};
+use crate::scatter::{block, decode_facets, CellsAt, Facet, Scattered};
 use crate::share::agree;
 use crate::Comm;
 
@@ -88,8 +88,14 @@ fn group_index(groups: &mut Vec<String>, name: &str) -> u64 {
     g as u64
 }
 
-/// `(node, group)` pairs, for the nodes' directory ranks.
-type OnGroups = Vec<(u64, u64)>;
+/// What the groups' facets and vertices send to the directory ranks.
+#[derive(Default)]
+struct OnGroups {
+    /// `(node, group)` pairs, to the nodes' directory ranks.
+    pairs: Vec<(u64, u64)>,
+    /// The facets, to their lowest node's directory rank.
+    facets: Vec<Facet>,
+}
 
 /// This rank's block of the points of condition `c` (collective): the
 /// `(node, group)` pairs of its facets or vertices into `pairs`, and the
@@ -131,7 +137,9 @@ fn condition_block(
             return Err(fail(c.outside(b, vertices)));
         }
         let g = group_index(groups, &c.group);
-        pairs.extend(numbers.iter().map(|&v| (v as u64 - 1, g)));
+        pairs
+            .pairs
+            .extend(numbers.iter().map(|&v| (v as u64 - 1, g)));
         return Ok(());
     }
     let read = agree(
@@ -153,9 +161,10 @@ fn condition_block(
         return Err(fail(c.not_a_facet(b, dim)));
     }
     let g = group_index(groups, &c.group);
-    for (s, _, nodes) in read.into_iter().filter_map(|e| e.1) {
+    for (s, kind, nodes) in read.into_iter().filter_map(|e| e.1) {
         covered[s] = 1;
-        pairs.extend(nodes.into_iter().map(|v| (v, g)));
+        pairs.pairs.extend(nodes.iter().map(|&v| (v, g)));
+        pairs.facets.push(Facet::new(g, kind, nodes));
     }
     Ok(())
 }
@@ -196,7 +205,9 @@ fn element_block(
                 cells.push(kind, nodes);
             } else if let Some(g) = own[s].filter(|_| kind.dim() + 1 == zone.dim) {
                 facets[g as usize] += 1;
-                pairs.extend(nodes.iter().map(|&v| (v as u64, g)));
+                let nodes: Vec<u64> = nodes.iter().map(|&v| v as u64).collect();
+                pairs.pairs.extend(nodes.iter().map(|&v| (v, g)));
+                pairs.facets.push(Facet::new(g, kind, nodes));
             }
         }
     }
@@ -224,7 +235,7 @@ pub fn read(comm: &Comm, path: &Path) -> Result<Scattered> {
     drop(out);
     // The conditions' groups, in file order.
     let mut groups = Vec::new();
-    let mut pairs = Vec::new();
+    let mut pairs = OnGroups::default();
     let mut covered = vec![0u64; zone.sections.len()];
     for c in &zone.conditions {
         condition_block(comm, &zone, c, &mut groups, (&mut pairs, &mut covered))?;
@@ -254,10 +265,17 @@ pub fn read(comm: &Comm, path: &Path) -> Result<Scattered> {
         })
         .collect();
     let mut to: Vec<Vec<u64>> = vec![Vec::new(); size];
-    for (v, g) in pairs {
+    for (v, g) in pairs.pairs {
         to[(v % ranks) as usize].extend([v, renumber[g as usize]]);
     }
     let on_marker = comm.all_to_all(&to);
+    drop(to);
+    let mut to: Vec<Vec<u64>> = vec![Vec::new(); size];
+    for mut facet in pairs.facets {
+        facet.marker = renumber[facet.marker as usize];
+        facet.encode(&mut to[facet.directory(size)]);
+    }
+    let facets = decode_facets(&comm.all_to_all(&to));
     drop(to);
     let mut on_marker: Vec<(u64, u64)> = on_marker
         .iter()
@@ -294,5 +312,6 @@ pub fn read(comm: &Comm, path: &Path) -> Result<Scattered> {
             .collect(),
         coords,
         on_marker,
+        facets,
     })
 }

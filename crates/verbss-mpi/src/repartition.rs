@@ -21,18 +21,25 @@
 //!    its cells as the whole-file reader checks a mesh ([`validate_at`]):
 //!    the line checks were the stream's, and two cells with the same nodes
 //!    have the same lowest node, so they meet on one rank.
+//! 5. **Facets.** Each rank asks the same directory ranks for the marker
+//!    facets whose lowest node is one of its nodes and keeps those one of
+//!    its cells is bounded by (all the facet's nodes in one cell): a
+//!    boundary facet bounds one cell, which one rank holds, so every facet
+//!    lands on one rank, in its marker's group ([`Mesh::groups`]), for the
+//!    pieces it writes.
 
 use std::collections::HashMap;
 
 use verbss::io::gmsh::partitioned::Share;
 use verbss::io::gmsh::PieceLabels;
 use verbss::io::su2::validate_at;
-use verbss::mesh::{CellKind, Cells, FileOrigin};
+use verbss::mesh::{CellKind, Cells, FileOrigin, Group};
+use verbss::topology;
 use verbss::{Error, Mesh, Result};
 
 use crate::directory::ask;
 use crate::ghosts::kind_code;
-use crate::scatter::{CellsAt, Scattered};
+use crate::scatter::{decode_facets, CellsAt, Facet, Scattered};
 use crate::share::agree;
 use crate::sys::ScotchError;
 use crate::Comm;
@@ -164,6 +171,22 @@ pub fn repartition(comm: &Comm, scattered: &Scattered) -> Result<Share> {
             group_nodes[m as usize].1.push(i);
         }
     }
+    // 5. The facets of the cells.
+    let facets = ask(comm, &global, |g| {
+        let from = scattered.facets.partition_point(|f| f.lowest < g);
+        let to = scattered.facets.partition_point(|f| f.lowest <= g);
+        let mut out = Vec::new();
+        for facet in &scattered.facets[from..to] {
+            facet.encode(&mut out);
+        }
+        out
+    });
+    let groups = bounding_facets(
+        &decode_facets(&facets),
+        &index,
+        &local_cells,
+        &scattered.markers,
+    );
     let mesh = Mesh {
         dim,
         coords: coords
@@ -174,7 +197,7 @@ pub fn repartition(comm: &Comm, scattered: &Scattered) -> Result<Share> {
         cells: local_cells,
         node_tags: global.iter().map(|g| g + 1).collect(),
         cell_tags: cells.iter().map(|c| c.0 + 1).collect(),
-        groups: Vec::new(),
+        groups,
         origin: FileOrigin::default(),
     };
     // A duplicated element lands on one rank (the part of its lowest node),
@@ -192,6 +215,45 @@ pub fn repartition(comm: &Comm, scattered: &Scattered) -> Result<Share> {
         binary: false,
         labels: PieceLabels::default(),
     })
+}
+
+/// The groups of `markers` with the `facets` (by file node, `index` their
+/// local nodes) that bound one of `cells`, in marker order, those with a
+/// facet here only.
+fn bounding_facets(
+    facets: &[Facet],
+    index: &HashMap<u64, usize>,
+    cells: &Cells,
+    markers: &[String],
+) -> Vec<Group> {
+    let node_cells = topology::node_cells(cells, index.len());
+    let mut groups: Vec<Group> = markers
+        .iter()
+        .map(|name| Group {
+            name: name.clone(),
+            tag: None,
+            facets: Cells::new(),
+        })
+        .collect();
+    for facet in facets {
+        let Some(nodes) = facet
+            .nodes
+            .iter()
+            .map(|g| index.get(g).copied())
+            .collect::<Option<Vec<usize>>>()
+        else {
+            continue;
+        };
+        let bounds = node_cells
+            .entries(nodes[0])
+            .any(|c| nodes.iter().all(|v| cells.cell(c).contains(v)));
+        if bounds {
+            let kind = CellKind::ALL[facet.kind as usize];
+            groups[facet.marker as usize].facets.push(kind, &nodes);
+        }
+    }
+    groups.retain(|g| !g.facets.is_empty());
+    groups
 }
 
 #[cfg(test)]

@@ -10,7 +10,10 @@
 //! * point `g` to its *directory* rank `g mod P`, with its coordinates;
 //! * each node of a marker facet to the directory rank of the node, as the
 //!   pair (node, marker): the directory learns which nodes are on which
-//!   markers without any rank holding the facets.
+//!   markers without any rank holding the facets;
+//! * each marker facet to the directory rank of its lowest node, which
+//!   hands it on after the cut to the rank holding the cell it bounds
+//!   (`repartition`), so that the pieces written carry the markers.
 //!
 //! Rank 0 therefore holds at most one chunk and the messages made of it. A
 //! read error (a bad line, a missing section, a count the data disagree
@@ -35,6 +38,7 @@ const ROUND_ERROR: u64 = 2;
 /// second, floating-point message).
 const TAG_ELEMENT: u64 = 0;
 const TAG_MARKER: u64 = 1;
+const TAG_FACET: u64 = 2;
 
 /// Where the file holds its cells, for the messages of the checks after
 /// the cut.
@@ -80,6 +84,68 @@ pub struct Scattered {
     pub coords: Vec<f64>,
     /// The directory's nodes on markers: `(node, marker)`, increasing, once each.
     pub on_marker: Vec<(u64, u64)>,
+    /// The marker facets whose lowest node is the directory's, sorted by
+    /// that node.
+    pub facets: Vec<Facet>,
+}
+
+/// A facet of a marker, by the file's node indices.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
+pub struct Facet {
+    /// Its lowest node.
+    pub lowest: u64,
+    /// Its marker (group), in file order.
+    pub marker: u64,
+    /// Its kind's position in [`CellKind::ALL`].
+    pub kind: u64,
+    /// Its nodes.
+    pub nodes: Vec<u64>,
+}
+
+impl Facet {
+    /// The facet of `marker` of kind `kind` on `nodes`.
+    pub fn new(marker: u64, kind: CellKind, nodes: Vec<u64>) -> Facet {
+        Facet {
+            lowest: nodes.iter().copied().min().unwrap_or(0),
+            marker,
+            kind: kind_code(kind),
+            nodes,
+        }
+    }
+
+    /// Appends it to `out` as the record `marker kind nodes…`.
+    pub fn encode(&self, out: &mut Vec<u64>) {
+        out.extend([self.marker, self.kind]);
+        out.extend_from_slice(&self.nodes);
+    }
+
+    /// The facet of the record at the start of `record`, and the record's length.
+    pub fn decode(record: &[u64]) -> (Facet, usize) {
+        let kind = CellKind::ALL[record[1] as usize];
+        let n = kind.node_count();
+        let nodes = record[2..2 + n].to_vec();
+        (Facet::new(record[0], kind, nodes), 2 + n)
+    }
+
+    /// The directory rank of its lowest node, of `ranks`.
+    pub fn directory(&self, ranks: usize) -> usize {
+        (self.lowest % ranks as u64) as usize
+    }
+}
+
+/// Every facet of `records` (lists of [`Facet::encode`]d records), sorted.
+pub fn decode_facets(records: &[Vec<u64>]) -> Vec<Facet> {
+    let mut facets = Vec::new();
+    for list in records {
+        let mut at = 0;
+        while at < list.len() {
+            let (facet, len) = Facet::decode(&list[at..]);
+            facets.push(facet);
+            at += len;
+        }
+    }
+    facets.sort_unstable();
+    facets
 }
 
 impl Scattered {
@@ -189,6 +255,7 @@ fn finish(mine: &mut Scattered, outline: &[u64], names: &[u8]) {
     };
     mine.on_marker.sort_unstable();
     mine.on_marker.dedup();
+    mine.facets.sort_unstable();
 }
 
 /// One round (collective): rank 0 sends `chunk`'s entries where they
@@ -216,6 +283,13 @@ fn round(comm: &Comm, mine: &mut Scattered, chunk: Option<&Chunk>) {
                 let g = v as u64;
                 records[directory(g)].extend([TAG_MARKER, g, *marker as u64]);
             }
+            for (kind, nodes) in facets.iter() {
+                let nodes = nodes.iter().map(|&v| v as u64).collect();
+                let facet = Facet::new(*marker as u64, kind, nodes);
+                let out = &mut records[facet.directory(size)];
+                out.push(TAG_FACET);
+                facet.encode(out);
+            }
         }
     }
     let records = comm.all_to_all(&records);
@@ -231,6 +305,11 @@ fn round(comm: &Comm, mine: &mut Scattered, chunk: Option<&Chunk>) {
                     mine.cell_kinds.push(kind);
                     mine.cell_nodes.extend_from_slice(&list[at + 3..at + 3 + n]);
                     at += 3 + n;
+                }
+                TAG_FACET => {
+                    let (facet, len) = Facet::decode(&list[at + 1..]);
+                    mine.facets.push(facet);
+                    at += 1 + len;
                 }
                 _ => {
                     mine.on_marker.push((list[at + 1], list[at + 2]));

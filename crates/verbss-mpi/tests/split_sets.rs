@@ -4,7 +4,8 @@
 //! partitions' files and holds their nodes at the written coordinates,
 //! bit for bit, with the roles of the input mesh (the boundary nodes and
 //! the moving group's), and with the ghost layer only its part of the
-//! mesh. `--split` with a badly named or incomplete set is refused.
+//! mesh, from a partitioned MSH input and from an SU2 input. `--split`
+//! with a badly named or incomplete set is refused.
 //!
 //! The test re-runs this test binary under `mpirun` with the ignored
 //! `worker` test. Without MPI the tests skip with a notice.
@@ -19,7 +20,7 @@ use verbss_mpi::share::partitions_of;
 mod common;
 mod like_one_process;
 
-use like_one_process::{asset, node_index, verbss_mpi_with};
+use like_one_process::{asset, node_index, ptscotch_ready, verbss_mpi_with};
 
 /// Worker, one per rank: reads this rank's share of the split set
 /// `$VERBSS_MPI_MESH`, builds its part with ghosts, and writes `counts
@@ -260,6 +261,24 @@ fn msh_pieces_of_a_binary_box_read_back_on_one_to_three_ranks() {
     }
     let mesh = asset("gmsh/box_part3_v41_binary.msh");
     pieces_read_back(&mesh, "inlet", &["--translate", "0.05,0,0"], true);
+}
+
+/// The pieces of an SU2 and of a CGNS input (the channel written as
+/// each), cut by PT-Scotch: their groups' facets reach the ranks whose
+/// cells they bound, so the set read back moves the group and holds the
+/// boundary as the input does.
+#[test]
+fn msh_pieces_of_an_su2_and_a_cgns_channel_read_back_on_one_to_three_ranks() {
+    if !ptscotch_ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let msh = verbss::io::read(&asset("gmsh/channel_hole_v41_ascii.msh")).unwrap();
+    for name in ["channel.su2", "channel.cgns"] {
+        let input = dir.path().join(name);
+        verbss::io::write(&input, &msh, &verbss::io::WriteOptions::default()).unwrap();
+        pieces_read_back(&input, "wall", &["--translate", "0.02,0.01"], false);
+    }
 }
 
 /// `--split` names a set by its first file `NAME_1.msh`; a set missing a

@@ -319,7 +319,7 @@ fn gmsh_merges(pieces: &[PathBuf], read: &[Mesh], whole: &Mesh, one: &Mesh, scal
     let cells = whole.cell_count();
     assert_eq!(merged["cells"], serde_json::json!([cells, cells]));
     assert_eq!(merged["facets"][0], merged["facets"][1]);
-    // The pieces' groups (none from SU2) with all their facets, and the
+    // The pieces' groups (SU2's markers too) with all their facets, and the
     // cells' own group with every cell.
     let groups = merged["groups"].as_object().unwrap();
     let names: BTreeSet<&str> = read
