@@ -23,6 +23,14 @@ use like_one_process::{
 };
 use verbss::motion::Motion;
 
+/// The three-element airfoil of `cases/meshes` written as SU2 in `dir`.
+fn three_element_su2(dir: &Path) -> std::path::PathBuf {
+    let su2 = dir.join("three.su2");
+    let msh = verbss::io::read(&asset("../../cases/meshes/three-element.msh")).unwrap();
+    verbss::io::write(&su2, &msh, &verbss::io::WriteOptions::default()).unwrap();
+    su2
+}
+
 /// The rigid layer `layer` and the stiffening exponent 1, for both runs.
 fn treatments<'a>(layer: Layer, args: &'a [&'a str]) -> NearWall<'a> {
     let mut robust = Robust::off();
@@ -159,9 +167,7 @@ fn the_flap_turns_between_fixed_walls_as_on_one_process() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    let su2 = dir.path().join("three.su2");
-    let msh = verbss::io::read(&asset("../../cases/meshes/three-element.msh")).unwrap();
-    verbss::io::write(&su2, &msh, &verbss::io::WriteOptions::default()).unwrap();
+    let su2 = three_element_su2(dir.path());
     let args = ["--rigid-layer", "auto", "--stiffening", "1"];
     let motion = ["--rotate", "5", "--center", "1,0"];
     // The flap's trailing edge is about 0.25 from its centre: 0.25·sin 5°.
@@ -320,9 +326,7 @@ fn the_default_method_turns_the_flap_between_fixed_walls_as_on_one_process() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    let su2 = dir.path().join("three.su2");
-    let msh = verbss::io::read(&asset("../../cases/meshes/three-element.msh")).unwrap();
-    verbss::io::write(&su2, &msh, &verbss::io::WriteOptions::default()).unwrap();
+    let su2 = three_element_su2(dir.path());
     let motion = ["--rotate", "10", "--center", "1,0"];
     deforms_like_one_process_with(
         &su2,
