@@ -125,7 +125,8 @@ fn a_loose_stop_is_not_accepted_until_the_error_is_trusted() {
 /// On the structured C-grid (wake cells 1e-5 high) the sweeps at ω = 1.6
 /// diverge: with ω given that is the user's error (exit 2, the message
 /// says so); with the default they go on at ω = 1, and a step those do not
-/// solve within the sweep limit is exit 4 with advice, never a mesh.
+/// solve within the sweep limit is exit 4 with advice, never a mesh. The
+/// default method moves the airfoil by its blend and takes the step.
 #[test]
 fn diverging_sweeps_go_on_safely_and_an_unsolved_step_is_exit_4() {
     if !ptscotch_ready() {
@@ -169,6 +170,24 @@ fn diverging_sweeps_go_on_safely_and_an_unsolved_step_is_exit_4() {
             .matches("the stages sweeps, gmres, safe-sweeps did not converge")
             .count(),
         1,
+        "{stderr}"
+    );
+    // The default method, robust, turns the airfoil and its rigid layer by
+    // the blended rigid motion: nothing is left for the sweeps, and the
+    // step is taken.
+    let out = dir.path().join("robust.pvtu");
+    let mut all = vec![
+        "deform",
+        mesh.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    all.extend_from_slice(&motion);
+    let o = verbss_mpi_with(2, &all, dir.path(), &[]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("step 1/1: blended motion only (0 iterations)"),
         "{stderr}"
     );
 }
