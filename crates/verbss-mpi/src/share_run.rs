@@ -140,8 +140,8 @@ fn read_input(
     Ok((share, from))
 }
 
-/// The displacement of input position `p` at step `step` of `steps`.
-fn displacement(motion: &Motion, p: &[f64], step: usize, steps: usize) -> verbss::Result<Vec<f64>> {
+/// Where the motion puts input position `p` at step `step` of `steps`.
+fn moved_to(motion: &Motion, p: &[f64], step: usize, steps: usize) -> verbss::Result<Vec<f64>> {
     let clock = Clock {
         step,
         steps,
@@ -149,7 +149,7 @@ fn displacement(motion: &Motion, p: &[f64], step: usize, steps: usize) -> verbss
     };
     let mut x = p.to_vec();
     motion.apply(0, &mut x, clock, &Frame::default())?;
-    Ok(x.iter().zip(p).map(|(a, b)| a - b).collect())
+    Ok(x)
 }
 
 /// Per node of `share`: body 0 for the nodes of the moving groups `moving`
@@ -204,23 +204,32 @@ pub fn run_shares(
             robust,
         )?
     };
+    let moving = moving_body(&share, &job.moving);
+    // The roles, and where each node is at step `step`: the moving nodes
+    // and the layer nodes next to them where the motion puts them (the
+    // single process's targets, to the last bit), the others at rest.
     let at = |step| -> verbss::Result<(Vec<NodeRole>, Vec<f64>)> {
-        let moved = |p: &[f64]| displacement(&job.motion, p, step, steps);
-        let (mut roles, mut u) = prescribe(&share, &job.moving, moved)?;
+        let place = |p: &[f64]| moved_to(&job.motion, p, step, steps);
+        let (mut roles, placed) = prescribe(&share, &job.moving, place)?;
         let dim = mesh.dim;
-        for (i, layer) in near.layer.iter().enumerate() {
-            if let Some(body) = layer {
+        let mut goal = mesh.coords.clone();
+        for i in 0..mesh.node_count() {
+            let span = dim * i..dim * (i + 1);
+            if moving[i].is_some() {
+                goal[span.clone()].copy_from_slice(&placed[span.clone()]);
+            }
+            // The layer is empty without the near-wall treatments.
+            if let Some(Some(body)) = near.layer.get(i) {
                 roles[i] = NodeRole::Fixed;
                 if body.is_some() {
-                    u[dim * i..dim * (i + 1)].copy_from_slice(&moved(mesh.point(i))?);
+                    goal[span].copy_from_slice(&place(mesh.point(i))?);
                 }
             }
         }
-        Ok((roles, u))
+        Ok((roles, goal))
     };
-    let (roles, mut before) = at(0)?;
+    let (roles, _) = at(0)?;
     let orientation = quality::orientation(mesh);
-    let moving = moving_body(&share, &job.moving);
     let blend = (robust.blend && comm_any(&world, moving.iter().any(Option::is_some))).then(|| {
         let moving: Vec<bool> = moving.iter().map(Option::is_some).collect();
         let follows: Vec<bool> = near
@@ -266,10 +275,12 @@ pub fn run_shares(
     let mut sweeps = 0;
     let reference = job.settings.reference;
     let settings = &job.settings.solve;
-    let mut solve = |springs: &[f64], base: &[f64], u: Vec<f64>, nothing: bool| {
+    let mut solve = |springs: &[f64], base: &[f64], u: Vec<f64>, goal: &[f64], nothing: bool| {
         let to = Solve {
             springs,
             base,
+            goal,
+            roles: &roles,
             nothing,
         };
         attempt(&world, &mut solver, mesh, &orientation, settings, to, u)
@@ -277,7 +288,6 @@ pub fn run_shares(
     for step in 1..=steps {
         let start = Instant::now();
         let (_, target) = at(step)?;
-        let delta: Vec<f64> = target.iter().zip(&before).map(|(a, b)| a - b).collect();
         // Increments of the step, halved after a failure down to `floor`
         // and doubled after a success (with a total unknown, none).
         let floor = match reference {
@@ -294,11 +304,33 @@ pub fn run_shares(
         let mut swept = false;
         let (moved, mut r) = loop {
             let end = if done + h >= 1.0 { 1.0 } else { done + h };
-            // The configuration the increment starts from and the
-            // prescribed displacement from it (zero at the free nodes).
-            let (from, du): (&[f64], Vec<f64>) = match reference {
-                Reference::Updated => (&current, delta.iter().map(|d| d * (end - done)).collect()),
-                _ => (&mesh.coords, target.clone()),
+            // Where the prescribed nodes are at the increment's end (as one
+            // process puts them: `end` of the way from the step's start),
+            // the configuration the increment starts from, and the
+            // prescribed displacement from a configuration (zero at the
+            // free nodes).
+            let goal: Vec<f64> = if end == 1.0 {
+                target.clone()
+            } else {
+                coords
+                    .iter()
+                    .zip(&target)
+                    .map(|(a, b)| a + end * (b - a))
+                    .collect()
+            };
+            let from: &[f64] = match reference {
+                Reference::Updated => &current,
+                _ => &mesh.coords,
+            };
+            let offset = |base: &[f64]| -> Vec<f64> {
+                let dim = mesh.dim;
+                let mut u = vec![0.0; base.len()];
+                for i in (0..roles.len()).filter(|&i| roles[i] == NodeRole::Fixed) {
+                    for k in dim * i..dim * (i + 1) {
+                        u[k] = goal[k] - base[k];
+                    }
+                }
+                u
             };
             // The springs are on the start of the increment, with the fixed
             // reference on the input mesh.
@@ -310,21 +342,12 @@ pub fn run_shares(
             };
             let plain_springs = springs_on(from);
             let chosen = match blend.as_mut() {
-                None => solve(&plain_springs, from, du.clone(), false)?,
+                None => solve(&plain_springs, from, offset(from), &goal, false)?,
                 Some(b) => {
-                    let targets: Vec<f64> = from.iter().zip(&du).map(|(x, d)| x + d).collect();
-                    let start = b.start(&world, from, &targets);
-                    let mut u = vec![0.0; targets.len()];
-                    let dim = mesh.dim;
-                    for (i, role) in roles.iter().enumerate() {
-                        if *role == NodeRole::Fixed {
-                            for k in dim * i..dim * (i + 1) {
-                                u[k] = targets[k] - start[k];
-                            }
-                        }
-                    }
-                    let nothing = nothing_left(&world, &roles, &start, &targets, size);
-                    let blended = solve(&springs_on(&start), &start, u, nothing)?;
+                    let start = b.start(&world, from, &goal);
+                    let nothing = nothing_left(&world, &roles, &start, &goal, size);
+                    let blended =
+                        solve(&springs_on(&start), &start, offset(&start), &goal, nothing)?;
                     let reference_quality = match reference {
                         Reference::Updated => current_quality,
                         _ => input_quality,
@@ -332,7 +355,7 @@ pub fn run_shares(
                     let weak = blended.report.inverted > 0
                         || blended.report.min_quality < QUALITY_DROP * reference_quality;
                     if weak {
-                        let plain = solve(&plain_springs, from, du.clone(), false)?;
+                        let plain = solve(&plain_springs, from, offset(from), &goal, false)?;
                         let (kept, mut dropped) = if plain.better_than(&blended) {
                             (plain, blended)
                         } else {
@@ -372,7 +395,6 @@ pub fn run_shares(
             done = end;
             h = (2.0 * h).min(1.0 - done);
         };
-        before = target;
         let info = solves.pop().expect("a solve per step");
         r.check_seconds = check_seconds;
         r.step = step;
@@ -448,11 +470,14 @@ fn comm_any(world: &Comm, yes: bool) -> bool {
 }
 
 /// Where one solve of an increment is: the springs' coordinates, the
-/// configuration its displacement starts from, and whether that already
-/// puts every prescribed node at its target (nothing to solve).
+/// configuration its displacement starts from, where the prescribed nodes
+/// (`roles`) end (`goal`, set exactly), and whether the start already puts
+/// every prescribed node there (nothing to solve).
 struct Solve<'a> {
     springs: &'a [f64],
     base: &'a [f64],
+    goal: &'a [f64],
+    roles: &'a [NodeRole],
     nothing: bool,
 }
 
@@ -486,7 +511,8 @@ impl Attempt {
 
 /// One solve (collective): the springs at `to.springs`, the displacement
 /// `u` from `to.base` (prescribed values and the initial guess), the moved
-/// mesh `base + u` checked over the ranks. A converged solve that inverts a
+/// mesh `base + u`, its prescribed nodes at `to.goal`, checked over the
+/// ranks. A converged solve that inverts a
 /// cell is solved again to round-off ([`LocalSolver::solve_exact`]) and
 /// judged on that where it converges: an inversion is never the solver's
 /// fault (as on one process).
@@ -500,8 +526,12 @@ fn attempt(
     mut u: Vec<f64>,
 ) -> anyhow::Result<Attempt> {
     let mut check_seconds = 0.0;
+    let dim = mesh.dim;
     let mut judge = |u: &[f64]| {
-        let moved: Vec<f64> = to.base.iter().zip(u).map(|(x, du)| x + du).collect();
+        let mut moved: Vec<f64> = to.base.iter().zip(u).map(|(x, du)| x + du).collect();
+        for i in (0..to.roles.len()).filter(|&i| to.roles[i] == NodeRole::Fixed) {
+            moved[dim * i..dim * (i + 1)].copy_from_slice(&to.goal[dim * i..dim * (i + 1)]);
+        }
         let check = Instant::now();
         let r = step_quality(world, mesh, &moved, orientation);
         check_seconds += check.elapsed().as_secs_f64();

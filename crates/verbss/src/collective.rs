@@ -75,3 +75,82 @@ pub fn mark_sync(on: &dyn Collective) -> impl FnMut(&mut [bool]) -> bool + '_ {
         std::mem::replace(&mut last, total[0]) != total[0]
     }
 }
+
+/// The sums over `0..n` of the `K` terms `term(i)` of this process, summed
+/// over every process, the same to the last bit however the terms are
+/// ordered or split between processes (collective): each term is cut to a
+/// multiple of `2^-s` (towards zero), with `2^s` times the largest term of
+/// its sum over all processes at most `2^60`, and the multiples are added
+/// as integers, exactly. The cut is below `2^-60` of the largest term. A
+/// sum with a term that is not finite is a plain sum.
+pub fn exact_sums<const K: usize>(
+    on: &dyn Collective,
+    n: usize,
+    term: impl Fn(usize) -> [f64; K],
+) -> [f64; K] {
+    let mut largest = [0.0f64; K];
+    for i in 0..n {
+        for (m, t) in largest.iter_mut().zip(term(i)) {
+            *m = m.max(t.abs());
+        }
+    }
+    on.max(&mut largest);
+    if largest.iter().any(|m| !m.is_finite()) {
+        let mut plain = [0.0; K];
+        for i in 0..n {
+            for (s, t) in plain.iter_mut().zip(term(i)) {
+                *s += t;
+            }
+        }
+        on.sum(&mut plain);
+        return plain;
+    }
+    let up: [f64; K] = largest.map(|m| {
+        if m > 0.0 {
+            2f64.powi((60 - m.log2().ceil() as i32).clamp(-1000, 1000))
+        } else {
+            1.0
+        }
+    });
+    let mut total = [0i128; K];
+    for i in 0..n {
+        for (k, t) in term(i).into_iter().enumerate() {
+            total[k] += i128::from((t * up[k]) as i64);
+        }
+    }
+    // Four 32-bit limbs each, the last signed: a limb summed over up to
+    // 2^20 processes stays below 2^52, exact as a double.
+    let mut limbs = vec![0.0; 4 * K];
+    for (k, x) in total.iter().enumerate() {
+        for j in 0..3 {
+            limbs[4 * k + j] = ((x >> (32 * j)) & 0xffff_ffff) as f64;
+        }
+        limbs[4 * k + 3] = (x >> 96) as f64;
+    }
+    on.sum(&mut limbs);
+    std::array::from_fn(|k| {
+        let x: i128 = (0..4).map(|j| (limbs[4 * k + j] as i128) << (32 * j)).sum();
+        x as f64 / up[k]
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_sums_match_plain_sums_to_their_cut() {
+        let terms: Vec<f64> = (0..1000)
+            .map(|i| ((i as f64) * 0.37).sin() * 10f64.powi(i % 7 - 3))
+            .collect();
+        let plain: f64 = terms.iter().sum();
+        let [exact, count] = exact_sums(&Whole, terms.len(), |i| [terms[i], 1.0]);
+        assert!((exact - plain).abs() < 1e-12 * 1e3, "{exact} {plain}");
+        assert_eq!(count, 1000.0);
+        // Any order gives the same bits.
+        let [reversed, _] = exact_sums(&Whole, terms.len(), |i| [terms[999 - i], 1.0]);
+        assert_eq!(exact.to_bits(), reversed.to_bits());
+        let [negative] = exact_sums(&Whole, 3, |i| [[-1.5, -2.25, 0.5][i]]);
+        assert_eq!(negative, -3.25);
+    }
+}

@@ -35,7 +35,7 @@ use std::sync::Arc;
 
 use super::distances::Nearest;
 use super::harmonic::Laplace;
-use crate::collective::Collective;
+use crate::collective::{exact_sums, Collective};
 use crate::geometry::{cross, dot, norm};
 use crate::robust::Bounds;
 use crate::solve::{Frame, NodeRole};
@@ -348,28 +348,24 @@ fn fit(
         .map(|&k| &targets[k])
         .filter(|(i, _)| on.owns(*i))
         .collect();
-    // The count, Σ p and Σ q.
-    let mut sums = [0.0; 7];
-    for (i, q) in &owned {
-        sums[0] += 1.0;
-        for d in 0..dim {
-            sums[1 + d] += coords[dim * i + d];
-            sums[4 + d] += q[d];
+    let p = |k: usize, d: usize| {
+        if d < dim {
+            coords[dim * owned[k].0 + d]
+        } else {
+            0.0
         }
-    }
-    on.sum(&mut sums);
+    };
+    let q = |k: usize, d: usize| if d < dim { owned[k].1[d] } else { 0.0 };
+    // The count, Σ p and Σ q, then the cross-covariance
+    // S_ab = Σ (p − c)_a (q − c')_b: exact sums, the same on any cut.
+    let sums = exact_sums(on, owned.len(), |k| {
+        [1.0, p(k, 0), p(k, 1), p(k, 2), q(k, 0), q(k, 1), q(k, 2)]
+    });
     let c: [f64; 3] = std::array::from_fn(|d| sums[1 + d] / sums[0]);
     let c_moved: [f64; 3] = std::array::from_fn(|d| sums[4 + d] / sums[0]);
-    // Cross-covariance S_ab = Σ (p − c)_a (q − c')_b.
-    let mut flat = [0.0; 9];
-    for (i, q) in &owned {
-        for a in 0..dim {
-            for b in 0..dim {
-                flat[3 * a + b] += (coords[dim * i + a] - c[a]) * (q[b] - c_moved[b]);
-            }
-        }
-    }
-    on.sum(&mut flat);
+    let flat: [f64; 9] = exact_sums(on, owned.len(), |k| {
+        std::array::from_fn(|ab| (p(k, ab / 3) - c[ab / 3]) * (q(k, ab % 3) - c_moved[ab % 3]))
+    });
     let s: [[f64; 3]; 3] = std::array::from_fn(|a| std::array::from_fn(|b| flat[3 * a + b]));
     let translation = [c_moved[0] - c[0], c_moved[1] - c[1], c_moved[2] - c[2]];
     let (axis, angle) = if dim == 2 {

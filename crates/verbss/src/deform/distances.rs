@@ -7,8 +7,10 @@
 //! neighbour's seed while that is nearer, in rounds that each read the
 //! last round's seeds. After a small move few nodes change, so that costs
 //! about one pass over the edges, and the answer depends neither on the
-//! order of the nodes nor on how the mesh is cut between processes: every
-//! process finds one process's distances on its part.
+//! order of the nodes nor on how the mesh is cut between processes: on the
+//! same coordinates every process finds one process's distances on its
+//! part (the rounds choose between equally near nodes by the coordinates'
+//! last bits, so those must be the same: docs/distributed.md).
 
 use crate::collective::{mark_sync, Collective};
 use crate::robust::spread::nearest_connected;
