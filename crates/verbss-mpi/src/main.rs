@@ -32,6 +32,8 @@ mod gather;
 #[cfg(with_mpi)]
 mod run;
 #[cfg(with_mpi)]
+mod share_attempt;
+#[cfg(with_mpi)]
 mod share_blend;
 #[cfg(with_mpi)]
 mod share_report;

@@ -186,7 +186,7 @@ impl<'c> Sweeper<'c> {
     /// [`Sweeper::solve`] to round-off, from the guess in `displacement`:
     /// GMRES preconditioned by the sweep until the residual is [`ROUND_OFF`]
     /// of the largest prescribed displacement, at most
-    /// [`gmres::EXACT_ITERATIONS`] (the iterative stage of
+    /// `EXACT_ITERATIONS` (1,600) (the iterative stage of
     /// [`verbss::solve::Engine::solve_exact`]).
     /// What a converged step that inverts a cell is solved with again
     /// before the inversion is judged: an inversion is never the solver's
