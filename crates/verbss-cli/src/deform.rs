@@ -376,6 +376,10 @@ impl DeformArgs {
         let Some(motion) = self.field_motion(dim)? else {
             bail!("--positions is not available on a partitioned input");
         };
+        let binary = match self.output.extension() {
+            Some(e) if e == "msh" => self.msh.split_encoding()?,
+            _ => None,
+        };
         Ok(ShareJob {
             output: self.output.clone(),
             moving: self.moving.clone(),
@@ -384,6 +388,8 @@ impl DeformArgs {
             report: self.report.clone(),
             source: self.mesh.display().to_string(),
             quiet: self.quiet,
+            overwrite: self.overwrite,
+            binary,
         })
     }
 }
@@ -405,6 +411,11 @@ pub struct ShareJob {
     pub source: String,
     /// No progress output.
     pub quiet: bool,
+    /// Whether the pieces may replace files of the input (`--overwrite`).
+    pub overwrite: bool,
+    /// MSH pieces binary (`true`) or ASCII, `None` for as the input
+    /// (`--binary`, `--ascii`).
+    pub binary: Option<bool>,
 }
 
 /// The `--slide` values as slide motions: `GROUP` slides in its own plane

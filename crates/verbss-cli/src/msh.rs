@@ -43,6 +43,20 @@ impl MshArgs {
         options
     }
 
+    /// How the MSH 4.1 pieces of a split set are written: binary (`true`)
+    /// or ASCII as these arguments say, `None` for as the input. A split
+    /// set has partitioned entities, which MSH 2.2 has not: `--msh-version
+    /// 2.2` fails.
+    pub fn split_encoding(&self) -> anyhow::Result<Option<bool>> {
+        if matches!(self.msh_version, Some(MshVersionArg::V22)) {
+            anyhow::bail!(
+                "--msh-version 2.2: MSH pieces are written as a split set of MSH 4.1 files \
+                 (MSH 2.2 has no partitioned entities); give --msh-version 4.1, or a .pvtu output"
+            );
+        }
+        Ok((self.binary || self.ascii).then_some(self.binary))
+    }
+
     /// The options `mesh` is written with: as it was read
     /// ([`WriteOptions::for_mesh`]) unless these arguments say otherwise.
     pub fn options(&self, mesh: &Mesh) -> WriteOptions {

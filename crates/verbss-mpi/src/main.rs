@@ -40,6 +40,8 @@ mod share_report;
 #[cfg(with_mpi)]
 mod share_run;
 #[cfg(with_mpi)]
+mod share_write;
+#[cfg(with_mpi)]
 mod su2;
 
 use std::process::ExitCode;
@@ -100,7 +102,18 @@ fn main() -> ExitCode {
         eprintln!("error: MPI could not be initialised");
         return ExitCode::from(2);
     };
-    let cli = Cli::parse();
+    // A usage error, `--help` or `--version`: said once, by rank 0.
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            if run::is_root() {
+                let _ = e.print();
+            }
+            let code = e.exit_code();
+            drop(mpi);
+            return ExitCode::from(u8::try_from(code).unwrap_or(2));
+        }
+    };
     let result = match cli.command {
         Command::Deform(args) if args.pieces || share_run::applies(&args.deform) => {
             share_run::run_shares(args.deform, args.gather, args.split)

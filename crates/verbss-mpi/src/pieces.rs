@@ -114,7 +114,7 @@ pub fn piece_path(dir: &Path, name: &str, rank: i32) -> PathBuf {
 }
 
 /// Writes partition `partition` of the split set of `model`,
-/// `dir/NAME_PARTITION.msh`, MSH 4.1 (binary or ASCII as the input):
+/// `dir/NAME_PARTITION.msh`, MSH 4.1 (`binary` or ASCII):
 /// `share`'s cells and group facets (those of group `k` of the share being
 /// group `groups[k]` of the model), its nodes at `coords`, with the input's
 /// node and cell tags and the facet tags `facet_tags`
@@ -125,6 +125,7 @@ pub fn write_msh_piece(
     model: &SplitModel,
     (partition, groups, facet_tags): (usize, &[usize], &[Vec<u64>]),
     coords: &[f64],
+    binary: bool,
 ) -> Result<PathBuf> {
     let path = split_path(dir, name, partition);
     let piece = SplitPiece {
@@ -135,9 +136,7 @@ pub fn write_msh_piece(
         facet_tags,
         partition,
     };
-    write_atomic(&path, |w| {
-        write_split_piece_to(w, model, &piece, share.binary)
-    })?;
+    write_atomic(&path, |w| write_split_piece_to(w, model, &piece, binary))?;
     Ok(path)
 }
 

@@ -39,7 +39,9 @@
 //! solve that inverts a cell is solved again to round-off
 //! ([`LocalSolver::solve_exact`]) and judged on that where it converges. A
 //! step that inverts a cell (in the smallest increment) stops the run with
-//! exit code 3 (the pieces hold the last valid mesh), a step that the
+//! exit code 3 (the worst cell named as one process names it, the pieces
+//! holding the last valid mesh and the failed state written beside them,
+//! [`crate::share_write`]), a step that the
 //! sweeps, GMRES preconditioned by the sweep and the safe sweeps do not
 //! solve with exit code 4: without the whole mesh there is no multigrid or
 //! direct solve to escalate to. Unless `--quiet`, every rank says what it holds, rank 0 the
@@ -56,32 +58,27 @@ use std::time::Instant;
 use anyhow::bail;
 use verbss::deform::{Reference, QUALITY_DROP};
 use verbss::io::gmsh::partitioned::{partition_count, Share};
-use verbss::io::gmsh::split_write::{SplitModel, SplitPiece};
 use verbss::motion::{Clock, Frame, Motion};
 use verbss::quality;
 use verbss::robust::{Bounds, Layer};
 use verbss::solve::{NodeRole, Stage};
 use verbss_cli::deform::DeformArgs;
 use verbss_cli::progress::Progress;
-use verbss_cli::run::{file_stem, output_dir};
 use verbss_mpi::coupled::{Ghosts, LocalSolver};
 use verbss_mpi::near_wall::near_wall;
-use verbss_mpi::pieces::{
-    decode_entities, encode_entities, encode_groups, msh_facet_tags, split_groups,
-    write_local_piece, write_msh_piece,
-};
 use verbss_mpi::ranks::Ranks;
 use verbss_mpi::share::{
-    agree, global_numbers, partitions_of, prescribe, read_rank_share, read_rank_split,
+    global_numbers, partitions_of, prescribe, read_rank_share, read_rank_split,
 };
+use verbss_mpi::step_quality::inverted_error;
 use verbss_mpi::Comm;
 
 use crate::cgns;
 use crate::gather;
-use crate::run::join_pieces;
 use crate::share_attempt::{attempt, Attempt, Solve};
 use crate::share_blend::{nothing_left, PartBlend};
 use crate::share_report::StepLog;
+use crate::share_write::{has_extension, prepare_output, write, write_failed, written_name};
 use crate::su2;
 
 /// Whether `verbss-mpi deform` takes this path without `--pieces`: a
@@ -89,12 +86,6 @@ use crate::su2;
 /// input is written to.
 pub fn applies(args: &DeformArgs) -> bool {
     args.output().extension().is_some_and(|e| e == "pvtu")
-}
-
-/// Whether `path` has the extension `ext`, in any case.
-fn has_extension(path: &Path, ext: &str) -> bool {
-    path.extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
 }
 
 /// Fails unless `input` is a partitioned MSH 4.1 file.
@@ -182,6 +173,7 @@ pub fn run_shares(
     }
     let (share, from) = read_input(&world, args.mesh(), args.output(), split)?;
     let job = args.share_job(share.mesh.dim)?;
+    prepare_output(&world, &job, args.mesh(), split, share.partitions)?;
     if let Some(path) = &gather {
         gather::check_tags(&world, path, &share.mesh)?;
     }
@@ -417,31 +409,41 @@ pub fn run_shares(
         r.seconds = start.elapsed().as_secs_f64();
         let inverted = r.inverted;
         report.push(r);
-        if !info.converged {
+        if !info.converged || inverted > 0 {
             progress.finish();
+            let failed = write_failed(&world, &job.output, mesh, &moved, &orientation)?;
+            let (what, code) = if info.converged {
+                let named = inverted_error(&world, mesh, &moved, &orientation, step).map_or_else(
+                    || format!("step {step} inverts {inverted} cells"),
+                    |e| e.to_string(),
+                );
+                (format!("{named}{}", smallest(floor)), 3)
+            } else {
+                let what = format!(
+                    "step {step}: the stages {} did not converge ({} iterations in all, the \
+                     last value {:e}){}; a partitioned input has no multigrid or direct solve \
+                     to escalate to: raise --max-iterations, or take more --steps",
+                    Stage::names(&[&[Stage::Sweeps], &info.stages[..]].concat()),
+                    info.iterations,
+                    info.residual,
+                    smallest(floor)
+                );
+                (what, 4)
+            };
             let message = format!(
-                "step {step}: the stages {} did not converge ({} iterations in all, the last \
-                 value {:e}){}; a partitioned input has no multigrid or direct solve to \
-                 escalate to: raise --max-iterations, or take more --steps",
-                Stage::names(&[&[Stage::Sweeps], &info.stages[..]].concat()),
-                info.iterations,
-                info.residual,
-                smallest(floor)
+                "{what}; the last valid mesh (step {}) is in {}; the failed state in {}",
+                step - 1,
+                written_name(&job.output, world.size()),
+                failed.display()
             );
-            return report.stop(&message, 4, || {
-                write(&world, &job.output, &share, &coords, &orientation)
-            });
-        }
-        if inverted > 0 {
-            progress.finish();
-            let message = format!(
-                "step {step} inverts {inverted} cells{}; {} holds step {}",
-                smallest(floor),
-                job.output.display(),
-                step - 1
-            );
-            return report.stop(&message, 3, || {
-                write(&world, &job.output, &share, &coords, &orientation)
+            return report.stop(&message, code, || {
+                write(
+                    &world,
+                    (&job.output, job.binary),
+                    &share,
+                    &coords,
+                    &orientation,
+                )
             });
         }
         progress.step(report.last());
@@ -449,7 +451,13 @@ pub fn run_shares(
         sweeps += report.last().iterations;
     }
     progress.finish();
-    write(&world, &job.output, &share, &coords, &orientation)?;
+    write(
+        &world,
+        (&job.output, job.binary),
+        &share,
+        &coords,
+        &orientation,
+    )?;
     if let Some(path) = &gather {
         gather::gather(&world, path, &share, solver.part(), &coords)?;
     }
@@ -457,7 +465,7 @@ pub fn run_shares(
     if root && !job.quiet {
         println!(
             "wrote {} ({} pieces, {sweeps} sweeps in all)",
-            written_name(&job.output).display(),
+            written_name(&job.output, world.size()),
             world.size()
         );
     }
@@ -473,129 +481,11 @@ fn comm_any(world: &Comm, yes: bool) -> bool {
 /// sub-steps, else the smallest one tried, `floor` of the step.
 fn smallest(floor: f64) -> String {
     if floor < 1.0 {
-        format!(" in increments down to {floor} of the step")
+        format!(
+            " in increments down to 1/{} of the step",
+            (1.0 / floor).round()
+        )
     } else {
         String::new()
     }
-}
-
-/// What the output line names: `output`, or for MSH pieces their pattern
-/// `OUT-STEM_K.msh`, partitions `K` from 1.
-fn written_name(output: &Path) -> PathBuf {
-    if has_extension(output, "pvtu") {
-        return output.to_path_buf();
-    }
-    output_dir(output).join(format!("{}_K.msh", file_stem(output)))
-}
-
-/// The first fresh element tag of this rank's MSH piece (collective): above
-/// every element tag of every share, after the group facets of the lower
-/// ranks, so that no two pieces give one tag to different elements
-/// ([`verbss_mpi::pieces::msh_facet_tags`] takes at most one per facet).
-fn first_fresh_tag(world: &Comm, share: &Share) -> anyhow::Result<u64> {
-    let mesh = &share.mesh;
-    let file_facets = share.labels.facet_tags.iter().flatten().flatten();
-    let largest = world.max(
-        mesh.cell_tags
-            .iter()
-            .chain(file_facets)
-            .copied()
-            .max()
-            .unwrap_or(0),
-    );
-    let facets: u64 = mesh.groups.iter().map(|g| g.facets.len() as u64).sum();
-    let counts: Vec<u64> = world.all_gather(&[facets]).iter().map(|c| c[0]).collect();
-    // The same answer on every rank, so that all go on or all stop.
-    if largest
-        .checked_add(1 + counts.iter().sum::<u64>())
-        .is_none()
-    {
-        bail!(
-            "element tags up to {largest} leave no room for the tags of the group facets of \
-             the MSH pieces"
-        );
-    }
-    Ok(largest + 1 + counts[..world.rank() as usize].iter().sum::<u64>())
-}
-
-/// The model of the split set the ranks write (collective): every rank's
-/// groups and partition entities ([`verbss::io::gmsh::split_write`]), the
-/// same on every rank; and per group of this rank's share, its index in
-/// the model.
-fn split_model(
-    world: &Comm,
-    share: &Share,
-    coords: &[f64],
-    facet_tags: &[Vec<u64>],
-) -> (SplitModel, Vec<usize>) {
-    let mesh = &share.mesh;
-    let encoded = world.all_gather(&encode_groups(mesh));
-    let (groups, domain) = split_groups(&encoded, share.labels.domain.clone());
-    let index: Vec<usize> = mesh
-        .groups
-        .iter()
-        .map(|g| groups.iter().position(|m| m.name == g.name).unwrap_or(0))
-        .collect();
-    let mut model = SplitModel {
-        dim: mesh.dim,
-        groups,
-        domain,
-        partitions: world.size() as usize,
-        entities: Vec::new(),
-    };
-    let piece = SplitPiece {
-        mesh,
-        coords,
-        boundary: &share.boundary,
-        groups: &index,
-        facet_tags,
-        partition: world.rank() as usize + 1,
-    };
-    let all = world.all_gather(&encode_entities(&piece.entities()));
-    model.entities = decode_entities(&all);
-    (model, index)
-}
-
-/// Every rank writes its cells at `coords` as its piece beside `output`:
-/// an MSH 4.1 piece for a `.msh` output, else a `.vtu` piece and rank 0 the
-/// `.pvtu` joining them. Where a rank fails, every rank stops with the
-/// lowest failing rank's message.
-fn write(
-    world: &Comm,
-    output: &Path,
-    share: &Share,
-    coords: &[f64],
-    orientation: &[i8],
-) -> anyhow::Result<()> {
-    let mesh = &share.mesh;
-    let dim = mesh.dim;
-    let dir = output_dir(output);
-    let name = file_stem(output);
-    if has_extension(output, "msh") {
-        let fresh = first_fresh_tag(world, share)?;
-        let facet_tags = msh_facet_tags(share, fresh);
-        let (model, groups) = split_model(world, share, coords, &facet_tags);
-        let piece = (
-            world.rank() as usize + 1,
-            groups.as_slice(),
-            facet_tags.as_slice(),
-        );
-        let written = write_msh_piece((&dir, &name), share, &model, piece, coords).map(drop);
-        return agree(world, written, "could not write its piece").map_err(|e| match e {
-            // Another rank's failure, told as it is: not a mesh error.
-            verbss::Error::InvalidMesh(told) => anyhow::anyhow!(told),
-            own => own.into(),
-        });
-    }
-    let mut moved = mesh.clone();
-    moved.coords = coords.to_vec();
-    let mut displacement = vec![0.0; 3 * mesh.node_count()];
-    for (i, (x, x0)) in coords.chunks(dim).zip(mesh.coords.chunks(dim)).enumerate() {
-        for d in 0..dim {
-            displacement[3 * i + d] = x[d] - x0[d];
-        }
-    }
-    let quality = quality::qualities(mesh, coords, orientation);
-    let written = write_local_piece(&dir, &name, world.rank(), &moved, displacement, quality);
-    join_pieces(world, &dir, &name, written)
 }

@@ -1,11 +1,12 @@
 //! The quality of a step over all ranks, each cell counted on one rank: the
 //! numbers of the single-process step report (`min_quality`, `inverted`,
 //! `bins`, `mean_quality`; docs/method.md for the quality measure) from
-//! each rank's own cells and four all-reduces.
+//! each rank's own cells and four all-reduces; and a failed step's worst
+//! inverted cell, named as one process names it.
 
 use verbss::deform::StepReport;
-use verbss::quality::{qualities_and_inversions, Summary};
-use verbss::Mesh;
+use verbss::quality::{inversions, qualities_and_inversions, Summary};
+use verbss::{Error, Mesh};
 
 use crate::Comm;
 
@@ -40,4 +41,43 @@ pub fn step_quality(comm: &Comm, mesh: &Mesh, coords: &[f64], orientation: &[i8]
     report.inverted = counts[bins.len()] as usize;
     report.bins = bins;
     report
+}
+
+/// The error one process gives for step `step` at `coords` where a cell of
+/// any rank's `mesh` is inverted (collective), `None` where none is: the
+/// inverted cell of the lowest signed volume of a worst corner (the lowest
+/// element tag among equals), its tag and centroid, and the inverted cells
+/// of all ranks counted.
+pub fn inverted_error(
+    comm: &Comm,
+    mesh: &Mesh,
+    coords: &[f64],
+    orientation: &[i8],
+    step: usize,
+) -> Option<Error> {
+    let inverted = inversions(mesh, coords, orientation);
+    let mut worst = vec![f64::INFINITY; 1 + mesh.dim];
+    let mut tags = [0, inverted.len() as u64];
+    if let Some(w) = inverted.iter().min_by(|a, b| a.volume.total_cmp(&b.volume)) {
+        worst[0] = w.volume;
+        worst[1..].copy_from_slice(&w.centroid);
+        tags[0] = mesh.cell_tags[w.cell];
+    }
+    let worst = comm.all_gather(&worst);
+    let tags = comm.all_gather(&tags);
+    let count: u64 = tags.iter().map(|t| t[1]).sum();
+    let r = (0..tags.len())
+        .filter(|&r| tags[r][1] > 0)
+        .min_by(|&a, &b| {
+            worst[a][0]
+                .total_cmp(&worst[b][0])
+                .then(tags[a][0].cmp(&tags[b][0]))
+        })?;
+    Some(Error::Inverted {
+        step,
+        count: count as usize,
+        element: tags[r][0],
+        centroid: worst[r][1..].to_vec(),
+        volume: worst[r][0],
+    })
 }

@@ -393,6 +393,12 @@ fn bad_input_gives_the_message_of_verbss_once() {
         1,
         "{text}"
     );
+    // A usage error is said once, by rank 0, with clap's exit code 2.
+    let o = mpirun(2, &["deform", "--bogus"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let text = stderr(&o);
+    let usage = "error: unexpected argument '--bogus' found";
+    assert_eq!(text.matches(usage).count(), 1, "{text}");
 }
 
 #[test]

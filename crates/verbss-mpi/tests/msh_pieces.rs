@@ -133,7 +133,9 @@ fn a_piece_one_rank_cannot_write_stops_every_rank() {
 }
 
 /// A step that inverts a cell (the hole pushed through the top wall) stops
-/// with exit code 3, and the MSH pieces hold the last valid mesh, the input.
+/// with exit code 3, and the MSH pieces hold the last valid mesh, the
+/// input, in the folder made for them, which the message names with the
+/// failed state beside them.
 #[test]
 fn an_inverted_cell_leaves_the_input_in_the_pieces() {
     if !common::mpi_ready() {
@@ -142,7 +144,7 @@ fn an_inverted_cell_leaves_the_input_in_the_pieces() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = asset("gmsh/channel_hole_part3_v41_ascii.msh");
     let whole = io::read(&mesh).unwrap();
-    let out = dir.path().join("moved.msh");
+    let out = dir.path().join("new/moved.msh");
     let args = [
         "deform",
         mesh.to_str().unwrap(),
@@ -163,13 +165,21 @@ fn an_inverted_cell_leaves_the_input_in_the_pieces() {
     assert_eq!(o.status.code(), Some(3));
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(
-        stderr.matches("error: step 1 inverts ").count(),
+        stderr.matches("error: step 1: element ").count(),
         1,
         "{stderr}"
     );
+    let new = dir.path().join("new");
+    let said = format!(
+        "the last valid mesh (step 0) is in {} to {}; the failed state in {}\n",
+        new.join("moved_1.msh").display(),
+        new.join("moved_2.msh").display(),
+        new.join("moved.failed.pvtu").display()
+    );
+    assert!(stderr.contains(&said), "{stderr}");
     let mut cells = 0;
     for r in 0..2 {
-        let piece = io::read(&dir.path().join(format!("moved_{}.msh", r + 1))).unwrap();
+        let piece = io::read(&new.join(format!("moved_{}.msh", r + 1))).unwrap();
         cells += piece.cell_count();
         for (i, t) in piece.node_tags.iter().enumerate() {
             let g = whole.node_tags.iter().position(|w| w == t).unwrap();

@@ -10,9 +10,11 @@
 
 use std::path::Path;
 
-use verbss::deform::{Preset, Reference};
+use verbss::deform::{Deformer, Preset, Reference};
 use verbss::io::gmsh::partitioned::read_share;
+use verbss::motion::Attachment;
 use verbss::robust::{Layer, Robust};
+use verbss::Error;
 use verbss_mpi::share::partitions_of;
 
 mod common;
@@ -184,9 +186,10 @@ fn the_flap_turns_between_fixed_walls_as_on_one_process() {
 }
 
 /// The hole of the channel lifted by 0.27 in one step inverts a cell in
-/// one increment (exit code 3 with `--substeps 0`, as on one process) and
-/// is reached in two with `--substeps 6`: the increments, the moved mesh
-/// and the report are the single process's.
+/// one increment (exit code 3 with `--substeps 0`, the element and the
+/// count named as one process names them, the failed state written as
+/// pieces) and is reached in two with `--substeps 6`: the increments, the
+/// moved mesh and the report are the single process's.
 #[test]
 fn sub_steps_lift_the_channel_hole_as_on_one_process() {
     if !common::mpi_ready() {
@@ -209,22 +212,45 @@ fn sub_steps_lift_the_channel_hole_as_on_one_process() {
         "0",
     ];
     args.extend_from_slice(&motion);
-    for np in 1..=3 {
-        let o = like_one_process::verbss_mpi_with(np, &args, dir.path(), &[]);
-        assert_eq!(o.status.code(), Some(3), "{np} ranks");
-        let stderr = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(
-            stderr.matches("step 1 inverts 1 cells; ").count(),
-            1,
-            "{stderr}"
-        );
-    }
-    let mut robust = Robust::off();
-    robust.substeps = 6;
     let whole = verbss::io::read(&mesh).unwrap();
     let translation = Motion::Translation {
         displacement: [0.0, 0.27, 0.0],
     };
+    // What one process says of the step, around the centroid and volume.
+    let (head, tail) = {
+        let mut settings = Preset::Verbss.settings(1);
+        settings.robust.substeps = 0;
+        let attachments = [Attachment {
+            groups: vec!["wall".into()],
+            motion: translation.clone(),
+        }];
+        let mut d = Deformer::new(&whole, &attachments, settings).unwrap();
+        match d.step(1) {
+            Err(Error::Inverted { element, count, .. }) => (
+                format!("error: step 1: element {element} inverted at "),
+                format!("({count} inverted element(s)); the last valid mesh (step 0)"),
+            ),
+            other => panic!("one process: {other:?}"),
+        }
+    };
+    for np in 1..=3 {
+        let o = like_one_process::verbss_mpi_with(np, &args, dir.path(), &[]);
+        assert_eq!(o.status.code(), Some(3), "{np} ranks");
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(stderr.matches(&head).count(), 1, "{head}: {stderr}");
+        assert_eq!(stderr.matches(&tail).count(), 1, "{tail}: {stderr}");
+        let failed = dir.path().join("moved.failed.pvtu");
+        assert!(stderr.contains(&format!("the failed state in {}", failed.display())));
+        let cells: usize = (0..np)
+            .map(|r| {
+                let piece = dir.path().join(format!("moved.failed_{r}.vtu"));
+                verbss::io::read(&piece).unwrap().cell_count()
+            })
+            .sum();
+        assert_eq!(cells, whole.cell_count(), "{np} ranks");
+    }
+    let mut robust = Robust::off();
+    robust.substeps = 6;
     let (_, reports, _) = single_with(
         &whole,
         "wall",

@@ -318,3 +318,61 @@ fn split_sets_badly_named_or_incomplete_are_refused() {
     std::fs::remove_file(set(2)).unwrap();
     refused(&set(1), &["--pieces"], "set_2.msh: missing");
 }
+
+/// MSH pieces never replace the split set they were read from unless
+/// `--overwrite` says so; they go into a folder made for them, binary with
+/// `--binary` from an ASCII set; `--msh-version 2.2` is refused (a split
+/// set is MSH 4.1).
+#[test]
+fn msh_pieces_keep_their_input_and_are_written_as_asked() {
+    if !common::mpi_ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let set = |k: usize| dir.path().join(format!("set_{k}.msh"));
+    for k in 1..=3 {
+        let gmsh = asset(&format!("gmsh/channel_hole_split3_v41_ascii_{k}.msh"));
+        std::fs::copy(gmsh, set(k)).unwrap();
+    }
+    let original: Vec<Vec<u8>> = (1..=3).map(|k| std::fs::read(set(k)).unwrap()).collect();
+    let first = set(1);
+    let deform = |out: &Path, extra: &[&str]| {
+        let mut args = vec!["deform", first.to_str().unwrap(), "--split", "--pieces"];
+        args.extend_from_slice(&["-o", out.to_str().unwrap(), "--moving", "wall"]);
+        args.extend_from_slice(&["--translate", "0.01,0", "--method", "verbss", "-q"]);
+        args.extend_from_slice(extra);
+        let o = verbss_mpi_with(3, &args, dir.path(), &[]);
+        (
+            o.status.code(),
+            String::from_utf8_lossy(&o.stderr).into_owned(),
+        )
+    };
+    let (code, stderr) = deform(&dir.path().join("set.msh"), &[]);
+    assert_eq!(code, Some(2), "{stderr}");
+    let refusal = "the output is the input mesh ";
+    assert_eq!(stderr.matches(refusal).count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("(give --overwrite to replace it)"),
+        "{stderr}"
+    );
+    for k in 1..=3 {
+        assert_eq!(
+            std::fs::read(set(k)).unwrap(),
+            original[k - 1],
+            "set_{k}.msh"
+        );
+    }
+    let (code, stderr) = deform(&dir.path().join("new/moved.msh"), &["--binary"]);
+    assert_eq!(code, Some(0), "{stderr}");
+    for k in 1..=3 {
+        let piece = std::fs::read(dir.path().join(format!("new/moved_{k}.msh"))).unwrap();
+        assert!(piece.starts_with(b"$MeshFormat\n4.1 1 8\n"), "piece {k}");
+    }
+    let (code, stderr) = deform(&dir.path().join("v22.msh"), &["--msh-version", "2.2"]);
+    assert_eq!(code, Some(2), "{stderr}");
+    let refusal = "--msh-version 2.2: MSH pieces are written as a split set of MSH 4.1 files";
+    assert_eq!(stderr.matches(refusal).count(), 1, "{stderr}");
+    let (code, stderr) = deform(&dir.path().join("set.msh"), &["--overwrite"]);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert_ne!(std::fs::read(set(1)).unwrap(), original[0]);
+}

@@ -58,7 +58,9 @@ pub fn split_count(first: &Path) -> Result<usize> {
         let file = split_file(first, k)?;
         if !file.is_file() {
             return Err(Error::InvalidSetting(format!(
-                "{}: missing: {} declares {count} partitions, in files _1 to _{count}",
+                "{}: missing: {} declares {count} partitions, in files _1 to _{count} (a \
+                 single partitioned file holding every partition is not a split set: read it \
+                 without --split)",
                 file.display(),
                 first.display()
             )));
