@@ -277,6 +277,11 @@ pub fn run_shares(
         };
         attempt(&world, &mut solver, mesh, &orientation, settings, to, u)
     };
+    // Every rank writes its piece of the mesh at `coords`.
+    let write_at = |coords: &[f64]| {
+        let output = (job.output.as_path(), job.binary);
+        write(&world, output, &share, coords, &orientation)
+    };
     for step in 1..=steps {
         let start = Instant::now();
         let (_, target) = at(step)?;
@@ -436,28 +441,14 @@ pub fn run_shares(
                 written_name(&job.output, world.size()),
                 failed.display()
             );
-            return report.stop(&message, code, || {
-                write(
-                    &world,
-                    (&job.output, job.binary),
-                    &share,
-                    &coords,
-                    &orientation,
-                )
-            });
+            return report.stop(&message, code, || write_at(&coords));
         }
         progress.step(report.last());
         coords = moved;
         sweeps += report.last().iterations;
     }
     progress.finish();
-    write(
-        &world,
-        (&job.output, job.binary),
-        &share,
-        &coords,
-        &orientation,
-    )?;
+    write_at(&coords)?;
     if let Some(path) = &gather {
         gather::gather(&world, path, &share, solver.part(), &coords)?;
     }

@@ -470,8 +470,11 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
     let stderr = String::from_utf8_lossy(&o.stderr);
     let message = "--gather all.vtu: only a .pvtu output";
     assert_eq!(stderr.matches(message).count(), 1, "{stderr}");
-    // Pieces that cannot be written: every rank stops, rank 0 says why.
-    let nowhere = dir.path().join("missing/moved.pvtu");
+    // Pieces whose folder cannot be made (a file stands in its place):
+    // every rank stops before the solve, rank 0 says why.
+    let blocked = dir.path().join("blocked");
+    std::fs::write(&blocked, "").unwrap();
+    let nowhere = blocked.join("moved.pvtu");
     let mesh = fixture(name);
     let args = [
         "deform",
@@ -489,14 +492,8 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
     let o = verbss_mpi(2, &args, dir.path());
     assert_eq!(o.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&o.stderr);
-    let piece = dir.path().join("missing/moved_0.vtu");
-    assert_eq!(
-        stderr
-            .matches(&format!("error: {}", piece.display()))
-            .count(),
-        1,
-        "{stderr}"
-    );
+    let said = format!("error: {}: cannot make the folder: ", blocked.display());
+    assert_eq!(stderr.matches(&said).count(), 1, "{stderr}");
     let steps = ["--method", "verbss", "--steps", "0"];
     refused(
         2,

@@ -281,6 +281,17 @@ fn msh_pieces_of_an_su2_and_a_cgns_channel_read_back_on_one_to_three_ranks() {
     }
 }
 
+/// Gmsh's split set of the channel copied into `dir` as `set_1.msh` …
+/// `set_3.msh`; the name of `set_K.msh`.
+fn channel_set(dir: &Path) -> impl Fn(usize) -> PathBuf + '_ {
+    let set = move |k: usize| dir.join(format!("set_{k}.msh"));
+    for k in 1..=3 {
+        let gmsh = asset(&format!("gmsh/channel_hole_split3_v41_ascii_{k}.msh"));
+        std::fs::copy(gmsh, set(k)).unwrap();
+    }
+    set
+}
+
 /// `--split` names a set by its first file `NAME_1.msh`; a set missing a
 /// file, or one with a file too many, is refused, naming the file, with
 /// exit code 2, as is `--split` without `--pieces` or a `.pvtu` output.
@@ -290,11 +301,7 @@ fn split_sets_badly_named_or_incomplete_are_refused() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    let set = |k: usize| dir.path().join(format!("set_{k}.msh"));
-    for k in 1..=3 {
-        let gmsh = asset(&format!("gmsh/channel_hole_split3_v41_ascii_{k}.msh"));
-        std::fs::copy(gmsh, set(k)).unwrap();
-    }
+    let set = channel_set(dir.path());
     let out = dir.path().join("out.msh");
     let refused = |input: &Path, extra: &[&str], message: &str| {
         let mut args = vec!["deform", input.to_str().unwrap(), "-o"];
@@ -329,11 +336,7 @@ fn msh_pieces_keep_their_input_and_are_written_as_asked() {
         return;
     }
     let dir = tempfile::tempdir().unwrap();
-    let set = |k: usize| dir.path().join(format!("set_{k}.msh"));
-    for k in 1..=3 {
-        let gmsh = asset(&format!("gmsh/channel_hole_split3_v41_ascii_{k}.msh"));
-        std::fs::copy(gmsh, set(k)).unwrap();
-    }
+    let set = channel_set(dir.path());
     let original: Vec<Vec<u8>> = (1..=3).map(|k| std::fs::read(set(k)).unwrap()).collect();
     let first = set(1);
     let deform = |out: &Path, extra: &[&str]| {
