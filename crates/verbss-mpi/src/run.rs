@@ -7,9 +7,9 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::sync::Arc;
 
-use anyhow::bail;
 use verbss_cli::run::{execute, Prepared};
 use verbss_mpi::pieces::{write_piece, write_pvtu};
+use verbss_mpi::share::agree;
 use verbss_mpi::stepper::stepper;
 use verbss_mpi::Comm;
 
@@ -51,23 +51,29 @@ pub fn run_distributed(mut prepared: Prepared) -> anyhow::Result<ExitCode> {
 
 /// After every rank wrote its piece `dir/NAME_RANK.vtu` (`written`, its
 /// outcome), rank 0 writes `dir/NAME.pvtu` joining them (collective). Every
-/// rank learns of a failure, so that none waits for the others.
+/// rank learns of a failure, the lowest failing rank's message, so that
+/// none waits for the others.
 pub fn join_pieces(
     world: &Comm,
     dir: &Path,
     name: &str,
     written: verbss::Result<()>,
 ) -> anyhow::Result<()> {
-    let failed = world.sum(u64::from(written.is_err()));
-    written?;
-    if failed > 0 {
-        bail!(
-            "{failed} ranks could not write their pieces {}",
-            dir.join(format!("{name}_RANK.vtu")).display()
-        );
-    }
-    if world.rank() == 0 {
-        write_pvtu(dir, name, world.size())?;
-    }
-    Ok(())
+    told(agree(world, written, "could not write its piece"))?;
+    let joined = match world.rank() {
+        0 => write_pvtu(dir, name, world.size()),
+        _ => Ok(()),
+    };
+    told(agree(world, joined, "could not write the .pvtu"))
+}
+
+/// A collective outcome ([`agree`]) as the program says it: another
+/// rank's failure told as it is, not as a mesh or setting error.
+pub fn told<T>(result: verbss::Result<T>) -> anyhow::Result<T> {
+    result.map_err(|e| match e {
+        verbss::Error::InvalidMesh(told) | verbss::Error::InvalidSetting(told) => {
+            anyhow::anyhow!(told)
+        }
+        own => own.into(),
+    })
 }

@@ -75,6 +75,7 @@ use verbss_mpi::Comm;
 
 use crate::cgns;
 use crate::gather;
+use crate::run::told;
 use crate::share_attempt::{attempt, Attempt, Solve};
 use crate::share_blend::{nothing_left, PartBlend};
 use crate::share_report::StepLog;
@@ -111,14 +112,14 @@ fn read_input(
     split: bool,
 ) -> anyhow::Result<(Share, String)> {
     let share = if split {
-        read_rank_split(world, input)?
+        told(read_rank_split(world, input))?
     } else if has_extension(input, "su2") {
         return su2::read(world, input);
     } else if has_extension(input, "cgns") {
         return cgns::read(world, input);
     } else {
         check_partitioned(input, output)?;
-        read_rank_share(world, input)?
+        told(read_rank_share(world, input))?
     };
     let size = world.size() as usize;
     let partitions = partitions_of(share.partitions, size, world.rank() as usize, input)?;
@@ -173,7 +174,8 @@ pub fn run_shares(
     }
     let (share, from) = read_input(&world, args.mesh(), args.output(), split)?;
     let job = args.share_job(share.mesh.dim)?;
-    prepare_output(&world, &job, args.mesh(), split, share.partitions)?;
+    let outputs = (&job, gather.as_deref());
+    prepare_output(&world, outputs, args.mesh(), split, share.partitions)?;
     if let Some(path) = &gather {
         gather::check_tags(&world, path, &share.mesh)?;
     }
@@ -416,7 +418,12 @@ pub fn run_shares(
         report.push(r);
         if !info.converged || inverted > 0 {
             progress.finish();
-            let failed = write_failed(&world, &job.output, mesh, &moved, &orientation)?;
+            // Where the failed state cannot be written, the step's failure is
+            // still said and the last valid mesh still written.
+            let failed = match write_failed(&world, &job.output, mesh, &moved, &orientation) {
+                Ok(path) => format!("the failed state in {}", path.display()),
+                Err(e) => format!("the failed state could not be written ({e})"),
+            };
             let (what, code) = if info.converged {
                 let named = inverted_error(&world, mesh, &moved, &orientation, step).map_or_else(
                     || format!("step {step} inverts {inverted} cells"),
@@ -436,10 +443,9 @@ pub fn run_shares(
                 (what, 4)
             };
             let message = format!(
-                "{what}; the last valid mesh (step {}) is in {}; the failed state in {}",
+                "{what}; the last valid mesh (step {}) is in {}; {failed}",
                 step - 1,
                 written_name(&job.output, world.size()),
-                failed.display()
             );
             return report.stop(&message, code, || write_at(&coords));
         }
@@ -455,9 +461,12 @@ pub fn run_shares(
     report.finish("completed")?;
     if root && !job.quiet {
         println!(
-            "wrote {} ({} pieces, {sweeps} sweeps in all)",
+            "wrote {} ({}, {sweeps} sweeps in all)",
             written_name(&job.output, world.size()),
-            world.size()
+            match world.size() {
+                1 => "1 piece".to_string(),
+                p => format!("{p} pieces"),
+            }
         );
     }
     Ok(ExitCode::SUCCESS)

@@ -23,7 +23,7 @@ use verbss_mpi::pieces::{
 use verbss_mpi::share::agree;
 use verbss_mpi::Comm;
 
-use crate::run::join_pieces;
+use crate::run::{join_pieces, told};
 
 /// Whether `path` has the extension `ext`, in any case.
 pub fn has_extension(path: &Path, ext: &str) -> bool {
@@ -31,21 +31,25 @@ pub fn has_extension(path: &Path, ext: &str) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case(ext))
 }
 
-/// Before the solve (collective): makes the output's folder, and fails on
-/// every rank where a rank's MSH piece would replace a file of the input
-/// (`input`, or with `split` the `partitions` files of its set), unless
-/// `--overwrite`.
+/// Before the solve (collective): makes the folders of the output, of the
+/// report and of the gathered mesh (`gather`), and fails on every rank
+/// where a rank's MSH piece would replace a file of the input (`input`, or
+/// with `split` the `partitions` files of its set), unless `--overwrite`.
 pub fn prepare_output(
     world: &Comm,
-    job: &ShareJob,
+    (job, gather): (&ShareJob, Option<&Path>),
     input: &Path,
     split: bool,
     partitions: usize,
 ) -> anyhow::Result<()> {
     let dir = output_dir(&job.output);
     let check = || -> anyhow::Result<()> {
-        std::fs::create_dir_all(&dir)
-            .map_err(|e| anyhow::anyhow!("{}: cannot make the folder: {e}", dir.display()))?;
+        let outputs = [Some(job.output.as_path()), job.report.as_deref(), gather];
+        for folder in outputs.into_iter().flatten().map(output_dir) {
+            std::fs::create_dir_all(&folder).map_err(|e| {
+                anyhow::anyhow!("{}: cannot make the folder: {e}", folder.display())
+            })?;
+        }
         if job.overwrite || !has_extension(&job.output, "msh") {
             return Ok(());
         }
@@ -64,16 +68,6 @@ pub fn prepare_output(
     };
     let checked = check().map_err(|e| verbss::Error::InvalidSetting(e.to_string()));
     told(agree(world, checked, "refused its output"))
-}
-
-/// Another rank's failure told as it is (not as a mesh error).
-fn told<T>(result: verbss::Result<T>) -> anyhow::Result<T> {
-    result.map_err(|e| match e {
-        verbss::Error::InvalidMesh(told) | verbss::Error::InvalidSetting(told) => {
-            anyhow::anyhow!(told)
-        }
-        own => own.into(),
-    })
 }
 
 /// What the output line names: `output`, or for MSH pieces the files of

@@ -507,7 +507,8 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
     let v22 = fixture("channel_hole_v22_ascii.msh");
     refused(2, &v22, &verbss, "MSH 2.2 has no partitioned entities");
     // A bad node tag in the last element block, on entity 6 of dimension 2
-    // in partition 2 (quadrangles): rank 1 of 2 reads it, rank 0 steps over it.
+    // in partition 2 (quadrangles): rank 1 of 2 reads it, rank 0 steps over
+    // it; both name its line, and rank 0, the lowest, is heard.
     let text = std::fs::read_to_string(fixture(name)).unwrap();
     let mut lines: Vec<String> = text.lines().map(String::from).collect();
     let block = lines.iter().position(|l| l.trim() == "2 6 3 36").unwrap();
@@ -515,7 +516,7 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
     let bad = dir.path().join("bad.msh");
     std::fs::write(&bad, lines.join("\n") + "\n").unwrap();
     let want = format!(
-        "rank 1 could not read its share: {}:{}: ",
+        "error: {}:{}: an element block: expected a number, found 'x'",
         bad.display(),
         block + 2
     );

@@ -327,7 +327,8 @@ fn split_sets_badly_named_or_incomplete_are_refused() {
 }
 
 /// MSH pieces never replace the split set they were read from unless
-/// `--overwrite` says so; they go into a folder made for them, binary with
+/// `--overwrite` says so; they, the report and the gathered mesh go into
+/// folders made for them, the pieces binary with
 /// `--binary` from an ASCII set; `--msh-version 2.2` is refused (a split
 /// set is MSH 4.1).
 #[test]
@@ -365,8 +366,18 @@ fn msh_pieces_keep_their_input_and_are_written_as_asked() {
             "set_{k}.msh"
         );
     }
-    let (code, stderr) = deform(&dir.path().join("new/moved.msh"), &["--binary"]);
+    let report = dir.path().join("r/report.json");
+    let gathered = dir.path().join("g/all.vtu");
+    let extra = [
+        "--binary",
+        "--report",
+        report.to_str().unwrap(),
+        "--gather",
+        gathered.to_str().unwrap(),
+    ];
+    let (code, stderr) = deform(&dir.path().join("new/moved.msh"), &extra);
     assert_eq!(code, Some(0), "{stderr}");
+    assert!(report.is_file() && gathered.is_file());
     for k in 1..=3 {
         let piece = std::fs::read(dir.path().join(format!("new/moved_{k}.msh"))).unwrap();
         assert!(piece.starts_with(b"$MeshFormat\n4.1 1 8\n"), "piece {k}");

@@ -29,8 +29,8 @@ pub enum Reference {
     /// step's boundary position, solve for the rest of the total
     /// displacement from the input mesh: the mesh is a function of the
     /// boundary's position, so a periodic motion comes back to the input
-    /// mesh (the default of [`Preset::Robust`]; the command line and case
-    /// files take [`Reference::for_motions`]).
+    /// mesh (the robust method's default for a periodic motion, as
+    /// Reference::for_motions chooses it).
     Anchored,
 }
 

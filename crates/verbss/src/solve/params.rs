@@ -106,10 +106,11 @@ pub enum Accel {
     /// root-mean-square error of the unknowns is below the threshold
     /// (`docs/acceleration.md`).
     Amg,
-    /// [`Accel::Amg`] for meshes of mostly triangles or tetrahedra with at
-    /// least [`AUTO_AMG_NODES_2D`] (2D) or [`AUTO_AMG_NODES_3D`] (3D) unknown
-    /// nodes, [`Accel::None`] otherwise; a multigrid that cannot be built or a
-    /// solve it cannot finish falls back to plain sweeps.
+    /// The multigrid (amg) for meshes of mostly triangles or tetrahedra with
+    /// at least 3,000 (2D) or 100,000 (3D) unknown nodes (AUTO_AMG_NODES_2D,
+    /// AUTO_AMG_NODES_3D), plain sweeps (none) otherwise; a multigrid that
+    /// cannot be built or a solve it cannot finish falls back to plain
+    /// sweeps.
     Auto,
 }
 

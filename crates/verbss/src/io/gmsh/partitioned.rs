@@ -99,8 +99,9 @@ pub fn partition_count(path: &Path) -> Result<usize> {
 /// Reads partitions `wanted` (1-based) of the partitioned MSH 4.1 file at
 /// `path` (see the module documentation). Fails when the file is not a
 /// partitioned MSH 4.1 file, when `wanted` is not within its partitions,
-/// or where the file is malformed, naming the line (ASCII) or byte offset
-/// (binary).
+/// when a partition of `wanted` has no element in the file (a file of a
+/// split set, which holds one), or where the file is malformed, naming the
+/// line (ASCII) or byte offset (binary).
 pub fn read_share(path: &Path, wanted: RangeInclusive<usize>) -> Result<Share> {
     let mut s = Stream::open(path)?;
     let head = read_head(&mut s)?;
@@ -151,7 +152,17 @@ pub fn read_share(path: &Path, wanted: RangeInclusive<usize>) -> Result<Share> {
             }))
         })
     };
-    let (elements, at) = read_elements(&mut s, &head, &mut node_of, &picked)?;
+    // The entities of the kept element blocks that hold elements.
+    let held = std::cell::RefCell::new(Vec::new());
+    let picked_elements = |c: &Cursor, header: BlockHeader, mark: Mark| -> Result<bool> {
+        let keep = picked(c, header, mark)?;
+        if keep && header.3 > 0 {
+            held.borrow_mut().push((header.0, header.1));
+        }
+        Ok(keep)
+    };
+    let (elements, at) = read_elements(&mut s, &head, &mut node_of, &picked_elements)?;
+    check_held(&s, &head.entities, &held.into_inner(), wanted.clone(), at)?;
     if !elsewhere.is_empty() {
         let (found, entities) = read_elsewhere(path, &picked, &elsewhere)?;
         for &tag in &elsewhere {
@@ -213,6 +224,40 @@ pub fn read_share(path: &Path, wanted: RangeInclusive<usize>) -> Result<Share> {
             domain: structure.domain,
         },
     })
+}
+
+/// Fails unless every partition of `wanted` has elements of the highest
+/// dimension in the file (on the entities `held`): a file of a split set
+/// (`gmsh -part_split`) declares every partition and holds one.
+fn check_held(
+    s: &Stream,
+    entities: &Entities,
+    held: &[(usize, i32)],
+    wanted: RangeInclusive<usize>,
+    at: Mark,
+) -> Result<()> {
+    let top = held.iter().map(|&(dim, _)| dim).max();
+    let has = |q: usize| {
+        held.iter().any(|&(dim, tag)| {
+            Some(dim) == top
+                && entities.partitioned[&(dim, tag)]
+                    .partitions
+                    .iter()
+                    .any(|&p| usize::try_from(p) == Ok(q))
+        })
+    };
+    match wanted.clone().find(|&q| !has(q)) {
+        None => Ok(()),
+        Some(q) => Err(s.error_at(
+            at,
+            format!(
+                "no element of partition {q} of the {} it declares is in this file: a file of \
+                 a split set (`gmsh -part_split`) holds one partition; read the set with \
+                 --split, from its first file NAME_1.msh",
+                entities.partitions
+            ),
+        )),
+    }
 }
 
 /// Reads the sections before `$Nodes` (and the `$Nodes` line itself).

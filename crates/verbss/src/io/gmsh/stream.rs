@@ -7,7 +7,7 @@ use std::fs::File;
 use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
 
-use super::cursor::Mark;
+use super::cursor::{show, Mark};
 use crate::error::{Error, Result};
 
 /// A file open for reading from its start.
@@ -137,10 +137,19 @@ impl<'p> Stream<'p> {
                     format!("{what} ends after {seen} of its {count} numbers"),
                 ));
             }
-            seen += line
+            let tokens = line
                 .split(u8::is_ascii_whitespace)
-                .filter(|t| !t.is_empty())
-                .count();
+                .filter(|t| !t.is_empty());
+            if into.is_none() {
+                // Stepped over, not parsed: what is not a number is said here.
+                let number = |t: &&[u8]| t.iter().all(|b| b"0123456789+-.eE".contains(b));
+                if let Some(t) = tokens.clone().find(|t| !number(t)) {
+                    return Err(
+                        self.error_at(at, format!("{what}: expected a number, found {}", show(t)))
+                    );
+                }
+            }
+            seen += tokens.count();
             if seen > count {
                 return Err(self.error_at(
                     at,

@@ -185,6 +185,16 @@ fn errors_name_the_line_or_byte() {
             coordinate + 1
         )
     );
+    // The same block stepped over (read for the other partitions): the
+    // line is named as well.
+    assert_eq!(
+        share_error(&bad, 2..=3),
+        format!(
+            "{}:{}: a node block: expected a number, found 'x'",
+            bad.display(),
+            coordinate + 1
+        )
+    );
     // A block size no file can hold.
     let mut header: Vec<&str> = lines[n].split(' ').collect();
     header[3] = "18446744073709551615";
@@ -204,4 +214,18 @@ fn errors_name_the_line_or_byte() {
     let e = share_error(&short, 1..=1);
     assert!(e.contains(": byte "), "{e}");
     assert!(e.contains("unexpected end of file"), "{e}");
+}
+
+/// A file of a split set (Gmsh's `-part_split`: it declares every
+/// partition and holds one) is refused for the partitions it does not
+/// hold, with the advice to read the set.
+#[test]
+fn a_file_of_a_split_set_is_not_taken_for_the_whole() {
+    let first = fixture_dir().join("channel_hole_split3_v41_ascii_1.msh");
+    assert!(read_share(&first, 1..=1).is_ok());
+    let e = share_error(&first, 1..=3);
+    assert!(e.starts_with(&format!("{}:", first.display())), "{e}");
+    let said = "no element of partition 2 of the 3 it declares is in this file";
+    assert!(e.contains(said), "{e}");
+    assert!(e.contains("read the set with --split"), "{e}");
 }
