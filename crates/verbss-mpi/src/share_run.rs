@@ -460,8 +460,12 @@ pub fn run_shares(
     }
     report.finish("completed")?;
     if root && !job.quiet {
+        let gathered = match &gather {
+            Some(path) => format!(" and the whole mesh {}", path.display()),
+            None => String::new(),
+        };
         println!(
-            "wrote {} ({}, {sweeps} sweeps in all)",
+            "wrote {}{gathered} ({}, {sweeps} sweeps in all)",
             written_name(&job.output, world.size()),
             match world.size() {
                 1 => "1 piece".to_string(),

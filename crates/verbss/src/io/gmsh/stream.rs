@@ -142,7 +142,11 @@ impl<'p> Stream<'p> {
                 .filter(|t| !t.is_empty());
             if into.is_none() {
                 // Stepped over, not parsed: what is not a number is said here.
-                let number = |t: &&[u8]| t.iter().all(|b| b"0123456789+-.eE".contains(b));
+                let number = |t: &&[u8]| {
+                    t.iter().all(|b| {
+                        b.is_ascii_digit() || matches!(b, b'+' | b'-' | b'.' | b'e' | b'E')
+                    })
+                };
                 if let Some(t) = tokens.clone().find(|t| !number(t)) {
                     return Err(
                         self.error_at(at, format!("{what}: expected a number, found {}", show(t)))
