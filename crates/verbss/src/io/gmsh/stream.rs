@@ -137,23 +137,20 @@ impl<'p> Stream<'p> {
                     format!("{what} ends after {seen} of its {count} numbers"),
                 ));
             }
-            let tokens = line
+            // Stepped over, not parsed: what is not a number is said here,
+            // in the one pass that counts the tokens.
+            let number = |t: &[u8]| t.iter().all(|b| b.is_ascii_digit() || b"+-.eE".contains(b));
+            for t in line
                 .split(u8::is_ascii_whitespace)
-                .filter(|t| !t.is_empty());
-            if into.is_none() {
-                // Stepped over, not parsed: what is not a number is said here.
-                let number = |t: &&[u8]| {
-                    t.iter().all(|b| {
-                        b.is_ascii_digit() || matches!(b, b'+' | b'-' | b'.' | b'e' | b'E')
-                    })
-                };
-                if let Some(t) = tokens.clone().find(|t| !number(t)) {
+                .filter(|t| !t.is_empty())
+            {
+                if into.is_none() && !number(t) {
                     return Err(
                         self.error_at(at, format!("{what}: expected a number, found {}", show(t)))
                     );
                 }
+                seen += 1;
             }
-            seen += tokens.count();
             if seen > count {
                 return Err(self.error_at(
                     at,
