@@ -115,12 +115,14 @@ fn main() {
                         .compile("verbss_mpi_scotch");
                     scotch.link();
                     println!("cargo::rustc-cfg=with_ptscotch");
+                    println!("cargo::metadata=with_ptscotch=1");
                     println!("cargo::rustc-env=VERBSS_PTSCOTCH_MISSING=");
                 }
                 Err(why) => println!("cargo::rustc-env=VERBSS_PTSCOTCH_MISSING={why}"),
             }
             flags.link();
             println!("cargo::rustc-cfg=with_mpi");
+            println!("cargo::metadata=with_mpi=1");
             println!("cargo::rustc-env=VERBSS_MPI_MISSING=");
         }
         Err(why) => {

@@ -6,7 +6,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use verbss::deform::{Deformer, Reference, Settings};
+use verbss::deform::Deformer;
+use verbss::settings::{Reference, Settings};
 use verbss::mesh::samples::jittered_grid;
 use verbss::motion::{Attachment, Motion};
 use verbss::solve::{Method, Solver};

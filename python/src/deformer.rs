@@ -5,7 +5,8 @@ use std::collections::HashMap;
 use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
-use verbss::deform::{Settings, StepReport};
+use verbss::deform::StepReport;
+use verbss::settings::Settings;
 use verbss::motion::{Attachment, Motion, PositionSource};
 
 use crate::{asarray, invalid_setting, pairs, points_array, raise, shape_text, GilProbe, Mesh};
@@ -20,48 +21,19 @@ struct Moving {
 
 /// A mesh in motion, stepped by a flow solver (see `Deformer.step`).
 ///
-/// Deformer(mesh, method="robust", omega=None, tolerance=None,
-///          max_iterations=None, threads=0, reference=None, solver=None,
-///          accel=None, *, absolute_tolerance=None, predictor=None,
-///          slide=None, rigid_layer=None, stiffening=None, substeps=None,
-///          blend=None)
+/// Deformer(mesh, method="robust", *, slide=None, **settings)
 ///
-/// Every setting is `verbss deform`'s option of the same name (`_` for
-/// `-`), with its spellings; None: what `method` implies.
+/// Every keyword but `slide` is a setting of the library's one table
+/// (`verbss.settings_table()`, docs/case-file.md): the same name as a case
+/// file's `[solver]` key and `verbss deform`'s option (`-` for `_`), the
+/// same values — a string, a number, or True/False for on/off; None or left
+/// out: what `method` implies. `method` is "robust" (the default: VerBSS
+/// with the near-wall treatments), "verbss" (the paper's method),
+/// "ball-vertex", "spring" or "laplacian". `threads` defaults to one per
+/// core; the results do not depend on it.
 ///
-/// - method: "robust" (the default, as on the command line: verbss with the
-///   near-wall treatments and the blended rigid motion of
-///   docs/robustness.md), "verbss" (the paper's method: edge + ball-vertex
-///   springs, node by node), "ball-vertex"
-///   (the same system solved globally by `solver`, "sor" or "direct"),
-///   "spring" (edge springs only) or "laplacian".
-/// - omega: the over-relaxation factor of the sweeps (1.6 when None).
-///   omega, solver and accel all None: a step whose sweeps stall or diverge,
-///   or leave a node's estimated error above 1% of its cell height,
-///   escalates to GMRES, the multigrid and the direct solve (docs/method.md); any
-///   of them given: exactly that solver.
-/// - tolerance: the sweeps stop when the mean absolute change of one sweep is
-///   below tolerance × the step's largest prescribed displacement (1e-6
-///   when None), or below tolerance itself with absolute_tolerance=True.
-/// - max_iterations: the most sweeps per step (2000 when None).
-/// - threads: worker threads, 0 for one per core; results do not depend on it.
-/// - reference: "anchored" (the default of "robust": each step from the
-///   input mesh moved by the blended rigid motion, solving for the total
-///   displacement, so the mesh is a function of the boundary's position and
-///   a periodic motion returns to the input mesh), "updated" (springs on
-///   the current mesh each step, solving for the increment; the default of
-///   the other methods) or "fixed" (also spelled "initial": springs on the
-///   input mesh); docs/method.md, "Time stepping".
-/// - accel: "none" (plain VerBSS sweeps), "amg" (GMRES around a multigrid
-///   V-cycle whose smoother is the VerBSS sweep; tolerance then bounds the
-///   estimated RMS error) or "auto" (amg on large meshes of mostly
-///   triangles/tetrahedra), for the methods verbss and spring.
-/// - keyword only: predictor ("previous" or "linear"), slide (group names,
-///   each sliding in its own plane, or a mapping of a group name to its
-///   plane's normal, D numbers, or None for its own plane), rigid_layer
-///   ("off", "auto" or a wall distance), stiffening (exponent ≥ 0),
-///   substeps (halvings of a step, at most 30), blend (True/False: the
-///   blended rigid motion).
+/// `slide`: group names, each sliding in its own plane, or a mapping of a
+/// group name to its plane's normal (D numbers, or None for its own plane).
 ///
 /// Invalid settings, unknown slide groups and slide normals of the wrong
 /// length raise VerbssError here, not at the first step.
@@ -96,6 +68,21 @@ impl Deformer {
         });
         Ok(())
     }
+}
+
+/// A setting's value as the table spells it: True/False as on/off, a
+/// number in its shortest exact form, a string as it is.
+fn setting_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
+    if let Ok(b) = value.extract::<bool>() {
+        return Ok((if b { "on" } else { "off" }).into());
+    }
+    if let Ok(k) = value.extract::<i64>() {
+        return Ok(k.to_string());
+    }
+    if let Ok(x) = value.extract::<f64>() {
+        return Ok(x.to_string());
+    }
+    value.extract::<String>()
 }
 
 /// The (N, D) displacement of a group from `value`: an (N, D) or (D,) array,
@@ -200,71 +187,21 @@ fn report_dict<'py>(py: Python<'py>, r: &StepReport) -> PyResult<Bound<'py, PyDi
 #[pymethods]
 impl Deformer {
     #[new]
-    #[pyo3(signature = (
-        mesh,
-        method = "robust",
-        omega = None,
-        tolerance = None,
-        max_iterations = None,
-        threads = 0,
-        reference = None,
-        solver = None,
-        accel = None,
-        *,
-        absolute_tolerance = None,
-        predictor = None,
-        slide = None,
-        rigid_layer = None,
-        stiffening = None,
-        substeps = None,
-        blend = None,
-    ))]
-    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (mesh, method = "robust", *, slide = None, **settings))]
     fn new(
         mesh: &Mesh,
         method: &str,
-        omega: Option<f64>,
-        tolerance: Option<f64>,
-        max_iterations: Option<i64>,
-        threads: i64,
-        reference: Option<&str>,
-        solver: Option<&str>,
-        accel: Option<&str>,
-        absolute_tolerance: Option<bool>,
-        predictor: Option<&str>,
         slide: Option<&Bound<'_, PyAny>>,
-        rigid_layer: Option<&Bound<'_, PyAny>>,
-        stiffening: Option<f64>,
-        substeps: Option<i64>,
-        blend: Option<bool>,
+        settings: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Deformer> {
-        let switch = |b: bool| if b { "on" } else { "off" }.to_string();
-        let layer = rigid_layer
-            .map(|l| match l.extract::<f64>() {
-                Ok(t) => Ok(t.to_string()),
-                Err(_) => l.extract::<String>(),
-            })
-            .transpose()?;
-        let given = [
-            ("method", Some(method.to_string())),
-            ("omega", omega.map(|x| x.to_string())),
-            ("tolerance", tolerance.map(|x| x.to_string())),
-            ("max_iterations", max_iterations.map(|k| k.to_string())),
-            ("threads", Some(threads.to_string())),
-            ("reference", reference.map(str::to_string)),
-            ("solver", solver.map(str::to_string)),
-            ("accel", accel.map(str::to_string)),
-            ("absolute_tolerance", absolute_tolerance.map(switch)),
-            ("predictor", predictor.map(str::to_string)),
-            ("rigid_layer", layer),
-            ("stiffening", stiffening.map(|x| x.to_string())),
-            ("substeps", substeps.map(|k| k.to_string())),
-            ("blend", blend.map(switch)),
-        ];
-        let named: Vec<(&str, String)> = given
-            .into_iter()
-            .filter_map(|(name, value)| value.map(|v| (name, v)))
-            .collect();
+        let mut named = vec![("method".to_string(), method.to_string())];
+        for (name, value) in settings.iter().flat_map(|d| d.iter()) {
+            let name: String = name.extract()?;
+            if value.is_none() {
+                continue;
+            }
+            named.push((name, setting_text(&value)?));
+        }
         let settings = Settings::named(1, &named).map_err(raise)?;
         let slide = slide
             .map(|s| slides(s, &mesh.inner))

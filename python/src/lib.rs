@@ -15,7 +15,7 @@ use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArr
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 use verbss::io::WriteOptions;
 use verbss::{CellKind, Cells, Error, Group};
 
@@ -406,6 +406,28 @@ impl GilProbe {
     }
 }
 
+/// The library's table of settings, the keywords of `Deformer`: one dict
+/// per setting with its `name`, `values`, `default`, `presets` (the
+/// presets whose value differs, and that value) and `help`.
+#[pyfunction]
+fn settings_table(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
+    let rows = PyList::empty(py);
+    for setting in verbss::settings::TABLE {
+        let row = PyDict::new(py);
+        row.set_item("name", setting.name)?;
+        row.set_item("values", setting.values.describe())?;
+        row.set_item("default", setting.default)?;
+        let presets = PyDict::new(py);
+        for (preset, value) in setting.presets {
+            presets.set_item(preset.name(), *value)?;
+        }
+        row.set_item("presets", presets)?;
+        row.set_item("help", setting.help)?;
+        rows.append(row)?;
+    }
+    Ok(rows)
+}
+
 /// verbss: Vertex-Ball Spring Smoothing mesh motion, native part.
 #[pymodule]
 fn _verbss(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -415,5 +437,6 @@ fn _verbss(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<GilProbe>()?;
     m.add_function(wrap_pyfunction!(read, m)?)?;
     m.add_function(wrap_pyfunction!(quality_json, m)?)?;
+    m.add_function(wrap_pyfunction!(settings_table, m)?)?;
     Ok(())
 }

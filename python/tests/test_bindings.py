@@ -196,13 +196,11 @@ def test_accel_amg_matches_the_command(cli, tmp_path):
 
 
 def test_robust_method_matches_the_command_default(cli, tmp_path):
-    # A coupled deformer steps with given positions; its default reference is
-    # the robust preset's, anchored (the command picks updated for a one-way
-    # translation, so it is named here).
+    # The reference of the robust preset is chosen by the motions, as on the
+    # command line: given positions are a one-way motion (updated), as the
+    # command's translation.
     mesh, group, shift = CASES[1]
-    expected = cli_deform(
-        cli, tmp_path, mesh, group, shift, extra=("--reference", "anchored"), method="robust"
-    )
+    expected = cli_deform(cli, tmp_path, mesh, group, shift, method="robust")
     plain = cli_deform(cli, tmp_path, mesh, group, shift)
     d = verbss.Deformer(verbss.read(MESHES / mesh), **dict(SETTINGS, method="robust"))
     for n in range(1, STEPS + 1):
@@ -211,6 +209,25 @@ def test_robust_method_matches_the_command_default(cli, tmp_path):
     # (X + u) - X: equal to the command's translation up to rounding.
     assert np.allclose(got, expected, rtol=0, atol=1e-12)
     assert not np.allclose(got, plain, rtol=0, atol=1e-6)
+
+
+def test_the_keywords_are_the_settings_table():
+    # The stub's keywords of Deformer are the library's settings, and each
+    # is taken by the constructor with the table's default.
+    import ast
+
+    stub = ast.parse((Path(verbss.__file__).parent / "_verbss.pyi").read_text())
+    deformer = next(n for n in stub.body if isinstance(n, ast.ClassDef) and n.name == "Deformer")
+    new = next(f for f in deformer.body if isinstance(f, ast.FunctionDef) and f.name == "__new__")
+    keywords = [a.arg for a in new.args.args[2:] + new.args.kwonlyargs]
+    names = [row["name"] for row in verbss.settings_table()]
+    assert sorted(k for k in keywords if k != "slide") == sorted(names)
+    mesh = verbss.read(NACA)
+    for row in verbss.settings_table():
+        verbss.Deformer(mesh, **{row["name"]: row["default"]})
+    with pytest.raises(verbss.VerbssError) as e:
+        verbss.Deformer(mesh, omegga=1.5)
+    assert str(e.value).startswith("invalid setting: unknown setting 'omegga' (expected method,")
 
 
 def test_near_wall_settings_and_slides_match_the_command(cli, tmp_path):
@@ -237,7 +254,7 @@ def test_near_wall_settings_and_slides_match_the_command(cli, tmp_path):
 
 def test_reference_predictor_and_absolute_tolerance_match_the_command(cli, tmp_path):
     mesh, group, shift = CASES[0]
-    extra = ("--reference", "fixed", "--predictor", "linear", "--absolute-tolerance")
+    extra = ("--reference", "fixed", "--predictor", "linear", "--absolute-tolerance", "on")
     expected = cli_deform(cli, tmp_path, mesh, group, shift, extra=extra)
     plain = cli_deform(cli, tmp_path, mesh, group, shift)
     d = verbss.Deformer(
@@ -324,19 +341,19 @@ def test_bad_settings_and_arrays_are_named():
         (lambda: verbss.Deformer(mesh, method="fast"),
          "invalid setting: unknown method 'fast' (expected robust, verbss, ball-vertex, spring or laplacian)"),
         (lambda: verbss.Deformer(mesh, reference="moving"),
-         "invalid setting: unknown reference 'moving' (expected updated, fixed or anchored)"),
+         "invalid setting: unknown reference 'moving' (expected auto, updated, fixed or anchored)"),
         (lambda: verbss.Deformer(mesh, omega=2.5),
-         "invalid setting: omega 2.5 is outside (0, 2)"),
+         "invalid setting: omega must be a number in (0, 2) (got 2.5)"),
         (lambda: verbss.Deformer(mesh, threads=-1),
-         "invalid setting: threads must be zero or positive (got -1)"),
+         "invalid setting: threads must be a whole number from 0 to 4096 (got -1)"),
         (lambda: verbss.Deformer(mesh, rigid_layer="thick"),
-         "invalid setting: the rigid layer must be off, auto or a positive wall distance (got 'thick')"),
+         "invalid setting: rigid_layer must be off, auto or a positive wall distance (got 'thick')"),
         (lambda: verbss.Deformer(mesh, substeps=40),
-         "invalid setting: substeps must be at most 30 (got 40)"),
+         "invalid setting: substeps must be a whole number from 0 to 30 (got 40)"),
         (lambda: verbss.Deformer(mesh, accel="fast"),
          "invalid setting: unknown accel 'fast' (expected none, amg or auto)"),
         (lambda: verbss.Deformer(mesh, tolerance=-1.0, absolute_tolerance=True),
-         "invalid setting: tolerance -1 is not a finite number ≥ 0"),
+         "invalid setting: tolerance must be a finite number ≥ 0 (got -1)"),
         (lambda: verbss.Deformer(mesh, slide=["wing"]),
          "unknown group 'wing' (the mesh has: airfoil, farfield)"),
         (lambda: verbss.Deformer(mesh, slide={"farfield": [0.0, 0.0, 1.0]}),

@@ -21,7 +21,7 @@ from typing import Any, Dict, List, Tuple
 
 import numpy as np
 
-from ._verbss import Deformer, GilProbe, Mesh, VerbssError, quality_json, read
+from ._verbss import Deformer, GilProbe, Mesh, VerbssError, quality_json, read, settings_table
 
 __all__ = [
     "Deformer",
@@ -31,6 +31,7 @@ __all__ = [
     "from_meshio",
     "quality",
     "read",
+    "settings_table",
     "to_meshio",
 ]
 

@@ -91,43 +91,17 @@ class Mesh:
 class Deformer:
     """A mesh in motion, stepped by a flow solver (see :meth:`step`).
 
-    Every setting is ``verbss deform``'s option of the same name (``_`` for
-    ``-``), with its spellings; None: what ``method`` implies.
+    Every keyword but ``slide`` is a setting of the library's one table
+    (:func:`settings_table`, docs/case-file.md): the same name as a case
+    file's ``[solver]`` key and ``verbss deform``'s option (``-`` for
+    ``_``), the same values — a string, a number, or True/False for on/off;
+    None or left out: what ``method`` implies. ``method`` is ``"robust"``
+    (the default: VerBSS with the near-wall treatments), ``"verbss"`` (the
+    paper's method), ``"ball-vertex"``, ``"spring"`` or ``"laplacian"``.
+    ``threads`` defaults to one per core; the results do not depend on it.
 
-    - ``method``: ``"robust"`` (the default, as on the command line: verbss
-      with the near-wall treatments and the blended rigid motion),
-      ``"verbss"`` (the paper's method: edge + ball-vertex springs, node by
-      node), ``"ball-vertex"`` (the same system solved globally by ``solver``,
-      ``"sor"`` or ``"direct"``), ``"spring"`` (edge springs only) or
-      ``"laplacian"``.
-    - ``omega``: the over-relaxation factor of the sweeps (1.6 when None).
-      ``omega``, ``solver`` and ``accel`` all None: a step whose sweeps stall
-      or diverge, or leave a node's estimated error above 1% of its cell
-      height, escalates to GMRES, the multigrid and the direct solve; any of them
-      given: exactly that solver.
-    - ``tolerance``: the sweeps stop when the mean absolute change of one
-      sweep is below tolerance × the step's largest prescribed displacement
-      (1e-6 when None), or below tolerance itself with
-      ``absolute_tolerance=True``.
-    - ``max_iterations``: the most sweeps per step (2000 when None).
-    - ``threads``: worker threads, 0 for one per core; results do not depend
-      on it.
-    - ``reference``: ``"anchored"`` (the default of ``"robust"``: each step
-      from the input mesh moved by the blended rigid motion, solving for the
-      total displacement, so a periodic motion returns to the input mesh),
-      ``"updated"`` (springs on the current mesh each step, solving for the
-      increment; the default of the other methods) or ``"fixed"`` (also
-      spelled ``"initial"``: springs on the input mesh).
-    - ``accel``: ``"none"`` (plain VerBSS sweeps), ``"amg"`` (GMRES around a
-      multigrid V-cycle whose smoother is the VerBSS sweep; ``tolerance`` then
-      bounds the estimated RMS error) or ``"auto"`` (``"amg"`` on large meshes
-      of mostly triangles/tetrahedra), for the methods verbss and spring.
-    - keyword only: ``predictor`` (``"previous"`` or ``"linear"``),
-      ``slide`` (group names, each sliding in its own plane, or a mapping of
-      a group name to its plane's normal, D numbers, or None for its own
-      plane), ``rigid_layer`` (``"off"``, ``"auto"`` or a wall distance),
-      ``stiffening`` (exponent ≥ 0), ``substeps`` (halvings of a step, at
-      most 30), ``blend`` (the blended rigid motion).
+    ``slide``: group names, each sliding in its own plane, or a mapping of a
+    group name to its plane's normal (D numbers, or None for its own plane).
 
     Invalid settings, unknown slide groups and slide normals of the wrong
     length raise :class:`VerbssError` here, not at the first step.
@@ -137,21 +111,22 @@ class Deformer:
         cls,
         mesh: Mesh,
         method: str = "robust",
-        omega: Optional[float] = None,
-        tolerance: Optional[float] = None,
-        max_iterations: Optional[int] = None,
-        threads: int = 0,
-        reference: Optional[str] = None,
-        solver: Optional[str] = None,
-        accel: Optional[str] = None,
         *,
-        absolute_tolerance: Optional[bool] = None,
-        predictor: Optional[str] = None,
         slide: Union[Sequence[str], Mapping[str, Optional[npt.ArrayLike]], None] = None,
+        reference: Optional[str] = None,
+        predictor: Optional[str] = None,
         rigid_layer: Union[str, float, None] = None,
         stiffening: Optional[float] = None,
         substeps: Optional[int] = None,
         blend: Optional[bool] = None,
+        solver: Optional[str] = None,
+        accel: Optional[str] = None,
+        escalate: Optional[bool] = None,
+        omega: Optional[float] = None,
+        tolerance: Optional[float] = None,
+        absolute_tolerance: Optional[bool] = None,
+        max_iterations: Optional[int] = None,
+        threads: Optional[int] = None,
     ) -> "Deformer": ...
     def step(
         self, displacements: Mapping[str, _Displacement], *, probe: Optional[GilProbe] = None
@@ -184,6 +159,12 @@ class Deformer:
     @property
     def info(self) -> Optional[StepInfo]:
         """What the last accepted step did, or None before the first step."""
+
+def settings_table() -> List[Dict[str, Any]]:
+    """The library's table of settings, the keywords of :class:`Deformer`:
+    one dict per setting with its ``name``, ``values``, ``default``,
+    ``presets`` (the presets whose value differs, and that value) and
+    ``help``."""
 
 def read(path: Union[str, os.PathLike], zone: int = 1) -> Mesh:
     """Reads a mesh file (.msh Gmsh 2.2/4.1, .su2, .vtu), chosen by

@@ -29,7 +29,7 @@
 //!   type ids `VERBSS_TRIANGLE` … `VERBSS_PYRAMID`) and the cells' nodes
 //!   concatenated in VTK's node order.
 //! - Settings are named as on the command line ([`verbss_settings_set`]):
-//!   the library's one vocabulary ([`verbss::deform::Settings::named`]).
+//!   the library's one vocabulary ([`verbss::settings::Settings::named`]).
 //! - The moving nodes follow the displacements given at each step, measured
 //!   from the input coordinates: at each step node `moving[k]` is put exactly
 //!   at `X + u[D*k .. D*k+D]`. The nodes of a sliding plane

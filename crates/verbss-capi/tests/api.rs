@@ -6,9 +6,10 @@
 use std::ffi::{CStr, CString};
 use std::ptr;
 
-use verbss::deform::{Deformer, Settings};
+use verbss::deform::Deformer;
 use verbss::motion::{Attachment, Motion};
 use verbss::robust::Robust;
+use verbss::settings::Settings;
 use verbss::{CellKind, Cells, Group, Mesh};
 use verbss_capi::*;
 
@@ -434,17 +435,21 @@ fn settings_are_named_as_on_the_command_line_and_checked_when_set() {
         (
             "omegga",
             "1.5",
-            "unknown setting 'omegga' (expected method, solver, accel, reference, \
-          predictor, tolerance, absolute_tolerance, max_iterations, omega, threads, rigid_layer, \
-          substeps, stiffening or blend)",
+            "unknown setting 'omegga' (expected method, reference, predictor, rigid_layer, \
+          stiffening, substeps, blend, solver, accel, escalate, omega, tolerance, \
+          absolute_tolerance, max_iterations or threads)",
         ),
-        ("omega", "2.5", "omega 2.5 is outside (0, 2)"),
+        ("omega", "2.5", "omega must be a number in (0, 2) (got 2.5)"),
         (
             "rigid_layer",
             "thick",
-            "the rigid layer must be off, auto or a positive wall distance (got 'thick')",
+            "rigid_layer must be off, auto or a positive wall distance (got 'thick')",
         ),
-        ("substeps", "40", "substeps must be at most 30 (got 40)"),
+        (
+            "substeps",
+            "40",
+            "substeps must be a whole number from 0 to 30 (got 40)",
+        ),
         ("blend", "yes", "blend must be on or off (got 'yes')"),
     ];
     for (name, value, message) in cases {
@@ -457,7 +462,7 @@ fn settings_are_named_as_on_the_command_line_and_checked_when_set() {
         (status, last_error().as_str()),
         (
             VERBSS_ERROR_INPUT,
-            "invalid setting: max_iterations must be a whole number (got '2.5')"
+            "invalid setting: max_iterations must be a whole number ≥ 1 (got '2.5')"
         )
     );
     let value = CString::new("on").unwrap();

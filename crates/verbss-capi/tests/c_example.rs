@@ -8,9 +8,10 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use verbss::deform::{Deformer, Settings};
+use verbss::deform::Deformer;
 use verbss::io::WriteOptions;
 use verbss::motion::{Attachment, Motion, PositionSource};
+use verbss::settings::Settings;
 use verbss::{CellKind, Cells, Group, Mesh};
 
 const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");

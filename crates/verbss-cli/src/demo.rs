@@ -9,10 +9,10 @@ use std::process::ExitCode;
 use std::sync::Arc;
 
 use clap::Args;
-use verbss::deform::Settings;
 use verbss::generate::{naca0012, AirfoilGrid};
 use verbss::io::WriteOptions;
 use verbss::motion::{Attachment, Motion};
+use verbss::settings::Settings;
 
 use crate::render::{PictureArgs, Recorder};
 use crate::run::{parse_every, run_here, Job, Prepared};

@@ -19,4 +19,5 @@ pub mod progress;
 pub mod quality;
 pub mod render;
 pub mod run;
+pub mod settings;
 pub mod zone;

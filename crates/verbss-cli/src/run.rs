@@ -21,11 +21,13 @@ use std::time::Instant;
 use anyhow::Context;
 use clap::Args;
 use verbss::case::Case;
-use verbss::deform::{Deformer, Reference, Settings, Snapshot};
+use verbss::collective::Collective;
+use verbss::deform::{Deformer, Snapshot};
 use verbss::io::{self, vtu, WriteOptions};
 use verbss::mesh::Mesh;
 use verbss::motion::Attachment;
 use verbss::report::Report;
+use verbss::settings::{Reference, Settings};
 use verbss::solve::SpringSolver;
 use verbss::Error;
 
@@ -134,6 +136,7 @@ pub fn run_here(mut prepared: Prepared) -> anyhow::Result<ExitCode> {
         prepared.quiet,
         true,
         &mut prepared.recorder,
+        &mut Files::new(true),
     )?;
     Ok(summary.print(job, true))
 }
@@ -205,7 +208,7 @@ impl Job {
 
     /// How the final mesh is written after `steps` steps: an OpenFOAM case
     /// that is the input gets the points in time directory `steps`.
-    fn write_options_after(&self, steps: usize) -> WriteOptions {
+    pub fn write_options_after(&self, steps: usize) -> WriteOptions {
         let mut options = self.write_options.clone();
         options.foam_time = Some(steps.to_string());
         options
@@ -234,6 +237,8 @@ pub struct Summary {
     pub min_quality: (f64, usize),
     /// Total solver sweeps.
     pub iterations: usize,
+    /// A failed step was also tried in increments down to `1/2^substeps` of it.
+    pub substeps: u32,
     /// The inversion or unconverged solve that stopped the run, with the
     /// paths written for it.
     pub failure: Option<(Error, PathBuf, PathBuf)>,
@@ -269,8 +274,8 @@ impl Summary {
         );
         if let Some((e, last, failed)) = &self.failure {
             eprintln!("error: {e}");
-            let k = job.settings.robust.substeps;
-            if k > 0 && job.settings.reference == Reference::Updated {
+            let k = self.substeps;
+            if k > 0 {
                 eprintln!(
                     "the step was also tried in increments down to 1/{} of it (--substeps {k})",
                     1u64 << k
@@ -287,18 +292,85 @@ impl Summary {
     }
 }
 
+/// Where a run's meshes go: the `.vtu` series, the final mesh and the
+/// failed state. One process writes whole files ([`Files`]); the ranks of
+/// `verbss-mpi` each write their piece of them.
+pub trait Outputs {
+    /// Writes step `s` of the series.
+    fn step(&mut self, job: &Job, s: &Snapshot) -> anyhow::Result<()>;
+    /// Writes the mesh at `coords`, the last valid one after `steps` steps;
+    /// the path it names for the user.
+    fn last(&mut self, job: &Job, coords: &[f64], steps: usize) -> anyhow::Result<PathBuf>;
+    /// Writes the failed state `s`; the path it names for the user.
+    fn failed(&mut self, job: &Job, s: &Snapshot) -> anyhow::Result<PathBuf>;
+}
+
+/// The outputs of a process holding the whole mesh: whole files in the
+/// job's folder, written by the one `writer` (over MPI, rank 0 of ranks that
+/// each hold the whole mesh).
+pub struct Files {
+    writer: bool,
+    /// The series written so far: time and file name.
+    series: Vec<(f64, String)>,
+}
+
+impl Files {
+    /// The files, written only when `writer`.
+    pub fn new(writer: bool) -> Files {
+        Files {
+            writer,
+            series: Vec::new(),
+        }
+    }
+}
+
+impl Outputs for Files {
+    /// `NAME_NNNN.vtu`, and `NAME.pvd` rewritten with it added (time `n·dt`).
+    fn step(&mut self, job: &Job, s: &Snapshot) -> anyhow::Result<()> {
+        let file = format!("{}_{:04}.vtu", job.name, s.report.step);
+        if self.writer {
+            let path = job.dir.join(&file);
+            vtu::write_moved(&path, &job.mesh, &s.coords, &fields(&job.mesh, s))?;
+        }
+        self.series
+            .push((s.report.step as f64 * job.settings.dt, file));
+        if self.writer {
+            io::pvd::write(&job.dir.join(format!("{}.pvd", job.name)), &self.series)?;
+        }
+        Ok(())
+    }
+
+    fn last(&mut self, job: &Job, coords: &[f64], steps: usize) -> anyhow::Result<PathBuf> {
+        let path = job.final_path();
+        if self.writer {
+            io::write_moved(&path, &job.mesh, coords, &job.write_options_after(steps))?;
+        }
+        Ok(path)
+    }
+
+    fn failed(&mut self, job: &Job, s: &Snapshot) -> anyhow::Result<PathBuf> {
+        let path = job.dir.join(format!("{}.failed.vtu", job.name));
+        if self.writer {
+            vtu::write_moved(&path, &job.mesh, &s.coords, &fields(&job.mesh, s))?;
+        }
+        Ok(path)
+    }
+}
+
 /// Runs a job with `deformer` (made for it, with
-/// [`Job::deformer_settings`]): steps `1..=N`, writing the outputs as it
-/// goes (every file atomically), and stops at the first inverted element;
-/// `recorder` keeps the states for the `--html` report and the `--gif`.
-/// Only a `writer` writes the files and keeps pictures (over MPI: rank 0;
-/// the other ranks step along).
-pub fn execute<S: SpringSolver>(
+/// [`Job::deformer_settings`]) on every process that shares its mesh:
+/// steps `1..=N`, writing the outputs as it goes (every file atomically,
+/// through `outputs`), and stops at the first rejected step; `recorder`
+/// keeps the states for the `--html` report and the `--gif`. Only a
+/// `writer` writes the report and keeps pictures (over MPI: rank 0); every
+/// process writes through `outputs`, which decides what each writes.
+pub fn execute<S: SpringSolver, C: Collective>(
     job: &Job,
-    deformer: &mut Deformer<S>,
+    deformer: &mut Deformer<S, C>,
     quiet: bool,
     writer: bool,
     recorder: &mut Recorder,
+    outputs: &mut dyn Outputs,
 ) -> anyhow::Result<Summary> {
     std::fs::create_dir_all(&job.dir)
         .with_context(|| format!("cannot create the output folder {}", job.dir.display()))?;
@@ -306,8 +378,12 @@ pub fn execute<S: SpringSolver>(
         note_lost_su2_blocks(&job.mesh, &job.final_path());
     }
     let steps = job.settings.steps;
-    let mut report = Report::new(&job.source, &job.mesh, &job.settings);
-    let mut series = Vec::new();
+    let settings = deformer.settings();
+    let mut report = Report::new(&job.source, deformer.size(), settings);
+    let substeps = match settings.reference {
+        Reference::Updated => settings.robust.substeps,
+        _ => 0,
+    };
     let initial = deformer.current();
     report.steps.push(initial.report.clone());
     if writer {
@@ -317,9 +393,9 @@ pub fn execute<S: SpringSolver>(
             report.write(path)?;
         }
         recorder.step(initial);
-        if job.series {
-            write_step(job, initial, &mut series)?;
-        }
+    }
+    if job.series {
+        outputs.step(job, initial)?;
     }
     let progress = Progress::new(steps, quiet);
     let start = Instant::now();
@@ -327,9 +403,10 @@ pub fn execute<S: SpringSolver>(
         steps: 0,
         seconds: 0.0,
         solve_seconds: 0.0,
-        ranks: None,
+        ranks: (deformer.processes().processes() > 1).then(|| deformer.processes().processes()),
         min_quality: (initial.report.min_quality, 0),
         iterations: 0,
+        substeps,
         failure: None,
     };
     for n in 1..=steps {
@@ -345,22 +422,18 @@ pub fn execute<S: SpringSolver>(
                 report.steps.push(r);
                 if writer {
                     recorder.step(deformer.current());
-                    if job.series && (n % job.every == 0 || n == steps) {
-                        write_step(job, deformer.current(), &mut series)?;
-                    }
+                }
+                if job.series && (n % job.every == 0 || n == steps) {
+                    outputs.step(job, deformer.current())?;
                 }
             }
             Err(e @ (Error::Inverted { .. } | Error::NotConverged { .. })) => {
                 progress.finish();
                 let failed = deformer.failed().expect("a failed step keeps its state");
                 report.steps.push(failed.report.clone());
-                let failed_path = job.dir.join(format!("{}.failed.vtu", job.name));
-                let last = job.final_path();
+                let failed_path = outputs.failed(job, failed)?;
+                let last = outputs.last(job, &deformer.current().coords, n - 1)?;
                 if writer {
-                    let mesh = &job.mesh;
-                    vtu::write_moved(&failed_path, mesh, &failed.coords, &fields(mesh, failed))?;
-                    let options = job.write_options_after(n - 1);
-                    io::write_moved(&last, mesh, &deformer.current().coords, &options)?;
                     report.outcome = e.to_string();
                     if let Some(path) = &job.report {
                         report.write(path)?;
@@ -376,12 +449,10 @@ pub fn execute<S: SpringSolver>(
     }
     progress.finish();
     summary.seconds = start.elapsed().as_secs_f64();
+    if job.final_mesh {
+        outputs.last(job, &deformer.current().coords, steps)?;
+    }
     if writer {
-        if job.final_mesh {
-            let path = job.final_path();
-            let options = job.write_options_after(steps);
-            io::write_moved(&path, &job.mesh, &deformer.current().coords, &options)?;
-        }
         report.outcome = "completed".into();
         if let Some(path) = &job.report {
             report.write(path)?;
@@ -393,7 +464,7 @@ pub fn execute<S: SpringSolver>(
 
 /// Point data `displacement` (3 components, as ParaView's vectors), cell data
 /// `quality` and `inverted` (0 or 1).
-fn fields(mesh: &Mesh, s: &Snapshot) -> vtu::Fields {
+pub fn fields(mesh: &Mesh, s: &Snapshot) -> vtu::Fields {
     let dim = mesh.dim;
     let mut displacement = vec![0.0; 3 * mesh.node_count()];
     for i in 0..mesh.node_count() {
@@ -410,15 +481,4 @@ fn fields(mesh: &Mesh, s: &Snapshot) -> vtu::Fields {
         s.inverted.iter().map(|&b| f64::from(u8::from(b))).collect(),
     ));
     f
-}
-
-/// Writes step `s` as `NAME_NNNN.vtu` and rewrites `NAME.pvd` with it added
-/// (time `n·dt`).
-fn write_step(job: &Job, s: &Snapshot, series: &mut Vec<(f64, String)>) -> anyhow::Result<()> {
-    let file = format!("{}_{:04}.vtu", job.name, s.report.step);
-    let path = job.dir.join(&file);
-    vtu::write_moved(&path, &job.mesh, &s.coords, &fields(&job.mesh, s))?;
-    series.push((s.report.step as f64 * job.settings.dt, file));
-    io::pvd::write(&job.dir.join(format!("{}.pvd", job.name)), series)?;
-    Ok(())
 }

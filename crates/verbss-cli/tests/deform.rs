@@ -419,10 +419,19 @@ fn near_wall_options_are_checked() {
         (
             "--rigid-layer",
             "-1",
-            "expected off, auto or a positive wall distance, got '-1'",
+            "error: invalid setting: rigid_layer must be off, auto or a positive wall distance \
+             (got -1)",
         ),
-        ("--stiffening", "nan", "expected a number ≥ 0, got 'nan'"),
-        ("--substeps", "31", "31 is not in 0..=30"),
+        (
+            "--stiffening",
+            "nan",
+            "error: invalid setting: stiffening must be a finite number ≥ 0 (got NaN)",
+        ),
+        (
+            "--substeps",
+            "31",
+            "error: invalid setting: substeps must be a whole number from 0 to 30 (got 31)",
+        ),
     ] {
         let o = verbss(&[
             "deform",

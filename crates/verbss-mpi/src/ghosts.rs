@@ -6,7 +6,7 @@
 //! ghost layer ([`Part`]).
 
 use verbss::mesh::CellKind;
-use verbss::{Cells, Error, Mesh, Result};
+use verbss::{Cells, Error, Group, Mesh, Result};
 
 use crate::halo::Halo;
 use crate::part::Part;
@@ -49,6 +49,7 @@ impl Ghosts {
                 let buf = &mut out[t as usize];
                 buf.push(kind_code(mesh.cells.kinds[c]));
                 buf.push(nodes.len() as u64);
+                buf.push(mesh.cell_tags[c]);
                 for &v in nodes {
                     buf.push(global[v]);
                     buf.push(owner[v] as u64);
@@ -56,25 +57,27 @@ impl Ghosts {
             }
         }
         let received = comm.all_to_all(&out);
-        // The part: own cells and received ones, each once (keyed by its sorted nodes).
-        let mut cells: Vec<(Vec<u64>, CellKind, Vec<u64>)> = Vec::new();
+        // The part: own cells and received ones, each once (keyed by its
+        // sorted nodes), with its tag.
+        let mut cells: Vec<(Vec<u64>, CellKind, Vec<u64>, u64)> = Vec::new();
         let mut node_owner: Vec<(u64, i32)> = global.iter().copied().zip(owner.clone()).collect();
         for c in 0..mesh.cells.len() {
             let g: Vec<u64> = mesh.cells.cell(c).iter().map(|&v| global[v]).collect();
-            cells.push((sorted(&g), mesh.cells.kinds[c], g));
+            cells.push((sorted(&g), mesh.cells.kinds[c], g, mesh.cell_tags[c]));
         }
         for buf in &received {
             let mut at = 0;
             while at < buf.len() {
                 let kind = CellKind::ALL[buf[at] as usize];
                 let count = buf[at + 1] as usize;
+                let tag = buf[at + 2];
                 let mut g = Vec::with_capacity(count);
                 for k in 0..count {
-                    g.push(buf[at + 2 + 2 * k]);
-                    node_owner.push((buf[at + 2 + 2 * k], buf[at + 3 + 2 * k] as i32));
+                    g.push(buf[at + 3 + 2 * k]);
+                    node_owner.push((buf[at + 3 + 2 * k], buf[at + 4 + 2 * k] as i32));
                 }
-                at += 2 + 2 * count;
-                cells.push((sorted(&g), kind, g));
+                at += 3 + 2 * count;
+                cells.push((sorted(&g), kind, g, tag));
             }
         }
         cells.sort_by(|a, b| a.0.cmp(&b.0));
@@ -88,7 +91,7 @@ impl Ghosts {
                 .expect("a node of a part cell")
         };
         let mut part_cells = Cells::new();
-        for (_, kind, g) in &cells {
+        for (_, kind, g, _) in &cells {
             let nodes: Vec<usize> = g.iter().map(|&x| index(x)).collect();
             part_cells.push(*kind, &nodes);
         }
@@ -101,13 +104,78 @@ impl Ghosts {
             owner: node_owner.iter().map(|p| p.1).collect(),
             coords: vec![0.0; dim * m],
             node_tags: part_global.iter().map(|&g| g + 1).collect(),
-            cell_tags: (1..=cells.len() as u64).collect(),
+            cell_tags: cells.iter().map(|c| c.3).collect(),
             cell_global: (0..cells.len() as u64).collect(),
             cells: part_cells,
             global: part_global,
         };
         let halo = Halo::new(comm, &part.global, &part.owner);
         Ok(Ghosts { part, local, halo })
+    }
+
+    /// The groups of the part: the groups `names` (every rank the same, in
+    /// the same order) with each facet of the caller's `mesh` that has a
+    /// node this rank owns, from whichever rank holds it (collective). A
+    /// facet goes to the owners of its nodes, as the cells do, so that an
+    /// owner holds every facet around its nodes.
+    pub fn groups(&self, comm: &Comm, mesh: &Mesh, names: &[String]) -> Result<Vec<Group>> {
+        let size = comm.size() as usize;
+        // Per facet: group, kind, node count, its nodes' global numbers.
+        let mut out: Vec<Vec<u64>> = vec![Vec::new(); size];
+        for group in &mesh.groups {
+            let Some(k) = names.iter().position(|n| *n == group.name) else {
+                continue;
+            };
+            for (kind, nodes) in group.facets.iter() {
+                let mut targets: Vec<i32> = nodes
+                    .iter()
+                    .map(|&v| self.part.owner[self.local[v]])
+                    .collect();
+                targets.sort_unstable();
+                targets.dedup();
+                for t in targets {
+                    let buf = &mut out[t as usize];
+                    buf.extend([k as u64, kind_code(kind), nodes.len() as u64]);
+                    buf.extend(nodes.iter().map(|&v| self.part.global[self.local[v]]));
+                }
+            }
+        }
+        let mut facets: Vec<(usize, Vec<u64>, CellKind, Vec<usize>)> = Vec::new();
+        for buf in comm.all_to_all(&out) {
+            let mut at = 0;
+            while at < buf.len() {
+                let (k, kind, count) =
+                    (buf[at] as usize, buf[at + 1] as usize, buf[at + 2] as usize);
+                let g = &buf[at + 3..at + 3 + count];
+                at += 3 + count;
+                let nodes = g
+                    .iter()
+                    .map(|x| self.part.global.binary_search(x))
+                    .collect::<std::result::Result<Vec<usize>, _>>()
+                    .map_err(|_| {
+                        Error::InvalidMesh(format!(
+                            "a facet of group '{}' has a node in no cell around its other \
+                             nodes (the facets must lie on the cells' faces)",
+                            names[k]
+                        ))
+                    })?;
+                facets.push((k, sorted(g), CellKind::ALL[kind], nodes));
+            }
+        }
+        facets.sort_by(|a, b| (a.0, &a.1).cmp(&(b.0, &b.1)));
+        facets.dedup_by(|a, b| a.0 == b.0 && a.1 == b.1);
+        let mut groups: Vec<Group> = names
+            .iter()
+            .map(|name| Group {
+                name: name.clone(),
+                tag: None,
+                facets: Cells::new(),
+            })
+            .collect();
+        for (k, _, kind, nodes) in facets {
+            groups[k].facets.push(kind, &nodes);
+        }
+        Ok(groups)
     }
 
     /// The caller's per-local-node values (`width` each) spread over the

@@ -1,38 +1,33 @@
 //! # verbss-mpi — VerBSS mesh motion over MPI
 //!
-//! The mesh is cut into parts by METIS ([`partition`]); each rank owns the
-//! nodes of its part and holds one ghost layer ([`part::Part`]); the VerBSS
-//! sweeps go colour by colour with a neighbour-to-neighbour ghost exchange
-//! after each colour ([`sweeper::Sweeper`], [`halo`]), and the eq.-8 stop
-//! test is an all-reduce. With the single-process engine's colours
-//! ([`colouring::engine_colours`]) the iterates are those of one process.
+//! The library of the `verbss-mpi` command (crate `verbss-mpi-cli`) and of
+//! flow solvers that run on MPI: it depends on the core `verbss` only.
 //!
-//! * `verbss-mpi deform …` (the binary) takes the arguments of `verbss deform`;
-//! * [`coupled::LocalSolver`] is the entry point of a flow solver that
-//!   already has its partition and communicator;
-//! * [`cost`] counts what one sweep sends on a given partition;
-//! * [`share`] reads a rank's own partitions of a partitioned MSH 4.1 file,
-//!   for [`coupled::LocalSolver`], without any rank holding the whole mesh;
-//! * [`scatter`] reads an SU2 file on rank 0 in one pass and scatters it in
-//!   blocks, and `repartition` (built with PT-Scotch) cuts it with PT-Scotch
-//!   and gives each rank its part's share, again without any rank holding
-//!   the whole mesh;
-//! * [`cgns_read`] reads a CGNS file in blocks on every rank, into the same
-//!   scattered blocks for the same cut;
-//! * [`ghosts`] adds a rank's ghost layer, and [`near_wall`] finds the
-//!   rigid layer and the wall-distance stiffening on it;
-//! * [`step_quality`] reduces a step's quality report over the ranks;
-//! * [`ranks::Ranks`] gives the computations written once for a whole mesh
-//!   or a part ([`verbss::collective::Collective`]: the blended rigid
-//!   motion, the wall distances' walks) their sums and ghost values.
+//! Two ways to spread one deformer ([`verbss::deform::Deformer`], the one
+//! step loop) over the ranks:
 //!
-//! The MPI parts ([`Comm`], [`cgns_read`], [`coupled`], [`ghosts`], [`halo`],
-//! [`near_wall`], [`partition`], [`ranks`],
-//! [`scatter`], [`step_quality`], [`stepper`], [`sweeper`]) are built when `build.rs` finds
-//! MPI and METIS ([`missing`] says why they were not), `repartition` when it
-//! also finds PT-Scotch ([`ptscotch_missing`]); [`colouring`], [`cost`], [`part`],
-//! [`pieces`] and [`share`] (except [`share::read_rank_share`]) need neither. The crate's only `unsafe` code calls MPI and
-//! METIS (the private module `sys`).
+//! * **Every rank holds the whole mesh** ([`stepper`]): the same deformer
+//!   on every rank, its springs solved over the ranks
+//!   ([`stepper::Distributed`]: METIS parts, [`sweeper::Sweeper`]'s
+//!   colour-by-colour sweeps with the single-process engine's colours, so
+//!   the iterates are one process's).
+//! * **No rank holds the whole mesh** ([`domain`]): each rank's share is
+//!   read on its own ([`share`] for partitioned MSH 4.1 files, [`scatter`]
+//!   and `repartition` for SU2, [`cgns_read`] for CGNS), its ghost layer
+//!   added ([`ghosts`]), and the deformer runs on that part with the ranks
+//!   as its [`verbss::collective::Collective`] ([`ranks::Ranks`]) and the
+//!   part's sweeps as its spring solver ([`coupled::LocalSolver`]).
+//!
+//! [`coupled::LocalSolver`] is also the entry point of a flow solver that
+//! already has its partition and communicator; [`cost`] counts what one
+//! sweep sends on a given partition; [`pieces`] writes a rank's cells.
+//!
+//! The MPI parts are built when `build.rs` finds MPI and METIS
+//! ([`missing`] says why they were not), `repartition` when it also finds
+//! PT-Scotch ([`ptscotch_missing`]); [`colouring`], [`cost`], [`part`],
+//! [`pieces`] and [`share`] (except [`share::read_rank_share`]) need
+//! neither. The crate's only `unsafe` code calls MPI and METIS (the private
+//! module `sys`).
 //!
 //! See `docs/distributed.md`.
 
@@ -48,11 +43,11 @@ pub mod coupled;
 #[cfg(with_mpi)]
 pub mod directory;
 #[cfg(with_mpi)]
+pub mod domain;
+#[cfg(with_mpi)]
 pub mod ghosts;
 #[cfg(with_mpi)]
 pub mod halo;
-#[cfg(with_mpi)]
-pub mod near_wall;
 pub mod part;
 #[cfg(with_mpi)]
 pub mod partition;
@@ -64,8 +59,6 @@ pub mod repartition;
 #[cfg(with_mpi)]
 pub mod scatter;
 pub mod share;
-#[cfg(with_mpi)]
-pub mod step_quality;
 #[cfg(with_mpi)]
 pub mod stepper;
 #[cfg(with_mpi)]

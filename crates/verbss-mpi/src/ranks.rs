@@ -1,27 +1,26 @@
 //! The ranks sharing a mesh, seen from one rank's part with its ghosts:
-//! the sums, maxima, ghost refreshes and gathers that make a computation
-//! written once for a whole mesh ([`verbss::collective::Collective`]) give
+//! the sums, maxima, ghost refreshes and gathers that make the engine
+//! written once for every domain ([`verbss::collective::Collective`]) give
 //! one process's answer on every rank.
 
 use verbss::collective::Collective;
 
 use crate::halo::Halo;
-use crate::part::Part;
 use crate::Comm;
 
 /// This rank's view of the ranks: its communicator, which of its part's
 /// nodes it owns and the part's ghost exchange lists.
-pub struct Ranks<'a> {
-    comm: &'a Comm,
+pub struct Ranks<'c> {
+    comm: &'c Comm,
     rank: i32,
-    owner: &'a [i32],
-    halo: &'a Halo,
+    owner: Vec<i32>,
+    halo: Halo,
 }
 
-impl<'a> Ranks<'a> {
+impl<'c> Ranks<'c> {
     /// The ranks of `comm` seen from the part whose node `i` rank
     /// `owner[i]` owns, with the ghost exchange lists `halo`.
-    pub fn new(comm: &'a Comm, owner: &'a [i32], halo: &'a Halo) -> Ranks<'a> {
+    pub fn new(comm: &'c Comm, owner: Vec<i32>, halo: Halo) -> Ranks<'c> {
         Ranks {
             comm,
             rank: comm.rank(),
@@ -30,9 +29,9 @@ impl<'a> Ranks<'a> {
         }
     }
 
-    /// The ranks seen from `part`.
-    pub fn of(comm: &'a Comm, part: &'a Part, halo: &'a Halo) -> Ranks<'a> {
-        Ranks::new(comm, &part.owner, halo)
+    /// The communicator.
+    pub fn comm(&self) -> &'c Comm {
+        self.comm
     }
 }
 

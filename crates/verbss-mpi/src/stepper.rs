@@ -16,8 +16,9 @@
 
 use std::sync::Arc;
 
-use verbss::deform::{Deformer, Settings};
+use verbss::deform::Deformer;
 use verbss::motion::Attachment;
+use verbss::settings::Settings;
 use verbss::solve::{Engine, NodeRole, SolveInfo, SolveParams, SolverSetup, SpringSolver, Stage};
 use verbss::topology::{self, Csr};
 use verbss::{Error, Mesh, Result};

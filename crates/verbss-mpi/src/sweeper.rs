@@ -393,18 +393,7 @@ impl<'c> Sweeper<'c> {
             scale = scale.max(given.iter().map(|v| v * v).sum::<f64>().sqrt());
         }
         let global_scale = self.comm.max(scale);
-        let threshold = if exact {
-            ROUND_OFF
-                * if global_scale == 0.0 {
-                    1.0
-                } else {
-                    global_scale
-                }
-        } else if params.absolute_tolerance || global_scale == 0.0 {
-            params.tolerance
-        } else {
-            params.tolerance * global_scale
-        };
+        let threshold = params.threshold(global_scale, exact);
         let mut work = vec![0.0; D * b.order.len()];
         for (p, &i) in b.order.iter().enumerate() {
             work[D * p..D * (p + 1)].copy_from_slice(&displacement[D * i..D * (i + 1)]);

@@ -122,8 +122,10 @@ cannot help.\n"
 
 fn settings(w: &mut String, r: &Results) {
     let Some(c) = r.cases.first() else { return };
-    let run = &c.settings.settings;
-    let s = &run.solve;
+    let setting = |name: &str| match &c.settings[name] {
+        serde_json::Value::String(s) => s.clone(),
+        other => other.to_string(),
+    };
     let _ = writeln!(w, "## How we measured\n");
     let _ = writeln!(
         w,
@@ -133,7 +135,7 @@ the increment), run once per method: `spring` (edge springs), `laplacian` (compo
 k = 1/L), `ball-vertex` (edge + ball-vertex springs, one global system, scalar SOR over \
 all D·N unknowns: the paper's baseline) and `verbss` (the same system, node by node, \
 block SOR with per-node LDLᵀ).",
-        run.reference.name()
+        setting("reference")
     );
     let _ = writeln!(
         w,
@@ -143,14 +145,14 @@ eq.-8 value is below {:e} × the step's largest boundary displacement{}, at most
 §4.1, 1e-5 in §4.2–5.1, 1e-4 in §5.2–5.3) and at most 300 SOR sweeps; an absolute \
 1e-5 stops after a few sweeps on a fine mesh, before the nodes next to a rotating \
 trailing edge have followed it (docs/case-file.md), so we use the relative form everywhere.",
-        s.omega,
-        s.tolerance,
-        if s.absolute_tolerance {
+        setting("omega"),
+        c.settings["tolerance"].as_f64().unwrap_or(f64::NAN),
+        if c.settings["absolute_tolerance"] == true {
             " (absolute)"
         } else {
             ""
         },
-        s.max_iterations
+        setting("max_iterations")
     );
     let _ = writeln!(
         w,

@@ -5,9 +5,10 @@
 use std::time::Instant;
 
 use serde::Serialize;
-use verbss::deform::{Deformer, Settings, Snapshot, StepReport};
+use verbss::deform::{Deformer, Snapshot, StepReport};
 use verbss::mesh::Mesh;
 use verbss::motion::Attachment;
+use verbss::settings::Settings;
 use verbss::solve::{Method, Solver};
 use verbss::Error;
 

@@ -5,8 +5,9 @@ use std::path::Path;
 
 use serde::Serialize;
 use verbss::case::Case;
-use verbss::deform::{Settings, Snapshot};
+use verbss::deform::Snapshot;
 use verbss::mesh::Mesh;
+use verbss::settings::Settings;
 
 use crate::cases::{LimitSearch, PaperCase};
 use crate::measure::{self, Means, Run, METHODS};
@@ -92,7 +93,7 @@ pub struct CaseResult {
     /// The cap of the limit search (amplitude).
     pub limit_cap: f64,
     /// The solver settings of every run.
-    pub settings: verbss::report::Header,
+    pub settings: serde_json::Map<String, serde_json::Value>,
     /// Per method, in the order spring, laplacian, ball-vertex, verbss.
     pub methods: Vec<MethodResult>,
     /// VerBSS with 1 and 2 threads, for the cases of Tables 8 and 9.
@@ -272,7 +273,7 @@ pub fn run_case(case: &PaperCase, root: &Path, out: &Path) -> anyhow::Result<Cas
         unit: case.unit,
         limit_increment: case.per_step,
         limit_cap: amplitude(limit_cap, case.per_step),
-        settings: verbss::report::Header::new(&header_settings),
+        settings: header_settings.solver_table(),
         methods,
         threads,
         pictures,

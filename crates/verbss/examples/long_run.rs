@@ -42,11 +42,12 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use verbss::case::Case;
-use verbss::deform::{Deformer, Predictor, Preset, Reference};
+use verbss::deform::Deformer;
 use verbss::generate::{naca0012, AirfoilGrid};
 use verbss::mesh::Mesh;
 use verbss::motion::{Attachment, Motion};
 use verbss::quality;
+use verbss::settings::{Predictor, Preset, Reference};
 use verbss::solve::{Method, Solver};
 
 /// One periodic run: a mesh, its motions, the steps of a cycle and the

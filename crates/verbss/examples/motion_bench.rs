@@ -13,7 +13,7 @@
 //! `--defaults` exactly what `verbss deform MESH --moving GROUP --translate
 //! … --steps N` runs with nothing else given: [`Settings::robust`] (VerBSS,
 //! the near-wall treatments, the blended rigid motion, the escalating
-//! solve) with [`Reference::for_motions`]. Every part of the step, the mesh
+//! solve) with the reference its motion implies (`auto`). Every part of the step, the mesh
 //! check included, runs on `--threads` threads.
 //!
 //! Prints one JSON object: per step the whole step's wall seconds (motion,
@@ -51,10 +51,11 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use verbss::deform::{Deformer, Predictor, Reference, Settings};
+use verbss::deform::Deformer;
 use verbss::mesh::Mesh;
 use verbss::motion::{Attachment, Motion};
 use verbss::robust::Robust;
+use verbss::settings::{Predictor, Reference, Settings};
 use verbss::solve::{Accel, Engine, Method, NodeRole, SolveParams, Solver};
 
 /// The springs' tolerance of the tight run that `--defaults`' true error
@@ -151,11 +152,9 @@ fn options() -> Options {
 
 /// The settings of the run: the paper's method as the options say, or
 /// with `--defaults` those of `verbss deform` given nothing but the motion.
-fn settings(o: &Options, motion: &Motion) -> Settings {
+fn settings(o: &Options) -> Settings {
     let mut settings = if o.defaults {
-        let mut s = Settings::robust(o.steps);
-        s.reference = Reference::for_motions([motion]);
-        s
+        Settings::robust(o.steps)
     } else {
         let mut s = Settings::new(o.steps);
         s.solve.tolerance = o.tolerance;
@@ -189,9 +188,10 @@ fn paper_distance(
     let mut engine = Engine::new(mesh, roles, &[]).expect("engine");
     let mut errors = Vec::new();
     for s in saved {
-        let origin = match reference {
-            Reference::Updated => &s.before,
-            Reference::Fixed | Reference::Anchored => &mesh.coords,
+        let origin = if reference == Reference::Updated {
+            &s.before
+        } else {
+            &mesh.coords
         };
         let increment: Vec<f64> = s.after.iter().zip(origin).map(|(a, b)| a - b).collect();
         let mut reference = vec![0.0; increment.len()];
@@ -318,7 +318,7 @@ fn main() {
     let motion = Motion::Translation {
         displacement: o.translate,
     };
-    let settings = settings(&o, &motion);
+    let settings = settings(&o);
     let attachments = [Attachment {
         groups: vec![o.moving.clone()],
         motion,
@@ -360,8 +360,9 @@ fn main() {
             .expect("final mesh");
     }
     let roles = deformer.roles().to_vec();
+    let reference = deformer.settings().reference;
     drop(deformer);
-    let distance = paper_distance(&o, settings.reference, &mesh, &roles, &saved);
+    let distance = paper_distance(&o, reference, &mesh, &roles, &saved);
     let (true_error, paper) = if o.defaults {
         let tight = tight_error(&mesh, &attachments, settings.clone(), &saved);
         let tight = tight.map_or_else(|e| format!("{e:?}"), |e| format!("[{}]", e.join(", ")));

@@ -29,10 +29,11 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use verbss::case::Case;
-use verbss::deform::{Deformer, Reference};
+use verbss::deform::Deformer;
 use verbss::error::Error;
 use verbss::motion::Motion;
 use verbss::robust::{Layer, Robust};
+use verbss::settings::Reference;
 use verbss::solve::{Method, SolveParams, Solver, Stage};
 
 const VARIANTS: [&str; 10] = [
@@ -95,9 +96,7 @@ fn run(case: &Case, variant_name: &str) -> Result<Outcome, Error> {
     let threads = settings.solve.threads;
     (settings.robust, settings.solve) = variant(variant_name);
     settings.reference = match variant_name {
-        "default" | "no-layer" | "exact" => {
-            Reference::for_motions(attachments.iter().map(|a| &a.motion))
-        }
+        "default" | "no-layer" | "exact" => Reference::Auto,
         "anchored" => Reference::Anchored,
         _ => settings.reference,
     };

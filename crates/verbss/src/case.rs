@@ -9,11 +9,11 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use crate::deform::{Preset, Reference, Settings};
 use crate::error::{Error, Result};
 use crate::io::{MshVersion, WriteOptions};
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Motion, PositionSource};
+use crate::settings::Settings;
 
 /// The largest case file [`Case::read`] reads (1 MiB: it holds settings;
 /// positions go in their own files).
@@ -88,8 +88,9 @@ struct CaseFile {
     zone: Option<u32>,
     steps: usize,
     dt: Option<f64>,
+    /// Refused with a message: `reference` is a `[solver]` setting.
     reference: Option<toml::Value>,
-    /// The `[solver]` table: [`Settings::NAMES`] and their values.
+    /// The `[solver]` table: the settings of [`crate::settings::TABLE`] and their values.
     #[serde(default)]
     solver: toml::Table,
     #[serde(default)]
@@ -200,17 +201,6 @@ enum MotionSpec {
 }
 
 impl MotionSpec {
-    /// `None` if it moves no node, else whether it is periodic.
-    fn periodic(&self) -> Option<bool> {
-        match self {
-            MotionSpec::Fixed { .. } | MotionSpec::Slide { .. } => None,
-            m => Some(matches!(
-                m,
-                MotionSpec::PitchPlunge { .. } | MotionSpec::Undulation { .. }
-            )),
-        }
-    }
-
     fn groups(&self) -> &[String] {
         match self {
             MotionSpec::Fixed { groups }
@@ -286,11 +276,15 @@ impl Case {
         if !(dt > 0.0 && dt.is_finite()) {
             return Err(at(top("dt"), format!("`dt` must be positive (got {dt})")));
         }
+        if file.reference.is_some() {
+            return Err(at(
+                top("reference"),
+                "`reference` is a setting of the `[solver]` table: move it there".into(),
+            ));
+        }
         let mut named = Vec::new();
-        let keys = file.reference.iter().map(|v| ("reference", v));
-        for (key, value) in keys.chain(file.solver.iter().map(|(k, v)| (k.as_str(), v))) {
+        for (key, value) in &file.solver {
             let line = top(key);
-            let table = if key == "reference" { "" } else { "solver." };
             let text = match value {
                 toml::Value::String(s) => s.clone(),
                 toml::Value::Integer(i) => i.to_string(),
@@ -300,37 +294,20 @@ impl Case {
                     return Err(at(
                         line,
                         format!(
-                            "`{table}{key}` must be a string, a number or true/false (got {other})"
+                            "`solver.{key}` must be a string, a number or true/false (got {other})"
                         ),
                     ))
                 }
             };
             Settings::check(key, &text)
-                .map_err(|e| at(line, format!("`{table}{key}`: {}", setting_message(e))))?;
-            named.push((key, text));
+                .map_err(|e| at(line, format!("`solver.{key}`: {}", setting_message(e))))?;
+            named.push((key.as_str(), text));
         }
         let mut settings = Settings::named(file.steps, &named)
             .map_err(|e| at(top("[solver]"), setting_message(e)))?;
         settings.dt = dt;
         if file.output.every == 0 {
             return Err(at(top("every"), "`output.every` must be at least 1".into()));
-        }
-        // Not given, the robust preset's reference follows the motions' kind
-        // (`Reference::for_motions`): anchored when every moving motion is
-        // periodic.
-        let method = named.iter().find(|(k, _)| *k == "method");
-        let robust = method.is_none_or(|(_, v)| v.parse::<Preset>().ok() == Some(Preset::Robust));
-        if file.reference.is_none() && robust {
-            let kinds: Vec<bool> = file
-                .motion
-                .iter()
-                .filter_map(|m| m.get_ref().periodic())
-                .collect();
-            settings.reference = if !kinds.is_empty() && kinds.iter().all(|&p| p) {
-                Reference::Anchored
-            } else {
-                Reference::Updated
-            };
         }
         let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
         let mut motions = Vec::new();

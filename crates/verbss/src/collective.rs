@@ -8,6 +8,8 @@
 //! [`Whole`] is the single process holding the whole mesh: it owns every
 //! node and has nothing to exchange.
 
+use crate::error::{Error, Result};
+
 /// The processes a mesh is cut between, seen from one of them (each
 /// method but [`Collective::owns`] and [`Collective::processes`] is
 /// collective: every process calls it, in the same order).
@@ -24,6 +26,44 @@ pub trait Collective {
     fn refresh(&self, values: &mut [f64], width: usize);
     /// Every process's `values` joined, in the order of the processes.
     fn gather(&self, values: &[f64]) -> Vec<f64>;
+
+    /// Whether this process counts the local cell of nodes `cell` in the
+    /// sums over cells: the one that owns its first node (each cell of
+    /// the mesh is counted by exactly one process).
+    fn counts(&self, cell: &[usize]) -> bool {
+        self.owns(cell[0])
+    }
+}
+
+/// `result` on every process where every process's is `Ok` (collective);
+/// otherwise an error on every process: its own, or for a process whose
+/// result was `Ok`, the lowest failing process's message
+/// ([`Error::Reported`]). So that no process goes on to a collective call
+/// the others have left.
+pub fn agree<T>(on: &dyn Collective, result: Result<T>) -> Result<T> {
+    if on.processes() == 1 {
+        return result;
+    }
+    let text: Vec<f64> = match &result {
+        Ok(_) => Vec::new(),
+        Err(e) => e.to_string().bytes().map(f64::from).collect(),
+    };
+    let lengths = on.gather(&[text.len() as f64]);
+    let Some(first) = lengths.iter().position(|&n| n > 0.0) else {
+        return result;
+    };
+    let all = on.gather(&text);
+    if result.is_err() {
+        return result;
+    }
+    let start = lengths[..first].iter().sum::<f64>() as usize;
+    let bytes: Vec<u8> = all[start..start + lengths[first] as usize]
+        .iter()
+        .map(|&b| b as u8)
+        .collect();
+    Err(Error::Reported(
+        String::from_utf8_lossy(&bytes).into_owned(),
+    ))
 }
 
 /// One process holding the whole mesh.

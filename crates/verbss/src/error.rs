@@ -81,6 +81,10 @@ pub enum Error {
         /// The mesh's spatial dimension (2 or 3).
         dim: usize,
     },
+    /// What another process sharing the mesh failed with, as it said it
+    /// ([`crate::collective::agree`]).
+    #[error("{0}")]
+    Reported(String),
     /// A picture or chart could not be drawn or encoded (by the
     /// `verbss-render` crate).
     #[error("cannot draw the picture: {0}")]
@@ -147,6 +151,16 @@ pub fn format_point(p: &[f64]) -> String {
         })
         .collect();
     format!("({})", parts.join(", "))
+}
+
+/// A number as messages print it: its shortest exact form, with an
+/// exponent where that is shorter than the digits (`1e308`, `2.5e-12`).
+pub fn format_number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e9).contains(&x.abs()) {
+        x.to_string()
+    } else {
+        format!("{x:e}")
+    }
 }
 
 /// Result with the library's [`Error`].

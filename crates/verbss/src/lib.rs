@@ -71,6 +71,7 @@ pub mod prelude;
 pub mod quality;
 pub mod report;
 pub mod robust;
+pub mod settings;
 pub mod solve;
 pub mod springs;
 pub mod topology;

@@ -5,9 +5,10 @@
 //! [`crate::Result`] is left out: it would hide the standard two-parameter
 //! `Result` of a glob import.
 
-pub use crate::deform::{Deformer, Settings, StepReport};
+pub use crate::deform::{Deformer, StepReport};
 pub use crate::error::Error;
 pub use crate::generate::{naca0012, AirfoilGrid};
 pub use crate::io::{read, write, WriteOptions};
 pub use crate::mesh::{CellKind, Cells, Group, Mesh};
 pub use crate::motion::{Attachment, Motion};
+pub use crate::settings::Settings;

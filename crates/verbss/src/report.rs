@@ -2,51 +2,27 @@
 //!
 //! ```json
 //! { "verbss": "0.1.0", "mesh": "naca.su2", "dim": 2, "nodes": 4500, "cells": 8700,
-//!   "settings": { "method": "robust", "steps": 160, "dt": 0.00625, "reference": "updated",
-//!                 "solve": { "method": "verbss", "omega": 1.6, … },
-//!                 "robust": { "layer": "auto", "substeps": 6, "stiffening": 1.0, "blend": true },
-//!                 "predictor": "previous" },
+//!   "step_count": 160, "dt": 0.00625,
+//!   "settings": { "method": "robust", "reference": "anchored", "rigid_layer": "auto", … },
 //!   "outcome": "completed",
 //!   "steps": [ { "step": 1, "iterations": 41, "residual": 8.9e-6, "seconds": 0.004,
 //!                "min_quality": 0.31, "inverted": 0, "bins": [0, 0, 12, 803, 7885], … } ] }
 //! ```
-//! Step 0 is the input mesh. `residual` is the paper's eq.-8 value of the last
-//! sweep; `bins` counts elements in the paper's quality bins 0–0.02, 0.02–0.1,
-//! 0.1–0.4, 0.4–0.7, 0.7–1.
+//! `settings` is a case file's `[solver]` table, every setting of
+//! [`crate::settings::TABLE`] under its own name: pasted back it runs the
+//! same steps. Step 0 is the input mesh. `residual` is the paper's eq.-8
+//! value of the last sweep; `bins` counts elements in the paper's quality
+//! bins 0–0.02, 0.02–0.1, 0.1–0.4, 0.4–0.7, 0.7–1.
 
 use std::io::Write;
 use std::path::Path;
 
 use serde::Serialize;
 
-use crate::deform::{Preset, Settings, StepReport};
+use crate::deform::StepReport;
 use crate::error::Result;
 use crate::io::write_atomic;
-use crate::mesh::Mesh;
-
-/// The settings header of a report: the preset the settings are and every
-/// setting of the run.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Header {
-    /// `robust` (VerBSS with the recommended near-wall treatments),
-    /// `verbss`, `ball-vertex`, `spring` or `laplacian`
-    /// ([`Settings::preset`]).
-    pub method: Preset,
-    /// Every setting: `steps`, `dt`, `reference`, `solve` (the solver's
-    /// settings), `robust` (the near-wall treatments), `predictor`.
-    #[serde(flatten)]
-    pub settings: Settings,
-}
-
-impl Header {
-    /// The header of a run with `settings`.
-    pub fn new(settings: &Settings) -> Header {
-        Header {
-            method: settings.preset(),
-            settings: settings.clone(),
-        }
-    }
-}
+use crate::settings::Settings;
 
 /// A run's report.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -61,8 +37,12 @@ pub struct Report {
     pub nodes: usize,
     /// Its element count.
     pub cells: usize,
-    /// The settings.
-    pub settings: Header,
+    /// The number of steps of the run (a case file's `steps`).
+    pub step_count: usize,
+    /// The time per step (a case file's `dt`).
+    pub dt: f64,
+    /// The settings: a case file's `[solver]` table.
+    pub settings: serde_json::Map<String, serde_json::Value>,
     /// `completed`, or what stopped the run (the error message).
     pub outcome: String,
     /// One record per step, in order; the last one is the failed step when
@@ -71,15 +51,22 @@ pub struct Report {
 }
 
 impl Report {
-    /// An empty report (outcome `running`) for `mesh`, read from `name`.
-    pub fn new(name: &str, mesh: &Mesh, settings: &Settings) -> Report {
+    /// An empty report (outcome `running`) of a run of `nodes` nodes and
+    /// `cells` cells in `dim` dimensions read from `name`, with `settings`.
+    pub fn new(
+        name: &str,
+        (dim, nodes, cells): (usize, usize, usize),
+        settings: &Settings,
+    ) -> Report {
         Report {
             verbss: env!("CARGO_PKG_VERSION"),
             mesh: name.to_string(),
-            dim: mesh.dim,
-            nodes: mesh.node_count(),
-            cells: mesh.cell_count(),
-            settings: Header::new(settings),
+            dim,
+            nodes,
+            cells,
+            step_count: settings.steps,
+            dt: settings.dt,
+            settings: settings.solver_table(),
             outcome: "running".to_string(),
             steps: Vec::new(),
         }
@@ -103,7 +90,8 @@ mod tests {
     #[test]
     fn writes_the_step_keys_and_the_header() {
         let mesh = one_triangle();
-        let mut report = Report::new("tri.su2", &mesh, &Settings::new(4));
+        let size = (mesh.dim, mesh.node_count(), mesh.cell_count());
+        let mut report = Report::new("tri.su2", size, &Settings::new(4));
         report.steps.push(StepReport {
             step: 1,
             iterations: 7,
@@ -134,34 +122,27 @@ mod tests {
         assert_eq!(step["bins"], serde_json::json!([0, 0, 0, 0, 1]));
         assert_eq!(v["settings"]["method"], "verbss");
         assert_eq!(v["settings"]["reference"], "updated");
-        assert_eq!(v["settings"]["steps"], 4);
+        assert_eq!(v["step_count"], 4);
         assert_eq!(v["nodes"], 3);
         assert_eq!(v["outcome"], "completed");
     }
 
-    /// Every setting is in the header, under the names of [`Settings`].
+    /// Every setting is in the header, under the names of the case file.
     #[test]
-    fn the_header_holds_the_whole_settings() {
+    fn the_header_is_the_solver_table() {
         let mut settings = Settings::robust(10);
         settings.robust.layer = Layer::Thickness(0.02);
-        let v = serde_json::to_value(Header::new(&settings)).unwrap();
-        assert_eq!(v["method"], "verbss");
+        let v = serde_json::Value::Object(settings.solver_table());
         let expected = serde_json::json!({
-            "method": "verbss",
-            "steps": 10,
-            "dt": 0.1,
-            "reference": "anchored",
-            "solve": {
-                "method": "verbss", "solver": "sor", "omega": 1.6, "tolerance": 1e-6,
-                "absolute_tolerance": false, "max_iterations": 2000, "threads": 1,
-                "record_history": false, "accel": "none", "escalate": true
-            },
-            "robust": { "layer": 0.02, "substeps": 6, "stiffening": 1.0, "blend": true },
-            "predictor": "previous"
+            "method": "verbss", "reference": "auto", "predictor": "previous",
+            "rigid_layer": 0.02, "stiffening": 1.0, "substeps": 6, "blend": true,
+            "solver": "sor", "accel": "none", "escalate": true, "omega": 1.6,
+            "tolerance": 1e-6, "absolute_tolerance": false, "max_iterations": 2000,
+            "threads": 0
         });
         assert_eq!(v, expected);
-        let v = serde_json::to_value(Header::new(&Settings::robust(10))).unwrap();
+        let v = Settings::robust(10).solver_table();
         assert_eq!(v["method"], "robust");
-        assert_eq!(v["robust"]["layer"], "auto");
+        assert_eq!(v["rigid_layer"], "auto");
     }
 }

@@ -29,9 +29,7 @@
 //! at least [`ANISOTROPIC`], at most [`BL_CAP`] of the body's size — and
 //! [`INNER_FRACTION`] of the body's size (the diagonal of its bounding box).
 
-use std::collections::HashMap;
-
-use crate::collective::Collective;
+use crate::collective::{mark_sync, Collective};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::solve::NodeRole;
@@ -72,20 +70,6 @@ pub enum Layer {
     Thickness(f64),
 }
 
-impl serde::Serialize for Layer {
-    /// `"off"`, `"auto"` or the thickness as a number.
-    fn serialize<S: serde::Serializer>(
-        &self,
-        serializer: S,
-    ) -> std::result::Result<S::Ok, S::Error> {
-        match self {
-            Layer::Off => serializer.serialize_str("off"),
-            Layer::Auto => serializer.serialize_str("auto"),
-            Layer::Thickness(t) => serializer.serialize_f64(*t),
-        }
-    }
-}
-
 impl std::str::FromStr for Layer {
     type Err = Error;
 
@@ -105,7 +89,7 @@ impl std::str::FromStr for Layer {
 }
 
 /// The near-wall treatments of a run.
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[non_exhaustive]
 pub struct Robust {
     /// The rigid layer.
@@ -130,29 +114,16 @@ impl Robust {
         self.layer != Layer::Off || self.stiffening != 0.0
     }
 
-    /// Checks the treatments: a stiffening exponent ≥ 0, a positive layer
-    /// thickness, at most 30 sub-step halvings.
+    /// Checks the treatments against their ranges
+    /// ([`crate::settings::TABLE`]): a stiffening exponent ≥ 0, a positive
+    /// layer thickness, at most 30 sub-step halvings.
     pub fn validate(&self) -> Result<()> {
-        let p = self.stiffening;
-        if !(p >= 0.0 && p.is_finite()) {
-            return Err(Error::InvalidSetting(format!(
-                "the stiffening exponent must be zero or positive (got {p})"
-            )));
-        }
+        use crate::settings::{check_value, Value};
+        check_value("stiffening", Value::Number(self.stiffening))?;
         if let Layer::Thickness(t) = self.layer {
-            if !(t > 0.0 && t.is_finite()) {
-                return Err(Error::InvalidSetting(format!(
-                    "the rigid layer's thickness must be positive (got {t})"
-                )));
-            }
+            check_value("rigid_layer", Value::Number(t))?;
         }
-        if self.substeps > 30 {
-            return Err(Error::InvalidSetting(format!(
-                "substeps must be at most 30 (got {})",
-                self.substeps
-            )));
-        }
-        Ok(())
+        check_value("substeps", Value::Count(u64::from(self.substeps)))
     }
 
     /// The paper's method: no treatment.
@@ -176,35 +147,40 @@ impl Robust {
 /// What the treatments need of a mesh: the rigid layer and the stiffness factors.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Treatment {
-    /// Each layer node and the moving node it follows (an index into the
-    /// deformer's list of moving nodes), or `None` near a fixed wall: the
-    /// node stays.
-    pub nodes: Vec<(usize, Option<usize>)>,
-    /// The layer's thickness around each body, in order of the bodies' first
-    /// moving node.
+    /// Each layer node, and the body it moves with (an index into the
+    /// run's bodies) with the tag of its nearest node of that body (whose
+    /// displacement it takes where the body moves by given positions), or
+    /// `None` near a fixed wall: the node stays.
+    pub nodes: Vec<(usize, Option<(usize, u64)>)>,
+    /// The layer's thickness around each body, then around each fixed wall.
     pub thickness: Vec<f64>,
     /// Per-node spring stiffness factors (empty: no stiffening).
     pub stiffness: Vec<f64>,
 }
 
-/// The rigid layer and stiffness factors of `mesh` around the moving nodes
-/// `moving` (node and the chain of motions it follows); `roles` are the
+/// The rigid layer and stiffness factors of the local mesh `mesh` (a whole
+/// mesh, or one process's part with its ghosts) around the moving nodes
+/// `moving` (node and body, of `bodies` bodies numbered alike on every
+/// process), collective over the processes `on`: every node gets one
+/// process's answer on any cut, the walks' seeds gathered from their
+/// owners and their reach made global by ghost refreshes. `roles` are the
 /// nodes' roles before the layer (moving nodes and other boundary nodes
-/// fixed, sliding nodes, free); `graph` the mesh's edge graph
+/// fixed, sliding nodes, free); `graph` the local cells' edge graph
 /// ([`topology::edge_graph`]) where the caller has it, built here otherwise.
 pub fn prepare(
     mesh: &Mesh,
     graph: Option<&Csr>,
     roles: &[NodeRole],
-    moving: &[(usize, Vec<usize>)],
+    (bodies, moving): (usize, &[(usize, usize)]),
     robust: &Robust,
+    on: &dyn Collective,
 ) -> Result<Treatment> {
     robust.validate()?;
     let p = robust.stiffening;
     if !robust.treats() {
         return Ok(Treatment::default());
     }
-    let n = mesh.node_count();
+    let (n, dim) = (mesh.node_count(), mesh.dim);
     let built;
     let graph = match graph {
         Some(graph) => graph,
@@ -213,66 +189,74 @@ pub fn prepare(
             &built
         }
     };
-    // Bodies: moving nodes sharing a chain of motions.
-    let mut body_of_chain: HashMap<&[usize], usize> = HashMap::new();
-    let mut body_seeds: Vec<Vec<usize>> = Vec::new();
-    let mut anchor_index = vec![usize::MAX; n];
-    for (k, (node, chain)) in moving.iter().enumerate() {
-        let next = body_of_chain.len();
-        let b = *body_of_chain.entry(chain.as_slice()).or_insert(next);
-        if b == body_seeds.len() {
-            body_seeds.push(Vec::new());
-        }
-        body_seeds[b].push(*node);
-        anchor_index[*node] = k;
+    let mut seeds: Vec<Vec<usize>> = vec![Vec::new(); bodies];
+    let mut is_moving = vec![false; n];
+    for &(i, b) in moving {
+        seeds[b].push(i);
+        is_moving[i] = true;
     }
     // Fixed walls inside the domain (a fixed element of a multi-element
-    // airfoil) are bodies that stay; the outer boundary is not.
-    let mut in_fixed_wall = vec![false; n];
-    for nodes in fixed_walls(mesh, roles, &anchor_index) {
-        for &i in &nodes {
-            in_fixed_wall[i] = true;
+    // airfoil) are bodies that stay: groups whose nodes are all prescribed,
+    // none moving, and whose box is strictly inside the mesh's (so that
+    // the outer boundary is not one).
+    let all: Vec<usize> = (0..n).collect();
+    let outer = Bounds::of(dim, &mesh.coords, &all).reduced(on);
+    let mut in_wall = vec![false; n];
+    for group in &mesh.groups {
+        let nodes = group.nodes();
+        let prescribed = nodes
+            .iter()
+            .all(|&i| roles[i] == NodeRole::Fixed && !is_moving[i]);
+        let mut counts = [nodes.len() as f64, f64::from(u8::from(!prescribed))];
+        on.sum(&mut counts);
+        let bounds = Bounds::of(dim, &mesh.coords, &nodes).reduced(on);
+        if counts[0] == 0.0 || counts[1] > 0.0 || !bounds.inside(&outer) {
+            continue;
         }
-        body_seeds.push(nodes);
+        for &i in &nodes {
+            in_wall[i] = true;
+        }
+        seeds.push(nodes);
     }
-    let fixed: Vec<usize> = (0..n)
-        .filter(|&i| {
-            roles[i] == NodeRole::Fixed && anchor_index[i] == usize::MAX && !in_fixed_wall[i]
-        })
-        .collect();
     let tags = &mesh.node_tags;
-    let fields: Vec<(Vec<f64>, Vec<u64>)> = body_seeds
+    // Every process's owned seeds, gathered: each node's nearest one.
+    let nearest = |seeds: &[usize], limit: &dyn Fn(usize) -> f64| -> (Vec<f64>, Vec<u64>) {
+        let owned: Vec<usize> = seeds.iter().copied().filter(|&s| on.owns(s)).collect();
+        let points: Vec<f64> = owned
+            .iter()
+            .flat_map(|&s| &mesh.coords[dim * s..dim * (s + 1)])
+            .copied()
+            .collect();
+        let ids: Vec<f64> = owned.iter().map(|&s| tags[s] as f64).collect();
+        let ids: Vec<u64> = on.gather(&ids).into_iter().map(|t| t as u64).collect();
+        let all = Seeds::new(dim, &on.gather(&points), &ids);
+        spread::nearest_connected(&all, graph, &mesh.coords, seeds, limit, mark_sync(on))
+    };
+    let fields: Vec<(Vec<f64>, Vec<u64>)> = seeds
         .iter()
-        .map(|seeds| {
-            nearest_seed(graph, mesh.dim, &mesh.coords, seeds, tags, |_| {
-                f64::INFINITY
-            })
-        })
+        .map(|s| nearest(s, &|_| f64::INFINITY))
         .collect();
-    let anchor_of_tag: HashMap<u64, usize> = moving
-        .iter()
-        .enumerate()
-        .map(|(k, (node, _))| (tags[*node], k))
-        .collect();
-    let thickness: Vec<f64> = body_seeds
+    let thickness: Vec<f64> = seeds
         .iter()
         .zip(&fields)
         .map(|(seeds, (dist, _))| {
-            let mut reached = vec![false; n];
-            for &s in seeds {
-                reached[s] = true;
-            }
-            let size = Bounds::of(mesh.dim, &mesh.coords, seeds).diagonal();
+            let size = Bounds::of(dim, &mesh.coords, seeds).reduced(on).diagonal();
             thickness(robust.layer, size, |cap| {
-                spread::reach(
+                let mut reached = vec![false; n];
+                for &s in seeds {
+                    reached[s] = true;
+                }
+                let mut layer = [spread::reach(
                     &mesh.cells,
                     &mesh.coords,
-                    mesh.dim,
+                    dim,
                     dist,
                     cap,
                     &mut reached,
-                    |_| false,
-                )
+                    mark_sync(on),
+                )];
+                on.max(&mut layer);
+                layer[0]
             })
         })
         .collect();
@@ -284,7 +268,10 @@ pub fn prepare(
             )
     };
     let limits = fixed_limits(n, &fields, &thickness, free);
-    let to_fixed = nearest_seed(graph, mesh.dim, &mesh.coords, &fixed, tags, |i| limits[i]).0;
+    let fixed: Vec<usize> = (0..n)
+        .filter(|&i| roles[i] == NodeRole::Fixed && !is_moving[i] && !in_wall[i])
+        .collect();
+    let to_fixed = nearest(&fixed, &|i| limits[i]).0;
     // A body of no extent (a single moving node) has no thickness: it
     // stiffens nothing.
     let stiffen = p > 0.0 && thickness.iter().any(|&t| t > 0.0);
@@ -302,7 +289,7 @@ pub fn prepare(
             continue;
         }
         if let Some(b) = layer_body(&at, to_fixed[i], &thickness) {
-            nodes.push((i, anchor_of_tag.get(&fields[b].1[i]).copied()));
+            nodes.push((i, (b < bodies).then(|| (b, fields[b].1[i]))));
         }
     }
     Ok(Treatment {
@@ -351,48 +338,6 @@ pub fn layer_body(dist: &[f64], to_fixed: f64, thickness: &[f64]) -> Option<usiz
         .map(|(_, &e)| e)
         .fold(to_fixed, f64::min);
     (d <= thickness[b] && d <= GAP_SHARE * other).then_some(b)
-}
-
-/// The nodes of each group that is a fixed wall inside the domain: all its
-/// nodes prescribed, none moving, and its bounding box inside the mesh's
-/// (so that the outer boundary is not one).
-fn fixed_walls(mesh: &Mesh, roles: &[NodeRole], anchor: &[usize]) -> Vec<Vec<usize>> {
-    let all: Vec<usize> = (0..mesh.node_count()).collect();
-    let outer = Bounds::of(mesh.dim, &mesh.coords, &all);
-    mesh.groups
-        .iter()
-        .map(|g| g.nodes())
-        .filter(|nodes| {
-            !nodes.is_empty()
-                && nodes
-                    .iter()
-                    .all(|&i| roles[i] == NodeRole::Fixed && anchor[i] == usize::MAX)
-                && Bounds::of(mesh.dim, &mesh.coords, nodes).inside(&outer)
-        })
-        .collect()
-}
-
-/// For every node of `coords` connected to a seed of `seeds`: the distance
-/// to its nearest seed in straight line and that seed's number `ids[s]`
-/// (which breaks ties: node tags, so that a rank's part, numbering by tag,
-/// breaks them alike; [`spread::nearest_seeds`]), where that distance is
-/// at most `√limit(i)`. Other nodes keep an infinite distance.
-pub(crate) fn nearest_seed(
-    graph: &Csr,
-    dim: usize,
-    coords: &[f64],
-    seeds: &[usize],
-    ids: &[u64],
-    limit: impl Fn(usize) -> f64,
-) -> (Vec<f64>, Vec<u64>) {
-    let points: Vec<f64> = seeds
-        .iter()
-        .flat_map(|&s| &coords[dim * s..dim * (s + 1)])
-        .copied()
-        .collect();
-    let numbers: Vec<u64> = seeds.iter().map(|&s| ids[s]).collect();
-    let all = Seeds::new(dim, &points, &numbers);
-    spread::nearest_connected(&all, graph, coords, seeds, limit, |_| false)
 }
 
 /// Per node `i` of `n`, given the bodies' distance fields `fields` (distance, seed),
@@ -495,11 +440,6 @@ impl Bounds {
     pub fn inside(&self, outer: &Bounds) -> bool {
         (0..self.dim).all(|d| self.lo[d] > outer.lo[d] && self.hi[d] < outer.hi[d])
     }
-}
-
-/// The diagonal of the bounding box of nodes `seeds`.
-pub(crate) fn size(mesh: &Mesh, seeds: &[usize]) -> f64 {
-    Bounds::of(mesh.dim, &mesh.coords, seeds).diagonal()
 }
 
 #[cfg(test)]

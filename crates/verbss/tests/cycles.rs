@@ -7,10 +7,11 @@
 use std::path::Path;
 
 use verbss::case::Case;
-use verbss::deform::{Deformer, Reference, Settings};
+use verbss::deform::Deformer;
 use verbss::generate::{naca0012, AirfoilGrid};
 use verbss::mesh::Mesh;
 use verbss::motion::{Attachment, Motion};
+use verbss::settings::{Reference, Settings};
 use verbss::solve::{Method, Solver};
 
 /// The largest node distance between two coordinate sets.
@@ -80,7 +81,7 @@ fn pitch_plunge(pitch_deg: f64, plunge: f64, period: usize) -> Vec<Attachment> {
 /// updated.
 #[test]
 fn the_default_reference_follows_the_motions_kind() {
-    assert_eq!(Settings::robust(1).reference, Reference::Anchored);
+    assert_eq!(Settings::robust(1).reference, Reference::Auto);
     assert_eq!(Settings::paper(1).reference, Reference::Updated);
     let periodic = &pitch_plunge(15.0, 0.0, 8)[0].motion;
     let one_way = Motion::Rotation {
@@ -89,14 +90,17 @@ fn the_default_reference_follows_the_motions_kind() {
         angle: 1.0,
     };
     assert_eq!(
-        Reference::for_motions([periodic, &Motion::Fixed]),
+        Reference::Auto.resolved([periodic, &Motion::Fixed]),
         Reference::Anchored
     );
     assert_eq!(
-        Reference::for_motions([periodic, &one_way]),
+        Reference::Auto.resolved([periodic, &one_way]),
         Reference::Updated
     );
-    assert_eq!(Reference::for_motions([&Motion::Fixed]), Reference::Updated);
+    assert_eq!(
+        Reference::Auto.resolved([&Motion::Fixed]),
+        Reference::Updated
+    );
     let case = |method: &str, kind: &str| {
         let text = format!(
             "mesh = \"m.su2\"\nsteps = 4\n[solver]\nmethod = \"{method}\"\n\
@@ -113,9 +117,25 @@ fn the_default_reference_follows_the_motions_kind() {
             .settings
             .reference
     };
-    assert_eq!(case("robust", "pitch-plunge"), Reference::Anchored);
-    assert_eq!(case("robust", "rotation"), Reference::Updated);
+    // A case file leaves the choice to the deformer, which makes it once
+    // for every front end (`Reference::resolved`).
+    assert_eq!(case("robust", "pitch-plunge"), Reference::Auto);
+    assert_eq!(case("robust", "rotation"), Reference::Auto);
     assert_eq!(case("verbss", "pitch-plunge"), Reference::Updated);
+    let mesh = naca0012(&AirfoilGrid::default()).unwrap();
+    for (attachments, expected) in [
+        (pitch_plunge(15.0, 0.0, 8), Reference::Anchored),
+        (
+            vec![Attachment {
+                groups: vec!["airfoil".into()],
+                motion: one_way.clone(),
+            }],
+            Reference::Updated,
+        ),
+    ] {
+        let d = Deformer::new(&mesh, &attachments, Settings::robust(4)).unwrap();
+        assert_eq!(d.settings().reference, expected);
+    }
 }
 
 /// The demo's pitch–plunge (θ₀ = 40°, h₀ = 0.2) on a coarse O-grid, 16 steps a cycle.

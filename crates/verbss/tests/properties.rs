@@ -7,11 +7,12 @@
 use std::path::Path;
 
 use proptest::prelude::*;
-use verbss::deform::{Deformer, Settings};
+use verbss::deform::Deformer;
 use verbss::io::{gmsh, su2, vtu, MshVersion};
 use verbss::mesh::samples::jittered_grid;
 use verbss::motion::{Attachment, Motion};
 use verbss::quality;
+use verbss::settings::Settings;
 use verbss::solve::{default_roles, Engine, Method, NodeRole, SolveParams, Solver};
 use verbss::Mesh;
 

@@ -1,6 +1,6 @@
 use super::*;
-use crate::deform::Reference;
 use crate::robust::{Layer, Robust};
+use crate::settings::Reference;
 use crate::solve::{Accel, Method, Solver};
 
 fn parse(text: &str) -> Result<Case> {
@@ -17,8 +17,8 @@ fn parses_a_full_case() {
         r#"
 mesh = "../m/naca.su2"
 steps = 160
-reference = "fixed"
 [solver]
+reference = "fixed"
 method = "ball-vertex"
 solver = "direct"
 accel = "auto"
@@ -58,6 +58,11 @@ final = false
     assert!(s.absolute_tolerance);
     assert_eq!(c.motions.len(), 2);
     assert_eq!(c.motions[0].0, 14);
+    // `reference` belongs to the `[solver]` table, where report.json writes it.
+    assert_eq!(
+        err("mesh = \"m.su2\"\nsteps = 3\nreference = \"fixed\"\n"),
+        "cases/c.toml:3: `reference` is a setting of the `[solver]` table: move it there"
+    );
     assert_eq!(c.output.dir, Some(PathBuf::from("cases/out/naca")));
     assert_eq!(c.output.every, 4);
     assert!(!c.output.final_mesh && c.output.series && c.output.report);
@@ -100,9 +105,9 @@ fn wrong_type() {
 fn unknown_setting_names_the_known_ones() {
     assert_eq!(
         err("mesh = \"m.su2\"\nsteps = 3\n[solver]\nomegga = 1.5\n"),
-        "cases/c.toml:4: `solver.omegga`: unknown setting 'omegga' (expected method, solver, \
-         accel, reference, predictor, tolerance, absolute_tolerance, max_iterations, omega, \
-         threads, rigid_layer, substeps, stiffening or blend)"
+        "cases/c.toml:4: `solver.omegga`: unknown setting 'omegga' (expected method, \
+         reference, predictor, rigid_layer, stiffening, substeps, blend, solver, accel, \
+         escalate, omega, tolerance, absolute_tolerance, max_iterations or threads)"
     );
     assert_eq!(
         err("mesh = \"m.su2\"\nsteps = 3\n[solver]\nblend = [1]\n"),
@@ -143,19 +148,19 @@ fn near_wall_treatments_follow_the_method_unless_given() {
     assert_eq!(off.layer, Layer::Off);
     assert_eq!(
         err(&format!("{head}[solver]\nrigid_layer = \"thick\"\n")),
-        "cases/c.toml:4: `solver.rigid_layer`: the rigid layer must be off, auto or a positive wall distance (got 'thick')"
+        "cases/c.toml:4: `solver.rigid_layer`: rigid_layer must be off, auto or a positive wall distance (got 'thick')"
     );
     assert_eq!(
         err(&format!("{head}[solver]\nrigid_layer = -0.5\n")),
-        "cases/c.toml:4: `solver.rigid_layer`: the rigid layer must be off, auto or a positive wall distance (got '-0.5')"
+        "cases/c.toml:4: `solver.rigid_layer`: rigid_layer must be off, auto or a positive wall distance (got -0.5)"
     );
     assert_eq!(
         err(&format!("{head}[solver]\nsubsteps = 40\n")),
-        "cases/c.toml:4: `solver.substeps`: substeps must be at most 30 (got 40)"
+        "cases/c.toml:4: `solver.substeps`: substeps must be a whole number from 0 to 30 (got 40)"
     );
     assert_eq!(
         err(&format!("{head}[solver]\nstiffening = -1.0\n")),
-        "cases/c.toml:4: `solver.stiffening`: the stiffening exponent must be zero or positive (got -1)"
+        "cases/c.toml:4: `solver.stiffening`: stiffening must be a finite number ≥ 0 (got -1)"
     );
 }
 
@@ -191,7 +196,7 @@ fn out_of_range_values() {
     );
     assert_eq!(
         err("mesh = \"m.su2\"\nsteps = 2\n[solver]\nomega = 2.5\n"),
-        "cases/c.toml:4: `solver.omega`: omega 2.5 is outside (0, 2)"
+        "cases/c.toml:4: `solver.omega`: omega must be a number in (0, 2) (got 2.5)"
     );
     assert_eq!(
         err("mesh = \"m.su2\"\nsteps = 2\n[output]\nevery = 0\n"),

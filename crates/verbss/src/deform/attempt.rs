@@ -7,24 +7,19 @@
 //! singular, and on a mesh that is coarse there the blended start can crush
 //! the cells ahead of the corner that the springs alone keep valid. The
 //! near-wall treatment must never lose to the springs alone, so where the
-//! blended solve inverts a cell or leaves a minimum quality below
-//! [`QUALITY_DROP`] of the reference configuration's, the step is solved
-//! again from the reference itself and the better of the two is kept (no
-//! inversion first, then the higher minimum quality).
+//! blended solve is weak ([`accept::weak`]) the step is solved again from
+//! the reference itself and the better of the two is kept
+//! ([`accept::better`]).
 
 use std::time::Instant;
 
-use super::{blend, Deformer, Reference};
-use crate::collective::Whole;
+use super::accept::{self, Check};
+use super::{blend, Deformer, Reference, StepReport};
+use crate::collective::Collective;
 use crate::error::Result;
-use crate::quality::{self, Inversion};
 use crate::solve::{clear_prescribed, SolveInfo, SpringSolver, Stage};
 
-/// A blended solve whose minimum quality falls below this fraction of the
-/// reference configuration's is compared with the solve without the blend.
-pub const QUALITY_DROP: f64 = 0.5;
-
-impl<S: SpringSolver> Deformer<S> {
+impl<S: SpringSolver, C: Collective> Deformer<S, C> {
     /// The solve of the (sub-)step from `coords` to `targets`, `fraction` of
     /// a step, that the guard judges (see the module documentation);
     /// `reference_quality` is the minimum quality of the reference
@@ -36,31 +31,27 @@ impl<S: SpringSolver> Deformer<S> {
         targets: &[(usize, Vec<f64>)],
         fraction: f64,
         reference_quality: f64,
-        report: &mut super::StepReport,
+        report: &mut StepReport,
     ) -> Result<Attempt> {
         let start = self.blended(coords, targets);
         let blended = self.judged(&start, targets, fraction, report)?;
-        let weak = !blended.inversions.is_empty()
-            || blended.min_quality() < QUALITY_DROP * reference_quality;
-        if self.blend.is_none() || !weak {
+        if self.blend.is_none() || !accept::weak(&blended.check, reference_quality) {
             return Ok(blended);
         }
         let plain_start = reference_of(self.settings.reference, coords, &self.mesh.coords).to_vec();
         let plain = self.judged(&plain_start, targets, fraction, report)?;
-        let valid = |a: &Attempt| a.info.converged && a.inversions.is_empty();
-        let better =
-            valid(&plain) && (!valid(&blended) || plain.min_quality() > blended.min_quality());
-        let (kept, dropped) = if better {
-            (plain, blended)
-        } else {
-            (blended, plain)
-        };
+        let (kept, dropped) =
+            if accept::better((&plain.info, &plain.check), (&blended.info, &blended.check)) {
+                (plain, blended)
+            } else {
+                (blended, plain)
+            };
         report.add(&dropped.info);
         Ok(kept)
     }
 
-    /// [`Deformer::attempt`] from `start`, and when it converged but
-    /// inverted a cell, solved again to round-off: an inversion is never the
+    /// [`Deformer::attempt`] from `start`, and when it converged but left an
+    /// invalid cell, solved again to round-off: a rejected step is never the
     /// solver's fault, so the step solved exactly is what the guard judges.
     /// Where no round-off solve converges, the accepted solve (error below
     /// the bound) stays the one judged.
@@ -69,13 +60,13 @@ impl<S: SpringSolver> Deformer<S> {
         start: &[f64],
         targets: &[(usize, Vec<f64>)],
         fraction: f64,
-        report: &mut super::StepReport,
+        report: &mut StepReport,
     ) -> Result<Attempt> {
         let attempt = self.attempt(start, targets, fraction, false)?;
         report.check_seconds += attempt.check_seconds;
         let exact_wanted = self.settings.solve.escalate
             && attempt.info.converged
-            && !attempt.inversions.is_empty()
+            && attempt.check.summary.invalid > 0
             && !attempt.info.stages.contains(&Stage::Direct);
         if !exact_wanted {
             return Ok(attempt);
@@ -100,7 +91,7 @@ impl<S: SpringSolver> Deformer<S> {
         let Some(blend) = &mut self.blend else {
             return reference.to_vec();
         };
-        let mut moved = blend.apply(reference, targets, &Whole);
+        let mut moved = blend.apply(reference, targets, &self.on);
         blend::keep_in_planes(
             self.mesh.dim,
             &self.roles,
@@ -112,18 +103,19 @@ impl<S: SpringSolver> Deformer<S> {
     }
 
     /// Whether `start` ([`Deformer::blended`]) already puts every
-    /// prescribed node at its target, to round-off (10⁻¹² of the mesh's
-    /// size): the springs have nothing to solve (a rigid body under the
-    /// blend, or a boundary back at the input mesh with a total unknown,
-    /// whose solution is then exactly `u = 0`).
+    /// prescribed node of every process at its target, to round-off (10⁻¹²
+    /// of the mesh's size): the springs have nothing to solve (a rigid body
+    /// under the blend, or a boundary back at the input mesh with a total
+    /// unknown, whose solution is then exactly `u = 0`).
     fn nothing_left(&self, start: &[f64], targets: &[(usize, Vec<f64>)]) -> bool {
         let dim = self.mesh.dim;
-        let left = targets
+        let mut left = [targets
             .iter()
             .flat_map(|(node, p)| (0..dim).map(move |d| (p[d] - start[dim * node + d]).abs()))
-            .fold(0.0, f64::max);
+            .fold(0.0, f64::max)];
+        self.on.max(&mut left);
         (self.blend.is_some() || self.settings.reference != Reference::Updated)
-            && left <= self.round_off
+            && left[0] <= self.round_off
     }
 
     /// One solve from `start` ([`Deformer::blended`]) with the prescribed
@@ -132,7 +124,8 @@ impl<S: SpringSolver> Deformer<S> {
     /// built on `start` (on the input mesh with the fixed reference) and
     /// solve for the move from `start`; where `start` already puts every
     /// prescribed node at its target (a rigid body under the blend) that
-    /// move is zero and nothing is solved.
+    /// move is zero and nothing is solved. The ghosts take their owners'
+    /// positions before the check.
     fn attempt(
         &mut self,
         start: &[f64],
@@ -141,9 +134,10 @@ impl<S: SpringSolver> Deformer<S> {
         exact: bool,
     ) -> Result<Attempt> {
         let dim = self.mesh.dim;
-        let springs_at = match self.settings.reference {
-            Reference::Updated | Reference::Anchored => start,
-            Reference::Fixed => &self.mesh.coords,
+        let springs_at = if self.settings.reference == Reference::Fixed {
+            &self.mesh.coords
+        } else {
+            start
         };
         let mut u: Vec<f64> = match &self.earlier {
             Some(earlier) => self
@@ -177,15 +171,14 @@ impl<S: SpringSolver> Deformer<S> {
         for (node, p) in targets {
             next[dim * node..dim * (node + 1)].copy_from_slice(p);
         }
+        self.on.refresh(&mut next, dim);
         let checking = Instant::now();
-        let (quality, inversions) =
-            quality::qualities_and_inversions(&self.mesh, &next, &self.orientation);
+        let check = accept::check(&self.mesh, &next, &self.orientation, &self.on);
         Ok(Attempt {
             coords: next,
             u,
             info,
-            quality,
-            inversions,
+            check,
             check_seconds: checking.elapsed().as_secs_f64(),
         })
     }
@@ -199,19 +192,10 @@ pub(super) struct Attempt {
     pub(super) u: Vec<f64>,
     /// The solver's account.
     pub(super) info: SolveInfo,
-    /// The quality of each cell.
-    pub(super) quality: Vec<f64>,
-    /// The inverted cells.
-    pub(super) inversions: Vec<Inversion>,
-    /// Seconds of the quality and inversion check.
+    /// The check of the new coordinates.
+    pub(super) check: Check,
+    /// Seconds of the check.
     pub(super) check_seconds: f64,
-}
-
-impl Attempt {
-    /// The smallest quality of its cells.
-    pub(super) fn min_quality(&self) -> f64 {
-        self.quality.iter().copied().fold(f64::INFINITY, f64::min)
-    }
 }
 
 /// The reference configuration of a (sub-)step from `coords`: `coords`, or
@@ -221,8 +205,9 @@ pub(super) fn reference_of<'a>(
     coords: &'a [f64],
     input: &'a [f64],
 ) -> &'a [f64] {
-    match reference {
-        Reference::Updated => coords,
-        Reference::Fixed | Reference::Anchored => input,
+    if reference == Reference::Updated {
+        coords
+    } else {
+        input
     }
 }

@@ -117,7 +117,7 @@ impl Blend {
     ) -> Blend {
         let n = roles.len();
         let laplace = Laplace::new(dim, edge_graph);
-        let slide_along = common_slide_directions(roles, normals);
+        let slide_along = common_slide_directions(roles, normals, on);
         let size = |nodes: &[usize]| Bounds::of(dim, coords, nodes).reduced(on).diagonal();
         let extent = size(&(0..n).collect::<Vec<_>>());
         let bodies = bodies
@@ -234,30 +234,24 @@ impl Blend {
     }
 }
 
-/// The bodies of the blended rigid motion: moving nodes sharing a chain of
-/// motions, each as the indices (into `moving`, the order of the step's
-/// targets) its rigid motion is fitted to and the mesh nodes it holds at
-/// weight 1 — its moving nodes and the rigid-layer nodes that follow them.
+/// The bodies of the blended rigid motion (`count` of them, the run's
+/// chains of motions), each as the indices (into `moving`, the order of the
+/// step's targets) its rigid motion is fitted to and the mesh nodes it
+/// holds at weight 1 — its moving nodes and the rigid-layer nodes that
+/// follow them (`layer`, with their bodies).
 pub fn bodies(
-    moving: &[(usize, Vec<usize>)],
-    layer: &[(usize, Option<usize>)],
+    count: usize,
+    moving: &[(usize, usize)],
+    layer: &[(usize, Option<(usize, u64)>)],
 ) -> Vec<(Vec<usize>, Vec<usize>)> {
-    let mut body_of_chain: std::collections::HashMap<&[usize], usize> = Default::default();
-    let mut bodies: Vec<(Vec<usize>, Vec<usize>)> = Vec::new();
-    let mut body_of = Vec::with_capacity(moving.len());
-    for (k, (node, chain)) in moving.iter().enumerate() {
-        let next = body_of_chain.len();
-        let b = *body_of_chain.entry(chain.as_slice()).or_insert(next);
-        if b == bodies.len() {
-            bodies.push(Default::default());
-        }
+    let mut bodies: Vec<(Vec<usize>, Vec<usize>)> = vec![Default::default(); count];
+    for (k, &(node, b)) in moving.iter().enumerate() {
         bodies[b].0.push(k);
-        bodies[b].1.push(*node);
-        body_of.push(b);
+        bodies[b].1.push(node);
     }
-    for &(node, k) in layer {
-        if let Some(k) = k {
-            bodies[body_of[k]].1.push(node);
+    for &(node, body) in layer {
+        if let Some((b, _)) = body {
+            bodies[b].1.push(node);
         }
     }
     bodies
@@ -266,16 +260,33 @@ pub fn bodies(
 /// `I − Σ_b b bᵀ` over an orthonormal basis `b` of the normals of every
 /// sliding node's plane or line (`directions`: [`NodeRole::Slide`] normals,
 /// [`NodeRole::Line`] directions); zero when no node slides.
-fn common_slide_directions(roles: &[NodeRole], directions: &[[f64; 3]]) -> [[f64; 3]; 3] {
-    let mut seen = std::collections::HashSet::new();
+fn common_slide_directions(
+    roles: &[NodeRole],
+    directions: &[[f64; 3]],
+    on: &dyn Collective,
+) -> [[f64; 3]; 3] {
+    // The roles any process's nodes have, in the order of their directions.
+    let mut used = vec![0.0; 2 * directions.len()];
+    for role in roles {
+        match role {
+            NodeRole::Slide(k) => used[2 * k] = 1.0,
+            NodeRole::Line(k) => used[2 * k + 1] = 1.0,
+            _ => {}
+        }
+    }
+    on.max(&mut used);
+    let seen: Vec<NodeRole> = (0..used.len())
+        .filter(|&k| used[k] == 1.0)
+        .map(|k| match k % 2 {
+            0 => NodeRole::Slide(k / 2),
+            _ => NodeRole::Line(k / 2),
+        })
+        .collect();
     let mut basis: Vec<[f64; 3]> = Vec::new();
-    for &role in roles {
+    for &role in &seen {
         let Some(frame) = Frame::<3>::of_role(role, directions) else {
             continue;
         };
-        if !seen.insert(role) {
-            continue;
-        }
         for g in &frame.rows()[frame.free()..] {
             let mut v = *g;
             for b in &basis {

@@ -8,10 +8,12 @@
 
 use std::collections::HashMap;
 
+use crate::collective::{agree, exact_sums, Collective};
 use crate::error::{Error, Result};
 use crate::geometry::{cross, dot, norm};
 use crate::mesh::{CellKind, Mesh};
 use crate::motion::{Attachment, Motion};
+use crate::robust::Bounds;
 use crate::solve::NodeRole;
 use crate::topology;
 
@@ -29,12 +31,17 @@ pub(super) fn duplicate_nodes(mesh: &Mesh) -> Option<(usize, usize)> {
     })
 }
 
-/// Node roles, slide directions (plane normals and line directions) and the
-/// motions of moving nodes.
+/// Node roles, slide directions (plane normals and line directions), the
+/// bodies and the moving nodes.
 pub(super) struct Plan {
     pub(super) roles: Vec<NodeRole>,
     pub(super) normals: Vec<[f64; 3]>,
-    pub(super) moving: Vec<(usize, Vec<usize>)>,
+    /// The chains of motions (indices into the attachments) that move a
+    /// node of some process, in the order of their groups' first mention:
+    /// the bodies, the same on every process.
+    pub(super) bodies: Vec<Vec<usize>>,
+    /// The moving nodes and their bodies, group by group.
+    pub(super) moving: Vec<(usize, usize)>,
 }
 
 /// What a group does, from all attachments naming it.
@@ -44,7 +51,14 @@ enum GroupRole {
     Slide(usize),
 }
 
-pub(super) fn plan_roles(mesh: &Mesh, attachments: &[Attachment]) -> Result<Plan> {
+/// The plan of `attachments` on the local mesh `mesh` (collective: every
+/// process names the same groups, in the same order, and gets the same
+/// normals and bodies; a ghost node takes its owner's role).
+pub(super) fn plan_roles(
+    mesh: &Mesh,
+    attachments: &[Attachment],
+    on: &dyn Collective,
+) -> Result<Plan> {
     // Per group (in order of first mention): its role.
     let mut order: Vec<usize> = Vec::new();
     let mut roles: HashMap<usize, GroupRole> = HashMap::new();
@@ -57,7 +71,9 @@ pub(super) fn plan_roles(mesh: &Mesh, attachments: &[Attachment]) -> Result<Plan
                 .iter()
                 .position(|g| &g.name == name)
                 .unwrap_or(0);
-            if att.motion.moves() && mesh.groups[g].facets.is_empty() {
+            let mut facets = [mesh.groups[g].facets.len() as f64];
+            on.sum(&mut facets);
+            if att.motion.moves() && facets[0] == 0.0 {
                 return Err(Error::InvalidSetting(format!(
                     "group '{name}' has no nodes: nothing to move"
                 )));
@@ -74,9 +90,10 @@ pub(super) fn plan_roles(mesh: &Mesh, attachments: &[Attachment]) -> Result<Plan
                 (m, _) if m.moves() => GroupRole::Moving(vec![a]),
                 (_, Some(GroupRole::Moving(chain))) => GroupRole::Moving(chain),
                 (Motion::Slide { normal }, None) => {
+                    let own = agree(on, group_normal(mesh, g, on));
                     normals.push(match normal {
-                        Some(n) => given_normal(mesh, g, n)?,
-                        None => group_normal(mesh, g)?,
+                        Some(n) => given_normal(mesh, g, n, own)?,
+                        None => own?,
                     });
                     GroupRole::Slide(normals.len() - 1)
                 }
@@ -111,50 +128,123 @@ pub(super) fn plan_roles(mesh: &Mesh, attachments: &[Attachment]) -> Result<Plan
             }
         }
     }
+    // The lines where two planes meet, numbered after the planes in the
+    // order of their pair of planes on every process.
+    let planes = normals.len();
+    let line_of = |i: usize| -> Option<(usize, usize)> {
+        match slide[i][..] {
+            [a, b, ..] if mesh.dim == 3 && !blocked[i] => Some((a.min(b), a.max(b))),
+            _ => None,
+        }
+    };
+    let mut pairs = vec![0.0; planes * planes];
+    for (a, b) in (0..n).filter_map(line_of) {
+        pairs[a * planes + b] = 1.0;
+    }
+    on.max(&mut pairs);
     let mut lines: HashMap<(usize, usize), usize> = HashMap::new();
+    for (k, _) in pairs.iter().enumerate().filter(|(_, &p)| p == 1.0) {
+        let (a, b) = (k / planes, k % planes);
+        lines.insert((a, b), normals.len());
+        normals.push(unit3(&cross(&normals[a], &normals[b])));
+    }
     for i in 0..n {
         if blocked[i] {
             continue;
         }
-        node_role[i] = match slide[i][..] {
-            [] => continue,
-            [k] => NodeRole::Slide(k),
-            [a, b, ..] if mesh.dim == 3 => {
-                let line = unit3(&cross(&normals[a], &normals[b]));
+        node_role[i] = match (slide[i][..].len(), line_of(i)) {
+            (0, _) => continue,
+            (1, _) => NodeRole::Slide(slide[i][0]),
+            (_, Some(pair)) => {
+                let k = lines[&pair];
                 // Every further plane must hold the line too.
                 if slide[i][2..]
                     .iter()
-                    .any(|&c| dot(&normals[c], &line).abs() > 1e-9)
+                    .any(|&c| dot(&normals[c], &normals[k]).abs() > 1e-9)
                 {
                     continue;
                 }
-                let k = *lines.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                    normals.push(line);
-                    normals.len() - 1
-                });
                 NodeRole::Line(k)
             }
             _ => continue,
         };
     }
+    // The moving nodes, group by group, each with its group's chain.
+    let mut chains: Vec<Vec<usize>> = Vec::new();
     let mut moving = Vec::new();
     let mut taken = vec![false; n];
     for &g in &order {
         if let Some(GroupRole::Moving(chain)) = roles.get(&g) {
+            let b = chains.iter().position(|c| c == chain).unwrap_or_else(|| {
+                chains.push(chain.clone());
+                chains.len() - 1
+            });
             for i in mesh.groups[g].nodes() {
                 if !taken[i] {
                     taken[i] = true;
                     node_role[i] = NodeRole::Fixed;
-                    moving.push((i, chain.clone()));
+                    moving.push((i, b));
                 }
             }
         }
     }
+    // The bodies: the chains that move a node of some process.
+    let mut held = vec![0.0; chains.len()];
+    for &(_, b) in &moving {
+        held[b] = 1.0;
+    }
+    on.max(&mut held);
+    let renumber: Vec<Option<usize>> = held
+        .iter()
+        .scan(0, |next, &h| {
+            Some((h == 1.0).then(|| {
+                *next += 1;
+                *next - 1
+            }))
+        })
+        .collect();
+    for (_, b) in &mut moving {
+        *b = renumber[*b].expect("a chain that moves a node is a body");
+    }
+    let bodies = chains
+        .into_iter()
+        .zip(&renumber)
+        .filter(|(_, r)| r.is_some())
+        .map(|(c, _)| c)
+        .collect();
+    refresh_roles(&mut node_role, on);
     Ok(Plan {
         roles: node_role,
         normals,
+        bodies,
         moving,
     })
+}
+
+/// The ghosts' roles set to their owners' (collective).
+fn refresh_roles(roles: &mut [NodeRole], on: &dyn Collective) {
+    if on.processes() == 1 {
+        return;
+    }
+    // Free −1, Fixed −2, Slide(k) k, Line(k) −3 − k.
+    let mut codes: Vec<f64> = roles
+        .iter()
+        .map(|r| match r {
+            NodeRole::Free => -1.0,
+            NodeRole::Fixed => -2.0,
+            NodeRole::Slide(k) => *k as f64,
+            NodeRole::Line(k) => -3.0 - *k as f64,
+        })
+        .collect();
+    on.refresh(&mut codes, 1);
+    for (r, &c) in roles.iter_mut().zip(&codes) {
+        *r = match c {
+            -1.0 => NodeRole::Free,
+            -2.0 => NodeRole::Fixed,
+            k if k < 0.0 => NodeRole::Line((-3.0 - k) as usize),
+            k => NodeRole::Slide(k as usize),
+        };
+    }
 }
 
 fn unit3(v: &[f64; 3]) -> [f64; 3] {
@@ -182,11 +272,11 @@ fn degrees(radians: f64) -> String {
 }
 
 /// The unit normal `n` given for group `g`'s slide, checked against the
-/// group's own plane when it has one: a normal across that plane would
-/// move the group's nodes off it.
-fn given_normal(mesh: &Mesh, g: usize, n: &[f64; 3]) -> Result<[f64; 3]> {
+/// group's own plane `own` when it has one: a normal across that plane
+/// would move the group's nodes off it.
+fn given_normal(mesh: &Mesh, g: usize, n: &[f64; 3], own: Result<[f64; 3]>) -> Result<[f64; 3]> {
     let n = unit3(n);
-    if let Ok(own) = group_normal(mesh, g) {
+    if let Ok(own) = own {
         let angle = norm(&cross(&own, &n)).atan2(dot(&own, &n).abs());
         if angle > 0.5f64.to_radians() {
             return Err(Error::InvalidSetting(format!(
@@ -205,11 +295,13 @@ fn given_normal(mesh: &Mesh, g: usize, n: &[f64; 3]) -> Result<[f64; 3]> {
 /// The unit normal of a group of parallel planes (one plane, or several, as
 /// a channel's two walls in one group): the sum of its facets' normals, each
 /// turned to agree with the first (a line's normal in 2D, a triangle's cross
-/// product, a quad's diagonals' cross product). Each node then slides in the
-/// plane of that normal through it (docs/method.md, "Unknowns").
-/// Errors, naming a facet that is not parallel to the others, when the
-/// group's facets are not all parallel.
-fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
+/// product, a quad's diagonals' cross product), each facet counted by one
+/// process and the sum exact ([`exact_sums`]), so the same on any cut. Each
+/// node then slides in the plane of that normal through it (docs/method.md,
+/// "Unknowns"). Errors, naming a facet that is not parallel to the others
+/// or a node off the facets' planes, when the group's facets are not all
+/// parallel (this process's facets and owned nodes: the caller agrees).
+fn group_normal(mesh: &Mesh, g: usize, on: &dyn Collective) -> Result<[f64; 3]> {
     let group = &mesh.groups[g];
     let dim = mesh.dim;
     let p = |i: usize| -> [f64; 3] {
@@ -221,6 +313,7 @@ fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
         .facets
         .iter()
         .enumerate()
+        .filter(|(_, (_, nodes))| on.counts(nodes))
         .filter_map(|(f, (kind, nodes))| {
             let n = match (kind, dim) {
                 (CellKind::Line, 2) => {
@@ -240,17 +333,21 @@ fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
             Some((f, n))
         })
         .collect();
-    let mut sum = [0.0; 3];
-    for (_, n) in &facet_normals {
-        let sign = if sum.iter().zip(n).map(|(a, b)| a * b).sum::<f64>() < 0.0 {
-            -1.0
-        } else {
-            1.0
-        };
-        for d in 0..3 {
-            sum[d] += sign * n[d];
-        }
+    // The first facet of the lowest process that has one sets the sign.
+    let mut first = vec![0.0; 4];
+    if let Some((_, n)) = facet_normals.first() {
+        first = vec![1.0, n[0], n[1], n[2]];
     }
+    let firsts = on.gather(&first);
+    let reference = firsts
+        .chunks_exact(4)
+        .find(|r| r[0] == 1.0)
+        .map_or([0.0; 3], |r| [r[1], r[2], r[3]]);
+    let sum = exact_sums(on, facet_normals.len(), |k| {
+        let n = facet_normals[k].1;
+        let sign = if dot(&n, &reference) < 0.0 { -1.0 } else { 1.0 };
+        [sign * n[0], sign * n[1], sign * n[2]]
+    });
     let advice = "give the slide motion a `normal` (`--slide GROUP:NX,NY[,NZ]`) or \
                   split the group into its planes";
     if norm(&sum) == 0.0 {
@@ -281,20 +378,19 @@ fn group_normal(mesh: &Mesh, g: usize) -> Result<[f64; 3]> {
         )));
     }
     // A node of the group on none of its facets (a lone vertex) lies in one
-    // of the facets' planes: its offset `n·x` is one of theirs.
+    // of the facets' planes: its offset `n·x` is one of theirs. An owned
+    // node has every facet of the group around it on this process.
     let offset = |i: usize| dot(&p(i), &nrm);
-    let mut planes: Vec<f64> = facet_normals
+    let mut planes: Vec<f64> = group
+        .facets
         .iter()
-        .flat_map(|&(f, _)| group.facets.cell(f).iter().map(|&i| offset(i)))
+        .flat_map(|(_, nodes)| nodes.iter().map(|&i| offset(i)))
         .collect();
     planes.sort_by(f64::total_cmp);
     let nodes = group.nodes();
-    let extent = nodes
-        .iter()
-        .map(|&i| norm(&sub(p(i), p(nodes[0]))))
-        .fold(0.0, f64::max);
+    let extent = Bounds::of(dim, &mesh.coords, &nodes).reduced(on).diagonal();
     let tolerance = PLANE_TOLERANCE * extent.max(f64::MIN_POSITIVE);
-    let off_plane = nodes.iter().find(|&&i| {
+    let off_plane = nodes.iter().filter(|&&i| on.owns(i)).find(|&&i| {
         let o = offset(i);
         let k = planes.partition_point(|&q| q < o);
         let near = |j: usize| planes.get(j).is_some_and(|q| (q - o).abs() <= tolerance);

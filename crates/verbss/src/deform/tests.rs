@@ -7,6 +7,7 @@ use super::*;
 use crate::mesh::samples::square_of_triangles as square;
 use crate::motion::PositionSource;
 use crate::robust::Robust;
+use crate::settings::Predictor;
 
 const NACA: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),

@@ -36,7 +36,7 @@ fn bom(bytes: &[u8]) -> usize {
 }
 
 /// A token or line as quoted in messages: printable, at most 40 characters.
-fn shown(text: &str) -> String {
+pub(crate) fn shown(text: &str) -> String {
     let mut s: String = text.chars().take(40).flat_map(char::escape_debug).collect();
     if text.chars().count() > 40 {
         s.push('…');

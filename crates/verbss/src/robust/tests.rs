@@ -1,9 +1,11 @@
 //! Tests of the near-wall treatments.
 
 use super::*;
-use crate::deform::{Deformer, Settings};
+use crate::collective::Whole;
+use crate::deform::Deformer;
 use crate::mesh::CellKind;
 use crate::motion::{Attachment, Motion, PositionSource};
+use crate::settings::Settings;
 use std::path::Path;
 
 const NACA: &str = concat!(
@@ -106,22 +108,22 @@ fn no_cell_joins_the_layers_of_two_bodies_or_a_layer_and_the_far_field() {
     let mut moving = Vec::new();
     for (k, name) in ["slat", "main", "flap"].iter().enumerate() {
         for i in mesh.group(name).unwrap().nodes() {
-            moving.push((i, vec![k]));
+            moving.push((i, k));
         }
     }
     let robust = Robust {
         layer: Layer::Thickness(0.5),
         ..Robust::off()
     };
-    let t = prepare(&mesh, None, &plan_roles, &moving, &robust).unwrap();
+    let t = prepare(&mesh, None, &plan_roles, (3, &moving), &robust, &Whole).unwrap();
     assert!(!t.nodes.is_empty());
     // The body each node moves with: its own, or its layer's.
     let mut body = vec![usize::MAX; mesh.node_count()];
-    for (i, chain) in &moving {
-        body[*i] = chain[0];
+    for &(i, b) in &moving {
+        body[i] = b;
     }
-    for &(i, k) in &t.nodes {
-        body[i] = moving[k.expect("every element moves")].1[0];
+    for &(i, b) in &t.nodes {
+        body[i] = b.expect("every element moves").0;
     }
     let far: Vec<bool> = {
         let mut f = vec![false; mesh.node_count()];
@@ -186,37 +188,33 @@ fn stiffening_is_one_within_the_layer_and_falls_as_a_power_of_the_distance() {
         settings(1, Robust::off()),
     )
     .unwrap();
-    let moving: Vec<(usize, Vec<usize>)> = mesh
+    let moving: Vec<(usize, usize)> = mesh
         .group("airfoil")
         .unwrap()
         .nodes()
         .into_iter()
-        .map(|i| (i, vec![0]))
+        .map(|i| (i, 0))
         .collect();
     let robust = Robust {
         layer: Layer::Thickness(0.1),
         stiffening: 2.0,
         ..Robust::off()
     };
-    let t = prepare(&mesh, None, d.roles(), &moving, &robust).unwrap();
-    let graph = topology::edge_graph_from(
-        &mesh.cells,
-        &topology::node_cells(&mesh.cells, mesh.node_count()),
-    );
-    let seeds: Vec<usize> = moving.iter().map(|m| m.0).collect();
-    let (dist, _) = nearest_seed(
-        &graph,
-        mesh.dim,
-        &mesh.coords,
-        &seeds,
-        &mesh.node_tags,
-        |_| f64::INFINITY,
-    );
+    let t = prepare(&mesh, None, d.roles(), (1, &moving), &robust, &Whole).unwrap();
+    // The straight-line distance to the nearest airfoil node.
+    let wall: Vec<usize> = moving.iter().map(|m| m.0).collect();
+    let dist: Vec<f64> = (0..mesh.node_count())
+        .map(|i| {
+            wall.iter()
+                .map(|&w| distance(mesh.point(i), mesh.point(w)))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .collect();
     for (phi, d) in t.stiffness.iter().zip(&dist) {
-        let expected = if *d <= 0.1 { 1.0 } else { (0.1 / d).powi(2) };
+        let expected: f64 = if *d <= 0.1 { 1.0 } else { (0.1 / d).powi(2) };
         assert!((phi - expected).abs() < 1e-15 * expected.max(1.0));
     }
-    let off = prepare(&mesh, None, d.roles(), &moving, &Robust::off()).unwrap();
+    let off = prepare(&mesh, None, d.roles(), (1, &moving), &Robust::off(), &Whole).unwrap();
     assert_eq!(off, Treatment::default());
 }
 
@@ -308,14 +306,14 @@ fn invalid_settings_are_named() {
                 layer: Layer::Thickness(-1.0),
                 ..Robust::off()
             },
-            "invalid setting: the rigid layer's thickness must be positive (got -1)",
+            "invalid setting: rigid_layer must be off, auto or a positive wall distance (got -1)",
         ),
         (
             Robust {
                 stiffening: f64::NAN,
                 ..Robust::off()
             },
-            "invalid setting: the stiffening exponent must be zero or positive (got NaN)",
+            "invalid setting: stiffening must be a finite number ≥ 0 (got NaN)",
         ),
     ] {
         let e = Deformer::new(&mesh, &turn, settings(1, robust))
@@ -323,6 +321,26 @@ fn invalid_settings_are_named() {
             .unwrap();
         assert_eq!(e.to_string(), message);
     }
+}
+
+/// Every node's nearest seed of `seeds` (numbered `ids`) in straight line,
+/// among the nodes connected to one: the walk of [`prepare`] on one process.
+fn nearest_seed(
+    graph: &Csr,
+    dim: usize,
+    coords: &[f64],
+    seeds: &[usize],
+    ids: &[u64],
+    limit: impl Fn(usize) -> f64,
+) -> (Vec<f64>, Vec<u64>) {
+    let points: Vec<f64> = seeds
+        .iter()
+        .flat_map(|&s| &coords[dim * s..dim * (s + 1)])
+        .copied()
+        .collect();
+    let numbers: Vec<u64> = seeds.iter().map(|&s| ids[s]).collect();
+    let all = Seeds::new(dim, &points, &numbers);
+    spread::nearest_connected(&all, graph, coords, seeds, limit, |_| false)
 }
 
 /// The nearest seeds do not depend on the node numbering (what lets a

@@ -247,14 +247,7 @@ impl Engine {
         let built = built.as_mut().expect("prepared");
         let pool = &pool.as_ref().expect("prepared").1;
         let scale = prescribed_scale(dim, roles, normals, displacement);
-        let mut threshold = if params.absolute_tolerance || scale == 0.0 {
-            params.tolerance
-        } else {
-            params.tolerance * scale
-        };
-        if exact {
-            threshold = ROUND_OFF * if scale == 0.0 { 1.0 } else { scale };
-        }
+        let mut threshold = params.threshold(scale, exact);
         let factored = matches!(built.system, System::Blocks { factored: true, .. });
         let mut stage_params = params.clone();
         let mut hierarchy = None;

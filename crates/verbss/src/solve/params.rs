@@ -4,6 +4,7 @@
 use super::frame::Frame;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
+use crate::settings::check_value;
 use crate::topology;
 
 /// What a node's displacement is.
@@ -66,9 +67,7 @@ impl NodeRole {
 }
 
 /// Which system to build.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Method {
     /// Edge + ball-vertex springs, solved node by node (block SOR with per-node LDLᵀ).
     #[default]
@@ -82,9 +81,7 @@ pub enum Method {
 }
 
 /// How `ball-vertex` solves its global system.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Solver {
     /// Scalar SOR over all D·N unknowns (the paper's baseline).
     #[default]
@@ -94,9 +91,7 @@ pub enum Solver {
 }
 
 /// How the block systems of [`Method::Verbss`] and [`Method::Spring`] are solved.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Accel {
     /// Plain VerBSS sweeps (block SOR) until the eq.-8 test: the paper's method.
     #[default]
@@ -131,7 +126,7 @@ pub const AUTO_AMG_NODES_2D: usize = 3_000;
 pub const AUTO_AMG_NODES_3D: usize = 100_000;
 
 /// Settings of one solve (one time step).
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct SolveParams {
     /// The system and its solution strategy.
@@ -148,8 +143,8 @@ pub struct SolveParams {
     pub absolute_tolerance: bool,
     /// Maximum number of sweeps k_max.
     pub max_iterations: usize,
-    /// Worker threads of the sweeps (1: serial; 0: one per available core).
-    /// Results do not depend on it.
+    /// Worker threads of the sweeps (0: one per available core, the
+    /// default). Results do not depend on it.
     pub threads: usize,
     /// Record the eq.-8 value of every sweep in [`SolveInfo::history`].
     pub record_history: bool,
@@ -222,7 +217,7 @@ impl Default for SolveParams {
             tolerance: 1e-6,
             absolute_tolerance: false,
             max_iterations: 2000,
-            threads: 1,
+            threads: 0,
             record_history: false,
             accel: Accel::None,
             escalate: true,
@@ -231,21 +226,14 @@ impl Default for SolveParams {
 }
 
 impl SolveParams {
-    /// Checks the settings: ω in (0, 2), a finite tolerance ≥ 0, at least
-    /// one sweep, and the multigrid only for the block systems.
+    /// Checks the settings: each number in its range ([`crate::settings::TABLE`]),
+    /// and the multigrid only for the block systems.
     pub fn validate(&self) -> Result<()> {
-        if !(self.omega > 0.0 && self.omega < 2.0) {
-            return Err(Error::InvalidSetting(format!(
-                "omega {} is outside (0, 2)",
-                self.omega
-            )));
-        }
-        if !(self.tolerance >= 0.0 && self.tolerance.is_finite()) {
-            return Err(Error::InvalidSetting(format!(
-                "tolerance {} is not a finite number ≥ 0",
-                self.tolerance
-            )));
-        }
+        use crate::settings::Value;
+        check_value("omega", Value::Number(self.omega))?;
+        check_value("tolerance", Value::Number(self.tolerance))?;
+        check_value("max_iterations", Value::Count(self.max_iterations as u64))?;
+        check_value("threads", Value::Count(self.threads as u64))?;
         if self.accel == Accel::Amg && !matches!(self.method, Method::Verbss | Method::Spring) {
             return Err(Error::InvalidSetting(
                 "accel amg solves the block systems of method verbss and spring \
@@ -253,12 +241,23 @@ impl SolveParams {
                     .into(),
             ));
         }
-        if self.max_iterations == 0 {
-            return Err(Error::InvalidSetting(
-                "max_iterations is 0 (expected at least 1 sweep)".into(),
-            ));
-        }
         Ok(())
+    }
+}
+
+impl SolveParams {
+    /// The stop of a solve whose largest prescribed displacement is
+    /// `scale`: the eq.-8 `tolerance × scale` (or `tolerance` itself when
+    /// absolute, or when nothing moves), or for a solve to round-off
+    /// (`exact`) `ROUND_OFF × scale` (docs/method.md, "Accepting a step").
+    pub fn threshold(&self, scale: f64, exact: bool) -> f64 {
+        if exact {
+            super::escalate::ROUND_OFF * if scale == 0.0 { 1.0 } else { scale }
+        } else if self.absolute_tolerance || scale == 0.0 {
+            self.tolerance
+        } else {
+            self.tolerance * scale
+        }
     }
 }
 

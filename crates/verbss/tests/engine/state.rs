@@ -92,7 +92,10 @@ fn bad_input_is_reported() {
     u[5] = 0.0;
     p.omega = 2.0;
     let e = engine.solve(&mesh.coords, &mut u, &p).unwrap_err();
-    assert_eq!(e.to_string(), "invalid setting: omega 2 is outside (0, 2)");
+    assert_eq!(
+        e.to_string(),
+        "invalid setting: omega must be a number in (0, 2) (got 2)"
+    );
     p.omega = 1.5;
     let mut laplace = params(Method::Laplacian, Solver::Sor, 1e-6);
     laplace.accel = Accel::Amg;

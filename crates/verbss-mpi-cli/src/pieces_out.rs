@@ -1,21 +1,24 @@
-//! What `verbss-mpi deform` without the whole mesh ([`crate::share_run`])
-//! writes, rank by rank: the output's folder made and the input kept
-//! unless `--overwrite` says otherwise, every rank's piece of the moved
+//! What `verbss-mpi deform` without the whole mesh ([`crate::parts`])
+//! writes, rank by rank, as [`Outputs`]: every rank's piece of the moved
 //! mesh (a `.vtu` piece and rank 0 the `.pvtu`, or a partition of a split
-//! MSH 4.1 set), and after a failed step the failed state as `.vtu`
-//! pieces `OUT-STEM.failed_RANK.vtu` joined by `OUT-STEM.failed.pvtu`, as
-//! `verbss deform` writes `OUT-STEM.failed.vtu`.
+//! MSH 4.1 set), the series of every K-th step as `.vtu` pieces joined by a
+//! `.pvtu` per step and a `.pvd`, and after a failed step the failed state
+//! as `.vtu` pieces `OUT-STEM.failed_RANK.vtu` joined by
+//! `OUT-STEM.failed.pvtu`, as `verbss deform` writes `OUT-STEM.failed.vtu`.
+//! Before the solve, the output's folder is made and the input kept unless
+//! `--overwrite` says otherwise.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::bail;
+use verbss::deform::Snapshot;
 use verbss::io::gmsh::partitioned::Share;
 use verbss::io::gmsh::split::split_file;
 use verbss::io::gmsh::split_write::{SplitModel, SplitPiece};
 use verbss::{quality, Mesh};
-use verbss_cli::deform::ShareJob;
+use verbss_cli::deform::DeformArgs;
 use verbss_cli::overwrite::refuse_input_as_output;
-use verbss_cli::run::{file_stem, output_dir};
+use verbss_cli::run::{file_stem, output_dir, Job, Outputs};
 use verbss_mpi::pieces::{
     decode_entities, encode_entities, encode_groups, msh_facet_tags, split_groups, split_path,
     write_local_piece, write_msh_piece,
@@ -24,6 +27,116 @@ use verbss_mpi::share::agree;
 use verbss_mpi::Comm;
 
 use crate::run::{join_pieces, told};
+
+/// The pieces a rank writes of its share.
+pub struct Pieces<'a> {
+    world: &'a Comm,
+    share: &'a Share,
+    /// The part index of each of the share's nodes.
+    local: Vec<usize>,
+    output: PathBuf,
+    /// MSH pieces binary (`true`) or ASCII, `None` for as the input.
+    binary: Option<bool>,
+    overwrite: bool,
+    orientation: Vec<i8>,
+    /// The series written so far: time and `.pvtu` name.
+    series: Vec<(f64, String)>,
+}
+
+impl<'a> Pieces<'a> {
+    /// The pieces of `share` (its node `i` the part's node `local[i]`) that
+    /// `args` ask for: a `.pvtu` output, or MSH pieces for a `.msh` one.
+    pub fn new(
+        world: &'a Comm,
+        args: &DeformArgs,
+        share: &'a Share,
+        local: &[usize],
+    ) -> anyhow::Result<Pieces<'a>> {
+        let output = args.output().to_path_buf();
+        if !has_extension(&output, "pvtu") && !has_extension(&output, "msh") {
+            bail!(
+                "{}: a partitioned input is written rank by rank: the output is a .pvtu file \
+                 (one .vtu piece per rank beside it) or a .msh name (one MSH 4.1 piece per \
+                 rank beside it)",
+                output.display()
+            );
+        }
+        let binary = match has_extension(&output, "msh") {
+            true => args.split_encoding()?,
+            false => None,
+        };
+        Ok(Pieces {
+            world,
+            share,
+            local: local.to_vec(),
+            binary,
+            overwrite: args.overwrite(),
+            orientation: quality::orientation(&share.mesh),
+            output,
+            series: Vec::new(),
+        })
+    }
+
+    /// The share's coordinates in the part's `coords`.
+    fn share_coords(&self, coords: &[f64]) -> Vec<f64> {
+        let dim = self.share.mesh.dim;
+        self.local
+            .iter()
+            .flat_map(|&p| &coords[dim * p..dim * (p + 1)])
+            .copied()
+            .collect()
+    }
+}
+
+impl Outputs for Pieces<'_> {
+    /// `OUT-STEM_NNNN_RANK.vtu`, rank 0 `OUT-STEM_NNNN.pvtu` and
+    /// `OUT-STEM.pvd` rewritten with it added (time `n·dt`).
+    fn step(&mut self, job: &Job, s: &Snapshot) -> anyhow::Result<()> {
+        let dir = output_dir(&self.output);
+        let name = format!("{}_{:04}", file_stem(&self.output), s.report.step);
+        let coords = self.share_coords(&s.coords);
+        write_vtu_pieces(
+            self.world,
+            (&dir, &name),
+            &self.share.mesh,
+            &coords,
+            &self.orientation,
+        )?;
+        self.series.push((
+            s.report.step as f64 * job.settings.dt,
+            format!("{name}.pvtu"),
+        ));
+        let pvd = dir.join(format!("{}.pvd", file_stem(&self.output)));
+        let written = match self.world.rank() {
+            0 => verbss::io::pvd::write(&pvd, &self.series),
+            _ => Ok(()),
+        };
+        told(agree(self.world, written, "could not write the .pvd"))
+    }
+
+    fn last(&mut self, _: &Job, coords: &[f64], _: usize) -> anyhow::Result<PathBuf> {
+        let coords = self.share_coords(coords);
+        write(
+            self.world,
+            (&self.output, self.binary),
+            self.share,
+            &coords,
+            &self.orientation,
+        )?;
+        Ok(PathBuf::from(written_name(&self.output, self.world.size())))
+    }
+
+    fn failed(&mut self, _: &Job, s: &Snapshot) -> anyhow::Result<PathBuf> {
+        let coords = self.share_coords(&s.coords);
+        write_failed(
+            self.world,
+            &self.output,
+            &self.share.mesh,
+            &coords,
+            &self.orientation,
+        )
+    }
+}
 
 /// Whether `path` has the extension `ext`, in any case.
 pub fn has_extension(path: &Path, ext: &str) -> bool {
@@ -34,28 +147,28 @@ pub fn has_extension(path: &Path, ext: &str) -> bool {
 /// Before the solve (collective): makes the folders of the output, of the
 /// report and of the gathered mesh (`gather`), and fails on every rank
 /// where a rank's MSH piece would replace a file of the input (`input`, or
-/// with `split` the `partitions` files of its set), unless `--overwrite`.
+/// with `split` the files of its set), unless `--overwrite`.
 pub fn prepare_output(
     world: &Comm,
-    (job, gather): (&ShareJob, Option<&Path>),
+    (pieces, job, gather): (&Pieces, &Job, Option<&Path>),
     input: &Path,
     split: bool,
-    partitions: usize,
 ) -> anyhow::Result<()> {
-    let dir = output_dir(&job.output);
+    let output = &pieces.output;
+    let dir = output_dir(output);
     let check = || -> anyhow::Result<()> {
-        let outputs = [Some(job.output.as_path()), job.report.as_deref(), gather];
+        let outputs = [Some(output.as_path()), job.report.as_deref(), gather];
         for folder in outputs.into_iter().flatten().map(output_dir) {
             std::fs::create_dir_all(&folder).map_err(|e| {
                 anyhow::anyhow!("{}: cannot make the folder: {e}", folder.display())
             })?;
         }
-        if job.overwrite || !has_extension(&job.output, "msh") {
+        if pieces.overwrite || !has_extension(output, "msh") {
             return Ok(());
         }
-        let piece = split_path(&dir, &file_stem(&job.output), world.rank() as usize + 1);
+        let piece = split_path(&dir, &file_stem(output), world.rank() as usize + 1);
         let inputs = if split {
-            (1..=partitions)
+            (1..=pieces.share.partitions)
                 .map(|k| split_file(input, k))
                 .collect::<verbss::Result<Vec<_>>>()?
         } else {

@@ -10,9 +10,9 @@
 
 use std::path::{Path, PathBuf};
 
-use verbss::deform::Reference;
 use verbss::mesh::CellKind;
 use verbss::motion::Motion;
+use verbss::settings::Reference;
 use verbss::{io, Mesh};
 use verbss_testkit::needs;
 

@@ -9,8 +9,8 @@
 //! `VERBSS_MPI_CHUNK_LINES`). A bad file stops every rank with the
 //! whole-file reader's message, once, and exit code 2.
 
-use verbss::deform::Reference;
 use verbss::mesh::CellKind;
+use verbss::settings::Reference;
 use verbss::{io, Mesh};
 
 mod common;

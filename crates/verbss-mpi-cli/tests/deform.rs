@@ -10,10 +10,11 @@ use std::process::{Command, Output};
 
 mod common;
 
-use verbss::deform::{Deformer, Predictor, Reference, Settings};
+use verbss::deform::Deformer;
 use verbss::io::{self, WriteOptions};
 use verbss::motion::{Attachment, Motion};
 use verbss::robust::Robust;
+use verbss::settings::{Predictor, Reference, Settings};
 use verbss::Mesh;
 use verbss_testkit::{needs, python};
 

@@ -1,4 +1,5 @@
-//! Running a `verbss deform` job over the ranks of `MPI_COMM_WORLD`:
+//! Running a `verbss deform` job over the ranks of `MPI_COMM_WORLD`, every
+//! rank holding the whole mesh:
 //! `verbss`'s own runner ([`verbss_cli::run::execute`]) with the
 //! distributed stepper, rank 0 writing the outputs, and the per-rank pieces
 //! added.
@@ -7,7 +8,7 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::sync::Arc;
 
-use verbss_cli::run::{execute, Prepared};
+use verbss_cli::run::{execute, Files, Prepared};
 use verbss_mpi::pieces::{write_piece, write_pvtu};
 use verbss_mpi::share::agree;
 use verbss_mpi::stepper::stepper;
@@ -32,7 +33,14 @@ pub fn run_distributed(mut prepared: Prepared) -> anyhow::Result<ExitCode> {
         job.deformer_settings(&prepared.recorder),
     )?;
     let quiet = prepared.quiet || !root;
-    let mut summary = execute(job, &mut stepper, quiet, root, &mut prepared.recorder)?;
+    let mut summary = execute(
+        job,
+        &mut stepper,
+        quiet,
+        root,
+        &mut prepared.recorder,
+        &mut Files::new(root),
+    )?;
     summary.ranks = Some(world.size() as usize);
     if summary.failure.is_none() {
         let current = stepper.current();

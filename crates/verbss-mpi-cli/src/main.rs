@@ -2,22 +2,23 @@
 //! sweeps spread over N MPI ranks.
 //!
 //! The arguments are those of `verbss deform`, parsed and prepared by the
-//! command line's library ([`verbss_cli::deform`]), so every option of
-//! `verbss deform` is an option here (settings the distributed sweeps cannot
-//! do are refused with exit 2 before the first step). Only the stepper
-//! differs ([`run::run_distributed`]): the steps go through
-//! [`verbss_mpi::stepper::Stepper`]. Rank 0 prints and writes OUT and the
-//! report; every rank writes its piece `OUT-STEM_RANK.vtu` beside OUT, and
-//! rank 0 the `OUT-STEM.pvtu` joining them.
+//! command line's library ([`verbss_cli::deform`]), and the steps are those
+//! of the one deformer ([`verbss::deform::Deformer`]) run by `verbss`'s own
+//! runner ([`verbss_cli::run::execute`]), on one of two domains:
 //!
-//! A `.pvtu` output or `--pieces`, from a partitioned MSH 4.1 input, an
-//! SU2 input or a CGNS input, goes another way ([`share_run::run_shares`]):
-//! every rank reads only its own partitions (MSH), rank 0 streams the file
-//! to the others (SU2, [`su2`]) or every rank reads its own blocks (CGNS,
-//! [`cgns`]) and PT-Scotch cuts it; every rank writes only its own cells
-//! (a `.vtu` or an MSH 4.1 piece), and no rank holds the whole mesh. With
-//! `--split`, the MSH input is a set of files, one a partition (`gmsh
-//! -part_split`, or the pieces of an earlier run), each rank reading its own.
+//! * every rank holds the whole mesh ([`run::run_distributed`]): the
+//!   springs are solved over the ranks ([`verbss_mpi::stepper`]); rank 0
+//!   prints and writes OUT and the report; every rank writes its piece
+//!   `OUT-STEM_RANK.vtu` beside OUT, and rank 0 the `OUT-STEM.pvtu`
+//!   joining them;
+//! * a `.pvtu` output or `--pieces`, from a partitioned MSH 4.1 input, an
+//!   SU2 input or a CGNS input ([`parts::run_parts`]): no rank holds the
+//!   whole mesh; every rank reads only its own partitions (MSH), rank 0
+//!   streams the file to the others (SU2, [`su2`]) or every rank reads its
+//!   own blocks (CGNS, [`cgns`]) and PT-Scotch cuts it; every rank writes
+//!   only its own cells (a `.vtu` or an MSH 4.1 piece). With `--split`, the
+//!   MSH input is a set of files, one a partition (`gmsh -part_split`, or
+//!   the pieces of an earlier run), each rank reading its own.
 //!
 //! Exit codes as `verbss`: 0 success, 2 bad input, 3 an inverted element,
 //! 4 a step no solver could solve. Built without MPI or METIS (see
@@ -30,17 +31,11 @@ mod cgns;
 #[cfg(with_mpi)]
 mod gather;
 #[cfg(with_mpi)]
+mod parts;
+#[cfg(with_mpi)]
+mod pieces_out;
+#[cfg(with_mpi)]
 mod run;
-#[cfg(with_mpi)]
-mod share_attempt;
-#[cfg(with_mpi)]
-mod share_blend;
-#[cfg(with_mpi)]
-mod share_report;
-#[cfg(with_mpi)]
-mod share_run;
-#[cfg(with_mpi)]
-mod share_write;
 #[cfg(with_mpi)]
 mod su2;
 
@@ -115,8 +110,8 @@ fn main() -> ExitCode {
         }
     };
     let result = match cli.command {
-        Command::Deform(args) if args.pieces || share_run::applies(&args.deform) => {
-            share_run::run_shares(args.deform, args.gather, args.split)
+        Command::Deform(args) if args.pieces || parts::applies(&args.deform) => {
+            parts::run_parts(args.deform, args.gather, args.split)
         }
         Command::Deform(args) if args.split => Err(anyhow::anyhow!(
             "--split {}: a split set is read rank by rank, for --pieces or a .pvtu output",

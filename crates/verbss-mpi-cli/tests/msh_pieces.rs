@@ -14,8 +14,8 @@
 
 use std::path::Path;
 
-use verbss::deform::Reference;
 use verbss::io;
+use verbss::settings::Reference;
 
 mod common;
 mod like_one_process;

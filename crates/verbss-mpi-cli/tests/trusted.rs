@@ -75,7 +75,7 @@ fn naca0012_pitched() -> (std::path::PathBuf, verbss::Mesh) {
         "airfoil",
         motion,
         1,
-        verbss::deform::Reference::Updated,
+        verbss::settings::Reference::Updated,
     );
     (mesh, exact)
 }

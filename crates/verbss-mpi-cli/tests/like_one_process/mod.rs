@@ -6,9 +6,10 @@
 use std::collections::{BTreeSet, HashMap};
 use std::path::{Path, PathBuf};
 
-use verbss::deform::{Deformer, Preset, Reference, StepReport};
+use verbss::deform::{Deformer, StepReport};
 use verbss::motion::{Attachment, Motion};
 use verbss::robust::Robust;
+use verbss::settings::{Preset, Reference};
 use verbss::Mesh;
 
 use crate::common;

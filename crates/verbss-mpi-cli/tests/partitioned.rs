@@ -19,8 +19,8 @@
 use std::collections::{BTreeSet, HashMap};
 use std::path::{Path, PathBuf};
 
-use verbss::deform::Reference;
 use verbss::io::gmsh::partitioned::{partition_count, read_share};
+use verbss::settings::Reference;
 use verbss::solve::{default_roles, Engine, Method, SolveParams, Solver};
 use verbss::Mesh;
 use verbss_mpi::share::partitions_of;

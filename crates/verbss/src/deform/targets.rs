@@ -1,0 +1,153 @@
+//! Where the prescribed nodes are at a step: the moving nodes where their
+//! bodies' motions put them, the rigid-layer nodes with their bodies.
+//!
+//! A layer node follows its body's motion evaluated at the node itself
+//! where the motion is a field (exactly rigid for a rigid body), and the
+//! displacement of its nearest node of the body where the body moves by
+//! given positions (carried along the wall normal). That nearest node may
+//! be another process's: then every step gathers the displacements of the
+//! nodes some layer node follows ([`Anchors`]).
+
+use std::collections::HashMap;
+
+use super::roles::Plan;
+use super::Deformer;
+use crate::collective::{agree, Collective};
+use crate::error::Result;
+use crate::mesh::Mesh;
+use crate::motion::Clock;
+use crate::solve::{NodeRole, SpringSolver};
+
+/// The body nodes that layer nodes follow by their displacement, when some
+/// process holds a layer node whose nearest body node it does not hold:
+/// their tags, over every process, in increasing order.
+pub(super) struct Anchors {
+    shared: Option<Vec<u64>>,
+}
+
+impl Anchors {
+    /// The anchors of the `layer` nodes of the local `mesh` planned by
+    /// `plan` (collective).
+    pub(super) fn new(
+        mesh: &Mesh,
+        plan: &Plan,
+        layer: &[(usize, Option<(usize, u64)>, NodeRole)],
+        on: &dyn Collective,
+    ) -> Anchors {
+        let needed: Vec<u64> = layer
+            .iter()
+            .filter_map(|(_, body, _)| body.map(|(_, tag)| tag))
+            .collect();
+        let held: std::collections::HashSet<u64> = plan
+            .moving
+            .iter()
+            .map(|&(i, _)| mesh.node_tags[i])
+            .collect();
+        let mut missing = [f64::from(u8::from(
+            needed.iter().any(|t| !held.contains(t)),
+        ))];
+        on.max(&mut missing);
+        if missing[0] == 0.0 {
+            return Anchors { shared: None };
+        }
+        let wanted: Vec<f64> = needed.iter().map(|&t| t as f64).collect();
+        let mut all: Vec<u64> = on.gather(&wanted).into_iter().map(|t| t as u64).collect();
+        all.sort_unstable();
+        all.dedup();
+        Anchors { shared: Some(all) }
+    }
+}
+
+impl<S: SpringSolver, C: Collective> Deformer<S, C> {
+    /// The global number of local node `i`: a positions file's node id.
+    fn global_of(&self, i: usize) -> usize {
+        self.global.get(i).map_or(i, |&g| g as usize)
+    }
+
+    /// Where the prescribed nodes (moving and rigid-layer) are at step `n`
+    /// (collective).
+    pub fn targets(&self, n: usize) -> Result<Vec<(usize, Vec<f64>)>> {
+        agree(&self.on, self.local_targets(n))
+    }
+
+    /// [`Deformer::targets`] of this process.
+    fn local_targets(&self, n: usize) -> Result<Vec<(usize, Vec<f64>)>> {
+        let clock = Clock {
+            step: n,
+            steps: self.settings.steps,
+            dt: self.settings.dt,
+        };
+        let dim = self.mesh.dim;
+        let frames = self
+            .motions
+            .iter()
+            .map(|m| m.frame(clock, self.size.0, dim))
+            .collect::<Result<Vec<_>>>()?;
+        let mut targets = Vec::with_capacity(self.moving.len() + self.layer.len());
+        for &(node, b) in &self.moving {
+            let mut p = self.mesh.point(node).to_vec();
+            for &m in &self.bodies[b] {
+                self.motions[m].apply(self.global_of(node), &mut p, clock, &frames[m])?;
+            }
+            targets.push((node, p));
+        }
+        let is_field = |b: usize| self.bodies[b].iter().all(|&m| self.motions[m].is_field());
+        let displaced = (0..self.bodies.len())
+            .any(|b| !is_field(b))
+            .then(|| self.anchor_displacements(&targets));
+        for &(node, body, role) in &self.layer {
+            let mut p = self.mesh.point(node).to_vec();
+            match body {
+                Some((b, _)) if is_field(b) => {
+                    for &m in &self.bodies[b] {
+                        self.motions[m].apply(self.global_of(node), &mut p, clock, &frames[m])?;
+                    }
+                }
+                Some((_, tag)) => {
+                    if let Some(d) = displaced.as_ref().and_then(|map| map.get(&tag)) {
+                        for (x, dx) in p.iter_mut().zip(d) {
+                            *x += dx;
+                        }
+                    }
+                }
+                None => {}
+            }
+            let x = &self.current.coords[dim * node..dim * (node + 1)];
+            role.keep_on(&self.normals, &mut p, x);
+            targets.push((node, p));
+        }
+        Ok(targets)
+    }
+
+    /// The displacement at this step of every moving node a layer node
+    /// follows, by tag: this process's, and where [`Anchors`] says so every
+    /// process's owned ones (collective).
+    fn anchor_displacements(&self, targets: &[(usize, Vec<f64>)]) -> HashMap<u64, Vec<f64>> {
+        let dim = self.mesh.dim;
+        let displacement = |(node, p): &(usize, Vec<f64>)| -> Vec<f64> {
+            let x = self.mesh.point(*node);
+            p.iter().zip(x).map(|(a, b)| a - b).collect()
+        };
+        let moving = &targets[..self.moving.len()];
+        let mut map: HashMap<u64, Vec<f64>> = moving
+            .iter()
+            .map(|t| (self.mesh.node_tags[t.0], displacement(t)))
+            .collect();
+        if let Some(shared) = &self.anchors.shared {
+            let mine: Vec<f64> = moving
+                .iter()
+                .filter(|(node, _)| self.on.owns(*node))
+                .filter(|(node, _)| shared.binary_search(&self.mesh.node_tags[*node]).is_ok())
+                .flat_map(|t| {
+                    let mut row = vec![self.mesh.node_tags[t.0] as f64];
+                    row.extend(displacement(t));
+                    row
+                })
+                .collect();
+            for row in self.on.gather(&mine).chunks_exact(1 + dim) {
+                map.insert(row[0] as u64, row[1..].to_vec());
+            }
+        }
+        map
+    }
+}
