@@ -141,26 +141,15 @@ const char *verbss_last_error(void);
 // `out` must point to a writable pointer.
 int verbss_settings_new(struct VerbssSettings **out);
 
-// Sets the setting `name` to `value`, both as `verbss deform` spells them,
-// with `_` for `-` in the names (the case file's keys, Python's keywords):
+// Sets the setting `name` to `value`, both as the library's table of
+// settings spells them (docs/case-file.md: the case file's `[solver]` keys,
+// `verbss deform`'s options with `_` for `-`): `method` first sets every
+// other setting to its preset's value, whatever the order of the calls; a
+// `solver`, `accel` or `omega` given means exactly that solver (no
+// escalation unless `escalate` is set to `on`); `threads` is one per core
+// unless set.
 //
-// - `method`: `robust` (the default: VerBSS with the near-wall treatments
-//   of docs/robustness.md), `verbss` (the paper's method), `ball-vertex`,
-//   `spring` or `laplacian`; it sets the near-wall treatments below to its
-//   own, whatever the order of the calls;
-// - `solver` (`sor`, `direct`, for `ball-vertex`), `accel` (`none`, `amg`,
-//   `auto`), `omega` (in (0, 2), default 1.6): given, exactly that solver,
-//   with no escalation to GMRES, the multigrid and the direct solve;
-// - `tolerance` (default 1e-6, relative to the step's largest boundary
-//   displacement), `absolute_tolerance` (`on`, `off`), `max_iterations`
-//   (default 2000), `threads` (0: one per core; the results do not depend
-//   on it);
-// - `reference` (`updated`, `fixed`, also `initial`), `predictor`
-//   (`previous`, `linear`);
-// - `rigid_layer` (`off`, `auto` or a wall distance), `substeps` (0 to
-//   30), `stiffening` (an exponent ≥ 0), `blend` (`on`, `off`).
-//
-// A name or a value that is not one of these returns
+// A name or a value that is not one of the table's returns
 // `VERBSS_ERROR_INPUT` and changes nothing; `verbss_deformer_new` checks
 // how the values go together. Setting a name again replaces its value.
 //
@@ -168,10 +157,11 @@ int verbss_settings_new(struct VerbssSettings **out);
 // `settings` must be live settings; `name` and `value` NUL-terminated strings.
 int verbss_settings_set(struct VerbssSettings *settings, const char *name, const char *value);
 
-// `verbss_settings_set` with a number: `tolerance`, `omega`, `stiffening`,
-// `rigid_layer` (a wall distance), and the whole numbers `max_iterations`,
-// `threads` and `substeps`. The number is written exactly (its shortest
-// decimal form that reads back as the same `double`).
+// `verbss_settings_set` with a number, for the settings whose values are
+// numbers (`tolerance`, `omega`, a `rigid_layer` wall distance, the whole
+// numbers `max_iterations`, `threads`, `substeps`, …: docs/case-file.md).
+// The number is written exactly (its shortest decimal form that reads
+// back as the same `double`).
 //
 // # Safety
 // `settings` must be live settings; `name` a NUL-terminated string.

@@ -3,11 +3,11 @@
 //! `cfg(cgns_size64)` when its `cgsize_t` is 64 bits wide); otherwise the
 //! crate builds without CGNS and says so once (`cargo::warning`).
 //!
-//! The library: `$CGNS_DIR/include` and `$CGNS_DIR/lib` when set, else
-//! pkg-config's `cgns`, else the compiler's default paths (Debian's
-//! `libcgns-dev`). It is confirmed by compiling and linking a probe program.
-//! The reason for a build without it is passed on as `VERBSS_CGNS_MISSING`
-//! (empty when it was found).
+//! The library: `$CGNS_DIR/include` and `$CGNS_DIR/lib` when set, else the
+//! compiler's default paths (Debian's `libcgns-dev`). Its header is
+//! confirmed by compiling a probe program that calls it. The reason for a
+//! build without it is passed on as `VERBSS_CGNS_MISSING` (empty when it
+//! was found).
 
 fn main() {
     println!("cargo::rustc-check-cfg=cfg(with_cgns)");
@@ -24,30 +24,56 @@ mod cgns {
     use std::env;
     use std::path::PathBuf;
 
-    use verbss_build::{pkg_config, probe, Flags};
+    /// Compiles the C program `source` against the CGNS header in
+    /// `include` (none: the compiler's paths), quietly; the compiler's
+    /// first error when it does not compile.
+    fn compiles(include: Option<&PathBuf>, name: &str, source: &str) -> Result<(), String> {
+        let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
+        let file = out.join(format!("{name}.c"));
+        std::fs::write(&file, source).map_err(|e| format!("cannot write {}: {e}", file.display()))?;
+        let compiler = cc::Build::new()
+            .cargo_metadata(false)
+            .try_get_compiler()
+            .map_err(|e| format!("no C compiler: {e}"))?;
+        let mut command = compiler.to_command();
+        command
+            .arg("-c")
+            .arg(&file)
+            .arg("-o")
+            .arg(out.join(format!("{name}.o")));
+        if let Some(dir) = include {
+            command.arg(format!("-I{}", dir.display()));
+        }
+        let result = command
+            .output()
+            .map_err(|e| format!("cannot run the C compiler: {e}"))?;
+        if result.status.success() {
+            return Ok(());
+        }
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        let first = stderr
+            .lines()
+            .find(|l| l.contains("error"))
+            .unwrap_or("the probe program does not compile");
+        let at = first.find("error").unwrap_or(0);
+        Err(first[at..].trim().to_string())
+    }
 
     /// Finds, confirms and links the library, or says why not.
     pub fn find() {
-        for var in [
-            "CGNS_DIR",
-            "PKG_CONFIG",
-            "PKG_CONFIG_PATH",
-            "PKG_CONFIG_LIBDIR",
-        ] {
-            println!("cargo::rerun-if-env-changed={var}");
-        }
-        let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-        let flags = match env::var_os("CGNS_DIR") {
-            Some(dir) => Flags::under(&PathBuf::from(dir), "cgns"),
-            None => pkg_config("cgns").unwrap_or_else(|| Flags::lib("cgns")),
-        };
-        let links = "#include <cgnslib.h>\nint main(void) { return cg_get_error() == 0; }\n";
-        match probe(&flags, &out, "cgns_probe", links, false) {
+        println!("cargo::rerun-if-env-changed=CGNS_DIR");
+        let dir = env::var_os("CGNS_DIR").map(PathBuf::from);
+        let include = dir.as_ref().map(|d| d.join("include"));
+        let calls = "#include <cgnslib.h>\nint probe(void) { return cg_get_error() == 0; }\n";
+        match compiles(include.as_ref(), "verbss_cgns_probe", calls) {
             Ok(()) => {
-                flags.link();
+                if let Some(dir) = &dir {
+                    println!("cargo::rustc-link-search=native={}", dir.join("lib").display());
+                }
+                println!("cargo::rustc-link-lib=cgns");
                 let wide = "#include <cgnslib.h>\n\
                             _Static_assert(sizeof(cgsize_t) == 8, \"32-bit cgsize_t\");\n";
-                if probe(&flags, &out, "cgns_size", wide, true).is_ok() {
+                if compiles(include.as_ref(), "verbss_cgns_size", wide).is_ok() {
                     println!("cargo::rustc-cfg=cgns_size64");
                 }
                 println!("cargo::rustc-cfg=with_cgns");

@@ -1,6 +1,6 @@
-//! What the build scripts of `verbss` (the CGNS library) and `verbss-mpi`
-//! (MPI and METIS) share: a C library's flags, from pkg-config or a command
-//! line, confirmed by compiling a probe program against them.
+//! What the build script of `verbss-mpi` uses to find MPI, METIS and
+//! PT-Scotch: a C library's flags, from pkg-config or a command line,
+//! confirmed by compiling a probe program against them.
 
 use std::env;
 use std::path::{Path, PathBuf};

@@ -421,6 +421,20 @@ fn the_kind_constants_are_the_vtk_ids() {
     }
 }
 
+/// Every setting of the library's table is a C name, taken with its
+/// default and with each preset's value.
+#[test]
+fn every_setting_of_the_table_is_a_c_name() {
+    for setting in verbss::settings::TABLE {
+        let values = std::iter::once(setting.default).chain(setting.presets.iter().map(|(_, v)| *v));
+        for value in values {
+            let s = settings(&[]);
+            assert_eq!(set(s, setting.name, value).0, VERBSS_OK, "{} = {value}", setting.name);
+            assert_eq!(unsafe { verbss_settings_free(s) }, VERBSS_OK);
+        }
+    }
+}
+
 #[test]
 fn settings_are_named_as_on_the_command_line_and_checked_when_set() {
     let (p, k, n) = square();

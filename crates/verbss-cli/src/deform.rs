@@ -15,7 +15,7 @@ use anyhow::bail;
 use clap::{ArgGroup, Args};
 
 use verbss::io::{Format, WriteOptions};
-use verbss::motion::{Attachment, Motion, PositionSource};
+use verbss::motion::{Attachment, Motion, Numbering, PositionSource};
 use verbss::Mesh;
 
 use crate::msh::MshArgs;
@@ -126,19 +126,22 @@ pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
         // file's bytes; any other format frees them (the file's size).
         mesh.origin.gmsh = None;
     }
-    args.prepare_on(Arc::new(mesh), write_options)
+    args.prepare_on(Arc::new(mesh), &Numbering::default(), write_options)
 }
 
 impl DeformArgs {
     /// The job of these arguments on `mesh`: the input mesh, or one rank's
-    /// part of it (its groups all named), written with `write_options`:
-    /// checks the groups and decides the motion and the settings.
+    /// part of it (its groups all named, its nodes numbered by `numbering`
+    /// in a positions file), written with `write_options`: checks the
+    /// groups and decides the motion and the settings.
     pub fn prepare_on(
         &self,
         mesh: Arc<Mesh>,
+        numbering: &Numbering,
         write_options: WriteOptions,
     ) -> anyhow::Result<Prepared> {
-        let format = Format::from_path(&self.output)?;
+        // A rank's pieces (`.pvtu`) are not a format of one mesh.
+        let format = Format::from_path(&self.output).ok();
         let dim = mesh.dim;
         let slides = slides(&self.slide, dim)?;
         for g in self
@@ -154,7 +157,12 @@ impl DeformArgs {
             Some(motion) => motion,
             None => match &self.positions {
                 Some(path) => {
-                    Motion::Positions(PositionSource::for_groups(path, &mesh, &self.moving)?)
+                    Motion::Positions(PositionSource::for_groups(
+                        path,
+                        &mesh,
+                        &self.moving,
+                        numbering,
+                    )?)
                 }
                 None => unreachable!("clap requires one motion"),
             },
@@ -162,7 +170,7 @@ impl DeformArgs {
         let settings = self.settings.settings(self.steps)?;
         // `-o .` names its directory by its path only.
         let output = match format {
-            Format::Foam => std::path::absolute(&self.output)?.components().collect(),
+            Some(Format::Foam) => std::path::absolute(&self.output)?.components().collect(),
             _ => self.output.clone(),
         };
         let dir = output_dir(&output);
@@ -185,7 +193,7 @@ impl DeformArgs {
             report: self.report.clone(),
             // As given (`UP.SU2` stays `UP.SU2`).
             extension: output.extension().map_or_else(
-                || format.extension().into(),
+                || format.map_or("", Format::extension).into(),
                 |e| e.to_string_lossy().into_owned(),
             ),
             dir,

@@ -51,7 +51,7 @@ fn the_default_blends_a_rigid_pitch_and_solves_nothing() {
     let (o, r) = pitch_cgrid(dir.path(), &[]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(r["settings"]["method"], "robust");
-    assert_eq!(r["settings"]["robust"]["blend"], true);
+    assert_eq!(r["settings"]["blend"], true);
     for step in &r["steps"].as_array().unwrap()[1..] {
         assert_eq!(step["stages"].as_array().unwrap().len(), 0, "{step}");
         assert_eq!(step["iterations"], 0);
@@ -67,14 +67,14 @@ fn the_default_escalates_where_the_sweeps_diverge_and_records_what_ran() {
     assert!(o.status.success(), "{}", stderr(&o));
     let s = &r["settings"];
     assert_eq!(s["method"], "verbss");
-    assert_eq!(s["robust"]["blend"], false);
-    assert_eq!(s["solve"]["escalate"], true);
-    assert_eq!(s["solve"]["accel"], "none");
+    assert_eq!(s["blend"], false);
+    assert_eq!(s["escalate"], true);
+    assert_eq!(s["accel"], "none");
     assert_eq!(s["predictor"], "previous");
-    assert_eq!(s["robust"]["layer"], "auto");
-    assert_eq!(s["robust"]["stiffening"], 1.0);
-    assert_eq!(s["robust"]["substeps"], 6);
-    assert_eq!(s["solve"]["omega"], 1.6);
+    assert_eq!(s["rigid_layer"], "auto");
+    assert_eq!(s["stiffening"], 1.0);
+    assert_eq!(s["substeps"], 6);
+    assert_eq!(s["omega"], 1.6);
     let steps = r["steps"].as_array().unwrap();
     assert_eq!(steps.len(), 4);
     let first: Vec<&str> = steps[1]["stages"]
@@ -110,7 +110,7 @@ fn an_explicit_omega_means_that_solver_only_and_a_diverged_solve_is_exit_4() {
         "{e}"
     );
     assert!(!e.contains("invalid setting"), "{e}");
-    assert_eq!(r["settings"]["solve"]["escalate"], false);
+    assert_eq!(r["settings"]["escalate"], false);
     assert!(r["outcome"].as_str().unwrap().contains("did not converge"));
     // As for an inversion: the last valid mesh (the input) and the failed state.
     assert!(dir.path().join("pitched.msh").exists());

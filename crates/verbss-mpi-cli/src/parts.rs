@@ -21,7 +21,9 @@ use verbss::io::WriteOptions;
 use verbss_cli::deform::DeformArgs;
 use verbss_cli::run::execute;
 use verbss_mpi::domain::PartDomain;
-use verbss_mpi::share::{global_numbers, partitions_of, read_rank_share, read_rank_split};
+use verbss_mpi::share::{
+    agree, global_numbers, partitions_of, read_rank_share, read_rank_split,
+};
 use verbss_mpi::Comm;
 
 use crate::cgns;
@@ -124,7 +126,12 @@ pub fn run_parts(
         &global_numbers(&share),
         &names,
     ))?;
-    let mut prepared = args.prepare_on(part.mesh.clone(), WriteOptions::default())?;
+    let mut prepared = told(agree(
+        &world,
+        args.prepare_on(part.mesh.clone(), &part.numbering(), WriteOptions::default())
+            .map_err(|e| verbss::Error::InvalidSetting(e.to_string())),
+        "could not prepare the job",
+    ))?;
     let job = &prepared.job;
     let mut pieces = Pieces::new(&world, &args, &share, part.local())?;
     prepare_output(

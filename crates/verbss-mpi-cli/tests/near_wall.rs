@@ -43,6 +43,7 @@ fn treatments<'a>(layer: Layer, args: &'a [&'a str]) -> NearWall<'a> {
         method: "verbss",
         robust,
         args,
+        slides: &[],
         steps: 2,
         stages: "sweeps",
     }
@@ -254,7 +255,7 @@ fn sub_steps_lift_the_channel_hole_as_on_one_process() {
     robust.substeps = 6;
     let (_, reports, _) = single_with(
         &whole,
-        "wall",
+        ("wall", &[]),
         translation,
         1,
         Reference::Updated,
@@ -268,6 +269,7 @@ fn sub_steps_lift_the_channel_hole_as_on_one_process() {
         method: "verbss",
         robust,
         args: &["--substeps", "6"],
+        slides: &[],
         steps: 1,
         stages: "sweeps → gmres",
     };
@@ -291,6 +293,7 @@ fn default_method(steps: usize, stages: &str) -> NearWall<'_> {
         method: "robust",
         robust: Robust::recommended(),
         args: &[],
+        slides: &[],
         steps,
         stages,
     }

@@ -9,7 +9,7 @@ use std::sync::Arc;
 
 use verbss::deform::{Deformer, Domain};
 use verbss::mesh::FileOrigin;
-use verbss::motion::Attachment;
+use verbss::motion::{Attachment, Numbering};
 use verbss::settings::Settings;
 use verbss::solve::{SolveInfo, SolveParams, SpringSolver};
 use verbss::{Mesh, Result};
@@ -28,6 +28,8 @@ pub struct PartDomain<'c> {
     ghosts: Ghosts,
     /// The part as a mesh: its nodes (owned and ghosts), cells and groups.
     pub mesh: Arc<Mesh>,
+    /// The whole mesh's node count.
+    total: usize,
 }
 
 impl<'c> PartDomain<'c> {
@@ -53,11 +55,24 @@ impl<'c> PartDomain<'c> {
             groups,
             origin: FileOrigin::default(),
         };
+        let owned = part.owner.iter().filter(|&&o| o == part.rank).count();
         Ok(PartDomain {
+            total: comm.sum(owned as u64) as usize,
             comm,
             ghosts,
             mesh: Arc::new(mesh),
         })
+    }
+
+    /// How the part's nodes are numbered in a positions file: their global
+    /// numbers.
+    pub fn numbering(&self) -> Numbering {
+        let part = &self.ghosts.part;
+        Numbering {
+            global: part.global.clone(),
+            owned: (0..part.node_count()).map(|i| part.owns(i)).collect(),
+            total: Some(self.total),
+        }
     }
 
     /// The share's node `i`'s index in the part.
@@ -72,7 +87,9 @@ impl<'c> PartDomain<'c> {
         attachments: &[Attachment],
         settings: Settings,
     ) -> Result<PartDeformer<'c>> {
-        let PartDomain { comm, ghosts, mesh } = self;
+        let PartDomain {
+            comm, ghosts, mesh, ..
+        } = self;
         let domain = Domain {
             global: ghosts.part.global.clone(),
             on: Ranks::new(comm, ghosts.part.owner.clone(), ghosts.halo.clone()),

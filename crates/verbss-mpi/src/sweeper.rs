@@ -26,7 +26,7 @@ use verbss::geometry::{ldlt_factor, morton_keys, packed_len, point};
 use verbss::solve::verify::{block_estimate, check, heights};
 use verbss::solve::{
     coupled, relax, unit_directions, Accel, Frames, Method, NodeRole, SolveInfo, SolveParams,
-    Stage, ERROR_FRACTION, ROUND_OFF,
+    Stage, ERROR_FRACTION,
 };
 use verbss::springs::{self, CellTags, Connectivity, NodeBlocks, Springs};
 use verbss::topology;
@@ -184,7 +184,7 @@ impl<'c> Sweeper<'c> {
     }
 
     /// [`Sweeper::solve`] to round-off, from the guess in `displacement`:
-    /// GMRES preconditioned by the sweep until the residual is [`ROUND_OFF`]
+    /// GMRES preconditioned by the sweep until the residual is [`verbss::solve::ROUND_OFF`]
     /// of the largest prescribed displacement, at most
     /// `EXACT_ITERATIONS` (1,600) (the iterative stage of
     /// [`verbss::solve::Engine::solve_exact`]).
@@ -410,7 +410,7 @@ impl<'c> Sweeper<'c> {
             info.iterations = outcome.iterations;
             info.residual = outcome.estimate;
             if outcome.converged && !outcome.diverged {
-                info.error_ratio = self.error_ratio::<D>(b, &constant, &work);
+                (info.error_ratio, info.true_residual) = self.error_ratio::<D>(b, &constant, &work);
                 info.converged = info.error_ratio <= ERROR_FRACTION;
             }
             self.scatter::<D>(b, &work, displacement);
@@ -421,6 +421,7 @@ impl<'c> Sweeper<'c> {
         // by sweeps with ω = 1 (Stage::SafeSweeps): each from the initial
         // guess after a divergence, from the last iterate otherwise.
         let initial = work.clone();
+        info.stages.push(Stage::Sweeps);
         let swept = self.sweeps::<D>(
             b,
             &constant,
@@ -452,7 +453,7 @@ impl<'c> Sweeper<'c> {
             if outcome.diverged {
                 work.copy_from_slice(&initial);
             } else if outcome.converged {
-                info.error_ratio = self.error_ratio::<D>(b, &constant, &work);
+                (info.error_ratio, info.true_residual) = self.error_ratio::<D>(b, &constant, &work);
                 info.converged = info.error_ratio <= ERROR_FRACTION;
             }
         }
@@ -518,7 +519,7 @@ impl<'c> Sweeper<'c> {
                 if !params.escalate {
                     return Swept::Accepted;
                 }
-                info.error_ratio = self.error_ratio::<D>(b, constant, work);
+                (info.error_ratio, info.true_residual) = self.error_ratio::<D>(b, constant, work);
                 if info.error_ratio <= ERROR_FRACTION {
                     return Swept::Accepted;
                 }
@@ -531,14 +532,20 @@ impl<'c> Sweeper<'c> {
     /// `max_p |e_p| / h_p` over every rank's owned unknowns (collective):
     /// the single process's [`check`] with its [`block_estimate`], the
     /// Jacobi step that puts position `p` where its springs hold it given
-    /// its neighbours, over `h_p` its local size.
-    fn error_ratio<const D: usize>(&self, b: &Built, constant: &[f64], work: &[f64]) -> f64 {
+    /// its neighbours, over `h_p` its local size; and the root-mean-square
+    /// true residual over them.
+    fn error_ratio<const D: usize>(&self, b: &Built, constant: &[f64], work: &[f64]) -> (f64, f64) {
         let local = check::<D, _>(work, &b.heights, |p, w| {
             let rhs = coupled::<D>(&b.blocks, constant, p, w);
             let factor = &b.blocks.diag[packed_len(D) * p..packed_len(D) * (p + 1)];
             block_estimate::<D>(factor, &rhs, &point::<D>(w, p), b.frames.get::<D>(p))
         });
-        self.comm.max(local.error_ratio)
+        // The root-mean-square over every rank's unknowns.
+        let m = b.heights.len() as f64;
+        let sums = self
+            .comm
+            .sums(&[local.true_residual * local.true_residual * m, m]);
+        (self.comm.max(local.error_ratio), (sums[0] / sums[1].max(1.0)).sqrt())
     }
 
     /// The owned prescribed nodes.

@@ -12,7 +12,7 @@ use serde::Deserialize;
 use crate::error::{Error, Result};
 use crate::io::{MshVersion, WriteOptions};
 use crate::mesh::Mesh;
-use crate::motion::{Attachment, Motion, PositionSource};
+use crate::motion::{Numbering, Attachment, Motion, PositionSource};
 use crate::settings::Settings;
 
 /// The largest case file [`Case::read`] reads (1 MiB: it holds settings;
@@ -436,7 +436,12 @@ impl Case {
                 },
                 MotionSpec::Positions { file, files, .. } => match (file, files) {
                     (Some(f), None) => {
-                        Motion::Positions(PositionSource::for_groups(&base.join(f), mesh, spec.groups())?)
+                        Motion::Positions(PositionSource::for_groups(
+                            &base.join(f),
+                            mesh,
+                            spec.groups(),
+                            &Numbering::default(),
+                        )?)
                     }
                     (None, Some(pattern)) => {
                         Motion::Positions(PositionSource::PerStep(base.join(pattern)))

@@ -53,9 +53,9 @@ pub fn agree<T>(on: &dyn Collective, result: Result<T>) -> Result<T> {
         return result;
     };
     let all = on.gather(&text);
-    if result.is_err() {
+    let Ok(_) = &result else {
         return result;
-    }
+    };
     let start = lengths[..first].iter().sum::<f64>() as usize;
     let bytes: Vec<u8> = all[start..start + lengths[first] as usize]
         .iter()

@@ -42,7 +42,7 @@ use crate::collective::{agree, Collective, Whole};
 use crate::error::{format_point, Error, Result};
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Motion};
-use crate::robust::{self, Bounds};
+use crate::robust::{self, Bounds, Follows};
 use crate::settings::{Reference, Settings};
 use crate::solve::{Engine, NodeRole, SolverSetup, SpringSolver};
 use crate::topology;
@@ -114,7 +114,7 @@ pub struct Deformer<S = Engine, C = Whole> {
     /// Rigid-layer nodes, the body each follows with the tag of its nearest
     /// node of it (`None`: it stays, near a fixed wall), and its role
     /// before it was prescribed (a sliding node keeps to its plane or line).
-    layer: Vec<(usize, Option<(usize, u64)>, NodeRole)>,
+    layer: Vec<(usize, Follows, NodeRole)>,
     /// Where the layer nodes that follow a body moved by given positions
     /// find their nearest node's displacement ([`targets::Anchors`]).
     anchors: targets::Anchors,
@@ -225,7 +225,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
             &settings.robust,
             &on,
         )?;
-        let layer: Vec<(usize, Option<(usize, u64)>, NodeRole)> = rigid
+        let layer: Vec<(usize, Follows, NodeRole)> = rigid
             .nodes
             .iter()
             .map(|&(i, body)| {

@@ -63,15 +63,6 @@ pub fn corner_jacobian<const D: usize>(
     det::<D>(&e)
 }
 
-/// Moves `x` back into the plane through `base` with unit normal `n`,
-/// `x ← x − ((x − base)·n) n`, over the first `x.len()` components.
-pub fn keep_in_plane(x: &mut [f64], base: &[f64], n: &[f64; 3]) {
-    let off: f64 = (0..x.len()).map(|d| (x[d] - base[d]) * n[d]).sum();
-    for (d, xd) in x.iter_mut().enumerate() {
-        *xd -= off * n[d];
-    }
-}
-
 /// Number of stored entries of a packed symmetric `D×D` matrix: `D(D+1)/2`.
 #[inline(always)]
 pub const fn packed_len(d: usize) -> usize {

@@ -7,19 +7,23 @@
 //! hybrid meshes"): edge springs plus ball-vertex springs, solved node by node
 //! with small LDLᵀ block solves and over-relaxation.
 //!
-//! The pipeline, one module per concept:
+//! The pipeline, one module per concept (ARCHITECTURE.md follows one step
+//! through them):
 //!
 //! | module | what it holds |
 //! |---|---|
-//! | [`io`] | Gmsh MSH 2.2/4.1, SU2, VTU/PVD, positions files: file in, [`Mesh`] out |
+//! | [`io`] | the formats: Gmsh MSH 2.2/4.1, SU2, VTU/PVD, CGNS, OpenFOAM polyMesh, positions files: file in, [`Mesh`] out, moved mesh back |
 //! | [`mesh`] | the [`Mesh`] (flat coordinates, cells, named groups) and per-kind tables |
 //! | [`topology`] | node→cell, edges, boundary facets and nodes, colouring, BFS layers |
 //! | [`geometry`] | small fixed-size kernels: determinants, nearest points, LDLᵀ |
-//! | [`quality`] | ρ = C r/R, scaled Jacobians, inversion check, the paper's histogram |
+//! | [`quality`] | ρ = C r/R, scaled Jacobians, the validity of a cell, the paper's histogram |
 //! | [`springs`] | assembles the node-block system `K_ii u_i = Σ_j B_ij u_j` |
-//! | [`solve`] | the [`solve::Engine`]: VerBSS block SOR, scalar SOR, sparse LU, Laplacian; the multigrid-accelerated solve |
+//! | [`solve`] | the [`solve::Engine`]: VerBSS block SOR, scalar SOR, sparse LU, Laplacian; the multigrid; the escalation |
 //! | [`motion`] | boundary motions: translation, rotation, pitch–plunge, undulation, bending, positions |
-//! | [`deform`] | the stepper: motion → system → solve → update → inversion check |
+//! | [`settings`] | the one table of settings and the presets |
+//! | [`robust`] | the near-wall treatments: rigid layer, wall-distance stiffening |
+//! | [`deform`] | the stepper: motion → system → solve → update → check, on a whole mesh or a rank's part |
+//! | [`collective`] | sums, maxima and ghost values over the processes sharing a mesh |
 //! | [`case`], [`report`] | the TOML case file and `report.json` |
 //! | [`generate`] | built-in meshes (the demo's NACA0012 O-grid) |
 //!

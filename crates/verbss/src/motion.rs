@@ -415,24 +415,52 @@ impl PositionSource {
         Ok(final_positions(&table))
     }
 
-    /// [`PositionSource::from_file`] for the nodes of `groups` of `mesh`: a
-    /// line naming a node on none of them is an error.
+    /// [`PositionSource::from_file`] for the nodes of `groups` of `mesh`,
+    /// numbered as `numbering` says (a whole mesh, or one process's part):
+    /// a line naming a node on none of them is an error (of the process
+    /// that owns the node).
     pub fn for_groups(
         path: &std::path::Path,
         mesh: &crate::mesh::Mesh,
         groups: &[String],
+        numbering: &Numbering,
     ) -> Result<PositionSource> {
         let table = positions::read(path, mesh.dim)?;
-        table.check_against(mesh.node_count(), path)?;
+        table.check_against(numbering.total.unwrap_or(mesh.node_count()), path)?;
         let mut on = vec![false; mesh.node_count()];
         for g in groups {
             for i in mesh.group(g)?.nodes() {
                 on[i] = true;
             }
         }
-        table.check_on(&on, &groups.join(", "), path)?;
+        let local: HashMap<u64, usize> = numbering
+            .global
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| numbering.owned.get(i).copied().unwrap_or(true))
+            .map(|(i, &g)| (g, i))
+            .collect();
+        let at = |id: usize| match numbering.global.is_empty() {
+            true => Some(on.get(id).copied().unwrap_or(false)),
+            false => local.get(&(id as u64)).map(|&i| on[i]),
+        };
+        table.check_on(at, &groups.join(", "), path)?;
         Ok(final_positions(&table))
     }
+}
+
+/// How the nodes a process holds are numbered in a positions file: the
+/// global number of each local node (empty: its index), whether this
+/// process owns it (empty: every one) and the whole mesh's node count
+/// (`None`: the local count). [`Numbering::default`] is a whole mesh.
+#[derive(Debug, Clone, Default)]
+pub struct Numbering {
+    /// The global number of each local node.
+    pub global: Vec<u64>,
+    /// Whether this process owns each local node.
+    pub owned: Vec<bool>,
+    /// The whole mesh's node count.
+    pub total: Option<usize>,
 }
 
 /// The final positions of a read positions file.

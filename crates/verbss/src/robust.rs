@@ -144,14 +144,17 @@ impl Robust {
     }
 }
 
+/// What a rigid-layer node moves with: a body (an index into the run's
+/// bodies) with the tag of its nearest node of that body (whose
+/// displacement it takes where the body moves by given positions), or
+/// `None` near a fixed wall: the node stays.
+pub type Follows = Option<(usize, u64)>;
+
 /// What the treatments need of a mesh: the rigid layer and the stiffness factors.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Treatment {
-    /// Each layer node, and the body it moves with (an index into the
-    /// run's bodies) with the tag of its nearest node of that body (whose
-    /// displacement it takes where the body moves by given positions), or
-    /// `None` near a fixed wall: the node stays.
-    pub nodes: Vec<(usize, Option<(usize, u64)>)>,
+    /// Each layer node and what it moves with.
+    pub nodes: Vec<(usize, Follows)>,
     /// The layer's thickness around each body, then around each fixed wall.
     pub thickness: Vec<f64>,
     /// Per-node spring stiffness factors (empty: no stiffening).

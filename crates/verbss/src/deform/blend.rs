@@ -37,7 +37,7 @@ use super::distances::Nearest;
 use super::harmonic::Laplace;
 use crate::collective::{exact_sums, Collective};
 use crate::geometry::{cross, dot, norm};
-use crate::robust::Bounds;
+use crate::robust::{Bounds, Follows};
 use crate::solve::{Frame, NodeRole};
 use crate::topology::Csr;
 
@@ -242,7 +242,7 @@ impl Blend {
 pub fn bodies(
     count: usize,
     moving: &[(usize, usize)],
-    layer: &[(usize, Option<(usize, u64)>)],
+    layer: &[(usize, Follows)],
 ) -> Vec<(Vec<usize>, Vec<usize>)> {
     let mut bodies: Vec<(Vec<usize>, Vec<usize>)> = vec![Default::default(); count];
     for (k, &(node, b)) in moving.iter().enumerate() {

@@ -309,11 +309,12 @@ fn group_normal(mesh: &Mesh, g: usize, on: &dyn Collective) -> Result<[f64; 3]> 
         [x[0], x[1], if dim == 3 { x[2] } else { 0.0 }]
     };
     let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let facet_normals: Vec<(usize, [f64; 3])> = group
+    // Every local facet with an area (not a lone vertex), and those this
+    // process counts.
+    let shaped: Vec<(usize, [f64; 3])> = group
         .facets
         .iter()
         .enumerate()
-        .filter(|(_, (_, nodes))| on.counts(nodes))
         .filter_map(|(f, (kind, nodes))| {
             let n = match (kind, dim) {
                 (CellKind::Line, 2) => {
@@ -332,6 +333,11 @@ fn group_normal(mesh: &Mesh, g: usize, on: &dyn Collective) -> Result<[f64; 3]> 
             };
             Some((f, n))
         })
+        .collect();
+    let facet_normals: Vec<(usize, [f64; 3])> = shaped
+        .iter()
+        .copied()
+        .filter(|&(f, _)| on.counts(group.facets.cell(f)))
         .collect();
     // The first facet of the lowest process that has one sets the sign.
     let mut first = vec![0.0; 4];
@@ -358,7 +364,7 @@ fn group_normal(mesh: &Mesh, g: usize, on: &dyn Collective) -> Result<[f64; 3]> 
     }
     let nrm = unit3(&sum);
     // |n_f × n| ≤ tolerance |n_f|: the facet lies in a plane parallel to the others.
-    let bent = facet_normals
+    let bent = shaped
         .iter()
         .find(|(_, n)| norm(&cross(n, &nrm)) > PLANE_TOLERANCE * norm(n));
     if let Some((f, n)) = bent {
@@ -381,10 +387,9 @@ fn group_normal(mesh: &Mesh, g: usize, on: &dyn Collective) -> Result<[f64; 3]> 
     // of the facets' planes: its offset `n·x` is one of theirs. An owned
     // node has every facet of the group around it on this process.
     let offset = |i: usize| dot(&p(i), &nrm);
-    let mut planes: Vec<f64> = group
-        .facets
+    let mut planes: Vec<f64> = shaped
         .iter()
-        .flat_map(|(_, nodes)| nodes.iter().map(|&i| offset(i)))
+        .flat_map(|&(f, _)| group.facets.cell(f).iter().map(|&i| offset(i)))
         .collect();
     planes.sort_by(f64::total_cmp);
     let nodes = group.nodes();

@@ -15,6 +15,7 @@ use super::Deformer;
 use crate::collective::{agree, Collective};
 use crate::error::Result;
 use crate::mesh::Mesh;
+use crate::robust::Follows;
 use crate::motion::Clock;
 use crate::solve::{NodeRole, SpringSolver};
 
@@ -31,7 +32,7 @@ impl Anchors {
     pub(super) fn new(
         mesh: &Mesh,
         plan: &Plan,
-        layer: &[(usize, Option<(usize, u64)>, NodeRole)],
+        layer: &[(usize, Follows, NodeRole)],
         on: &dyn Collective,
     ) -> Anchors {
         let needed: Vec<u64> = layer

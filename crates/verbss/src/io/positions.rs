@@ -75,14 +75,17 @@ impl Positions {
 }
 
 impl Positions {
-    /// Checks that every id is a node where `on` is true (the nodes of the
-    /// moving groups `groups`); `path` names the positions file.
-    pub fn check_on(&self, on: &[bool], groups: &str, path: &Path) -> Result<()> {
-        match self
-            .ids
-            .iter()
-            .position(|&id| !on.get(id).copied().unwrap_or(false))
-        {
+    /// Checks that every id is a node where `on(id)` is true (the nodes of
+    /// the moving groups `groups`); `on(id)` is `None` for an id this
+    /// process does not hold (another checks it); `path` names the
+    /// positions file.
+    pub fn check_on(
+        &self,
+        on: impl Fn(usize) -> Option<bool>,
+        groups: &str,
+        path: &Path,
+    ) -> Result<()> {
+        match self.ids.iter().position(|&id| on(id) == Some(false)) {
             None => Ok(()),
             Some(k) => {
                 // Every id minus 1 on the moving groups: Gmsh's node tags,
@@ -90,7 +93,7 @@ impl Positions {
                 let one_based = self
                     .ids
                     .iter()
-                    .all(|&id| id > 0 && on.get(id - 1).copied().unwrap_or(false));
+                    .all(|&id| id > 0 && on(id - 1) != Some(false));
                 Err(Error::Parse {
                     path: path.to_path_buf(),
                     line: self.lines[k],
@@ -355,7 +358,8 @@ mod tests {
         // Nodes 2 and 3 move; the file names them 3 and 4, as Gmsh's tags.
         let on = [false, false, true, true, false, false];
         let p = parse(b"3 0 0\n4 1 1\n", Path::new("p.dat"), 2).unwrap();
-        let e = p.check_on(&on, "wall", Path::new("p.dat")).unwrap_err();
+        let at = |id: usize| Some(on.get(id).copied().unwrap_or(false));
+        let e = p.check_on(at, "wall", Path::new("p.dat")).unwrap_err();
         assert_eq!(
             e.to_string(),
             "p.dat:2: node id 4 is not on a moving group (wall): its position would be \
@@ -363,7 +367,7 @@ mod tests {
              ids are 0-based node indices in the mesh file's order, so subtract 1 from each"
         );
         let stray = parse(b"2 0 0\n5 1 1\n", Path::new("p.dat"), 2).unwrap();
-        let e = stray.check_on(&on, "wall", Path::new("p.dat")).unwrap_err();
+        let e = stray.check_on(at, "wall", Path::new("p.dat")).unwrap_err();
         assert!(!e.to_string().contains("1-based"), "{e}");
     }
 

@@ -345,7 +345,10 @@ pub static TABLE: &[Setting] = &[
                initial); the input mesh moved by the blended rigid motion (anchored: a periodic \
                motion returns to the input mesh); auto: anchored when every moving motion is \
                periodic, updated otherwise.",
-        put: |s, v| Ok(s.reference = v.name().parse()?),
+        put: |s, v| {
+            s.reference = v.name().parse()?;
+            Ok(())
+        },
         take: |s| name_of(s.reference),
     },
     Setting {
@@ -355,7 +358,10 @@ pub static TABLE: &[Setting] = &[
         presets: &[],
         help: "Each step's initial guess: the previous step's solution, or extrapolated \
                linearly from the two previous steps (fewer sweeps for smooth motions).",
-        put: |s, v| Ok(s.predictor = v.name().parse()?),
+        put: |s, v| {
+            s.predictor = v.name().parse()?;
+            Ok(())
+        },
         take: |s| name_of(s.predictor),
     },
     Setting {
@@ -390,7 +396,10 @@ pub static TABLE: &[Setting] = &[
         presets: &[(Preset::Robust, "1")],
         help: "Springs at wall distance d are scaled by (t/max(d,t))^P, t the rigid layer's \
                thickness; 0: off.",
-        put: |s, v| Ok(s.robust.stiffening = v.number()),
+        put: |s, v| {
+            s.robust.stiffening = v.number();
+            Ok(())
+        },
         take: |s| Value::Number(s.robust.stiffening),
     },
     Setting {
@@ -400,7 +409,10 @@ pub static TABLE: &[Setting] = &[
         presets: &[(Preset::Robust, "6")],
         help: "A step that inverts a cell is redone in smaller increments, down to 1/2^K of the \
                step; 0: off.",
-        put: |s, v| Ok(s.robust.substeps = v.count() as u32),
+        put: |s, v| {
+            s.robust.substeps = v.count() as u32;
+            Ok(())
+        },
         take: |s| Value::Count(u64::from(s.robust.substeps)),
     },
     Setting {
@@ -410,7 +422,10 @@ pub static TABLE: &[Setting] = &[
         presets: &[(Preset::Robust, "on")],
         help: "Each body's fitted rigid motion carried into the mesh with smooth weights before \
                the springs solve what is left (docs/method.md, \"Blended rigid motion\").",
-        put: |s, v| Ok(s.robust.blend = v.switch()),
+        put: |s, v| {
+            s.robust.blend = v.switch();
+            Ok(())
+        },
         take: |s| Value::Switch(s.robust.blend),
     },
     Setting {
@@ -420,7 +435,10 @@ pub static TABLE: &[Setting] = &[
         presets: &[],
         help: "The global solver of method ball-vertex. Given, it is the only solver used \
                (escalate off unless given).",
-        put: |s, v| Ok(s.solve.solver = v.name().parse()?),
+        put: |s, v| {
+            s.solve.solver = v.name().parse()?;
+            Ok(())
+        },
         take: |s| name_of(s.solve.solver),
     },
     Setting {
@@ -431,7 +449,10 @@ pub static TABLE: &[Setting] = &[
         help: "Plain VerBSS sweeps (none), the multigrid-accelerated solve (amg), or amg on large \
                meshes of mostly triangles or tetrahedra (auto). Given, it is the only solver \
                used (escalate off unless given).",
-        put: |s, v| Ok(s.solve.accel = v.name().parse()?),
+        put: |s, v| {
+            s.solve.accel = v.name().parse()?;
+            Ok(())
+        },
         take: |s| name_of(s.solve.accel),
     },
     Setting {
@@ -442,7 +463,10 @@ pub static TABLE: &[Setting] = &[
         help: "Watch each solve and escalate when it stalls, grows or leaves a node's estimated \
                error above 1% of its cell height (sweeps, GMRES, multigrid, direct solve); off: \
                the configured solver alone, stopped by the eq.-8 test.",
-        put: |s, v| Ok(s.solve.escalate = v.switch()),
+        put: |s, v| {
+            s.solve.escalate = v.switch();
+            Ok(())
+        },
         take: |s| Value::Switch(s.solve.escalate),
     },
     Setting {
@@ -457,7 +481,10 @@ pub static TABLE: &[Setting] = &[
         presets: &[],
         help: "The over-relaxation factor of the sweeps. Given, it is the only solver used \
                (escalate off unless given).",
-        put: |s, v| Ok(s.solve.omega = v.number()),
+        put: |s, v| {
+            s.solve.omega = v.number();
+            Ok(())
+        },
         take: |s| Value::Number(s.solve.omega),
     },
     Setting {
@@ -471,7 +498,10 @@ pub static TABLE: &[Setting] = &[
         default: "1e-6",
         presets: &[],
         help: "The eq.-8 stop, relative to the step's largest prescribed displacement.",
-        put: |s, v| Ok(s.solve.tolerance = v.number()),
+        put: |s, v| {
+            s.solve.tolerance = v.number();
+            Ok(())
+        },
         take: |s| Value::Number(s.solve.tolerance),
     },
     Setting {
@@ -480,7 +510,10 @@ pub static TABLE: &[Setting] = &[
         default: "off",
         presets: &[],
         help: "Take the tolerance as the paper's absolute eq.-8 threshold.",
-        put: |s, v| Ok(s.solve.absolute_tolerance = v.switch()),
+        put: |s, v| {
+            s.solve.absolute_tolerance = v.switch();
+            Ok(())
+        },
         take: |s| Value::Switch(s.solve.absolute_tolerance),
     },
     Setting {
@@ -504,7 +537,10 @@ pub static TABLE: &[Setting] = &[
         default: "0",
         presets: &[],
         help: "Worker threads, 0 for one per core (the results do not depend on it).",
-        put: |s, v| Ok(s.solve.threads = v.count() as usize),
+        put: |s, v| {
+            s.solve.threads = v.count() as usize;
+            Ok(())
+        },
         take: |s| Value::Count(s.solve.threads as u64),
     },
 ];

@@ -8,7 +8,8 @@
 //! overlap. The coupling blocks, read in order, are asked for a little ahead
 //! too. The hints change no value: results are bit-identical with and
 //! without them.
-// The one `unsafe` of the library: `_mm_prefetch` takes a raw pointer and is
+// The solver's one `unsafe` (the other `unsafe` code of the library calls
+// the CGNS C library, io/cgns/ffi): `_mm_prefetch` takes a raw pointer and is
 // declared unsafe, but a prefetch never reads memory as far as the program
 // can observe, cannot fault and is dropped by the processor for an invalid
 // address. The addresses are formed with `wrapping_add` and never
