@@ -95,7 +95,9 @@ fn api() -> Result<&'static Api, String> {
     API.get_or_init(load).as_ref().map_err(Clone::clone)
 }
 
-/// Finds the functions in the CGNS library and what it links.
+/// Finds the functions in the CGNS library and what it links. Each pointer
+/// is transmuted to the type of the field it is stored in.
+#[allow(clippy::missing_transmute_annotations)]
 fn load() -> Result<Api, String> {
     let mut info = DlInfo {
         fname: std::ptr::null(),
