@@ -90,6 +90,7 @@ pub(super) struct Head {
 /// dimension 2 or 3, an unstructured zone with vertices.
 pub(super) fn open(path: &Path) -> Result<(File, Head)> {
     let fail = |m: String| error(path, m);
+    crate::io::regular_input(path)?;
     super::check::check(path).map_err(fail)?;
     let file =
         File::open(path, Mode::Read).map_err(|m| fail(format!("cannot open as CGNS: {m}")))?;
