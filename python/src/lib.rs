@@ -73,7 +73,11 @@ fn shape_text(shape: &[usize]) -> String {
 /// when every one is a whole number (a cast would cut 0.9 to 0); any other
 /// kind of array (bool, text, objects) is refused.
 fn node_ids(value: &Bound<'_, PyAny>, n: usize, what: &str) -> PyResult<(Vec<usize>, usize)> {
-    let raw = value.py().import("numpy")?.getattr("asarray")?.call1((value,))?;
+    let raw = value
+        .py()
+        .import("numpy")?
+        .getattr("asarray")?
+        .call1((value,))?;
     let dtype = raw.getattr("dtype")?;
     match dtype.getattr("kind")?.extract::<String>()?.as_str() {
         "i" | "u" => {}

@@ -9,8 +9,8 @@
 //!
 //! - a link (to another file or within this one): verbss reads files whose
 //!   nodes are all their own;
-//! - nodes nested more than [`MAX_DEPTH`] deep, or more than [`MAX_NODES`]
-//!   nodes;
+//! - nodes nested more than [`MAX_DEPTH`] deep, a node of more than
+//!   [`MAX_CHILDREN`] children, or more than [`MAX_NODES`] nodes;
 //! - a data type other than the standard's, or a dimension below 1;
 //! - arrays declaring more bytes than 64 MiB plus twice the file's size
 //!   (a file's arrays are stored in it; more is compressed or unallocated
@@ -37,8 +37,13 @@ use super::zone::{kind_of, type_name, READ};
 /// about 8 deep: base, zone, boundary conditions, condition, data set, …).
 pub const MAX_DEPTH: usize = 32;
 
-/// The most nodes a file may hold.
-pub const MAX_NODES: usize = 250_000;
+/// The most nodes a file may hold: `cg_open` takes about half a
+/// millisecond a node (docs/reliability.md).
+pub const MAX_NODES: usize = 65_536;
+
+/// The most children a node may have: `cg_open`'s time grows faster than
+/// the number of children of one node (about 1 s for 1,000, 11 s for 5,000).
+pub const MAX_CHILDREN: usize = 4_096;
 
 /// How many numbers of a `MIXED` section are read at a time.
 const BLOCK: usize = 1 << 16;
@@ -141,8 +146,8 @@ impl Walk<'_> {
     fn children(&mut self, id: NodeId, path: &str, depth: usize) -> Result<Vec<Node>, String> {
         let ids = self
             .tree
-            .children(id, MAX_NODES - self.nodes)
-            .map_err(|m| format!("{}: {m}: more than {MAX_NODES} nodes", shown(path)))?;
+            .children(id, room(self.nodes))
+            .map_err(|m| crowded(path, &m))?;
         if !ids.is_empty() && depth == MAX_DEPTH {
             return Err(nested(path));
         }
@@ -261,6 +266,20 @@ impl Shape {
             Shape::List => "of dimensions [n] or [d, n], d from 1 to 3".into(),
         }
     }
+}
+
+/// The most children the next node may have, `nodes` counted so far.
+pub(super) fn room(nodes: usize) -> usize {
+    MAX_CHILDREN.min(MAX_NODES - nodes)
+}
+
+/// The message for the node at `path`, whose children are `why` too many.
+pub(super) fn crowded(path: &str, why: &str) -> String {
+    format!(
+        "{}: {why} (at most {MAX_CHILDREN} children a node and {MAX_NODES} nodes a file: the \
+         CGNS library's time to open a file grows faster than that)",
+        shown(path)
+    )
 }
 
 /// The message for the children of the node at `path`, at [`MAX_DEPTH`].

@@ -3,12 +3,13 @@
 //! attributes and its data's dimensions into places of a fixed size (33,
 //! 33 and 3 bytes, one integer, 12 dimensions) and follows HDF5 soft and
 //! external links. Each group is opened by its path from the root, one at a
-//! time, within the node walk's bounds ([`MAX_DEPTH`], [`MAX_NODES`]); a
+//! time, within the node walk's bounds (`MAX_DEPTH`, `MAX_CHILDREN`,
+//! `MAX_NODES` of [`super::check`]); a
 //! file that is not HDF5 (ADF) is left to the node layer.
 
 use std::path::Path;
 
-use super::check::{nested, shown, MAX_DEPTH, MAX_NODES};
+use super::check::{crowded, nested, room, shown, MAX_DEPTH};
 use super::ffi::{Attribute, Group, H5File, Object};
 
 /// The attributes the node layer reads: name, whether a string, the most
@@ -35,19 +36,10 @@ pub(super) fn check(path: &Path) -> Result<(), String> {
             root.group(&at[1..])?
         };
         attributes(&group, &at)?;
-        let links = group.len()?;
-        if links > (MAX_NODES - nodes) as u64 {
-            return Err(format!(
-                "{}: {links} children: more than {MAX_NODES} nodes",
-                shown(&at)
-            ));
-        }
-        for k in 0..links {
-            let name = group
-                .name(k, 1024)
-                .map_err(|m| format!("{}: {m}", shown(&at)))?;
+        let links = group.links(room(nodes)).map_err(|m| crowded(&at, &m))?;
+        for (name, hard) in links {
             let path = format!("{at}/{name}");
-            match group.object(&name)? {
+            match group.object(&name, hard)? {
                 Object::Other if name == " link" => {
                     return Err(format!(
                         "{}: a CGNS link to another node or file (verbss reads files whose nodes \

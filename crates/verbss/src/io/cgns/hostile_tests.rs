@@ -266,3 +266,22 @@ fn fixed_size_nodes_links_and_unstored_arrays_are_refused() {
         "{message}"
     );
 }
+
+/// A node of more children than the bound: `cg_open` took 11 s for 5,000
+/// children of one zone, 29 s for 10,000 (docs/reliability.md).
+#[test]
+fn a_node_of_more_than_4096_children_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = square(dir.path(), "wide.cgns", |base| {
+        let zone = base.at("Zone");
+        for k in 0..4_097 {
+            zone.children
+                .push(Node::empty(&format!("U{k}"), "UserDefinedData_t"));
+        }
+    });
+    assert_eq!(
+        refusal(&path),
+        "/Base/Zone: more than 4096 children (at most 4096 children a node and 65536 nodes a \
+         file: the CGNS library's time to open a file grows faster than that)"
+    );
+}

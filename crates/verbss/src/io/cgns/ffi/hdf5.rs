@@ -45,13 +45,45 @@ extern "C" {
     fn dlsym(handle: *mut c_void, name: *const c_char) -> *mut c_void;
 }
 
-/// `H5G_info_t`.
-#[repr(C)]
-struct GroupInfo {
-    storage: c_int,
-    links: u64,
-    max_order: i64,
-    mounted: bool,
+/// `H5L_iterate_t` (`H5L_iterate2_t`): the group, a link's name, its
+/// `H5L_info_t` (`H5L_info2_t`, both starting with the link's type), the
+/// caller's data.
+type Visit = unsafe extern "C" fn(Hid, *const c_char, *const c_int, *mut c_void) -> c_int;
+
+/// What [`visit`] gathers of a group's links.
+struct Links {
+    /// Each link's name and whether it is a hard link.
+    found: Vec<(String, bool)>,
+    most: usize,
+    /// Why the iteration stopped early, if it did.
+    stop: Option<String>,
+}
+
+/// Gathers one link into the [`Links`] behind `data`; stops (returns 1)
+/// past `most` links or at a name longer than 1024 bytes.
+unsafe extern "C" fn visit(
+    _: Hid,
+    name: *const c_char,
+    info: *const c_int,
+    data: *mut c_void,
+) -> c_int {
+    // SAFETY: `data` is the `Links` that `Group::links` passed, `name` a
+    // zero-terminated string and `info` a link info of HDF5's, valid for
+    // this call.
+    let (links, name, kind) = unsafe { (&mut *data.cast::<Links>(), CStr::from_ptr(name), *info) };
+    let len = name.to_bytes().len();
+    if links.found.len() == links.most {
+        links.stop = Some(format!("more than {} children", links.most));
+        return 1;
+    }
+    if len > 1024 {
+        links.stop = Some(format!("a link name of {len} bytes (at most 1024)"));
+        return 1;
+    }
+    links
+        .found
+        .push((name.to_string_lossy().into_owned(), kind == HARD));
+    0
 }
 
 /// The HDF5 functions used.
@@ -63,18 +95,7 @@ struct Api {
     oopen: unsafe extern "C" fn(Hid, *const c_char, Hid) -> Hid,
     oclose: unsafe extern "C" fn(Hid) -> c_int,
     id_type: unsafe extern "C" fn(Hid) -> c_int,
-    group_info: unsafe extern "C" fn(Hid, *mut GroupInfo) -> c_int,
-    link_name: unsafe extern "C" fn(
-        Hid,
-        *const c_char,
-        c_int,
-        c_int,
-        u64,
-        *mut c_char,
-        usize,
-        Hid,
-    ) -> isize,
-    link_info: unsafe extern "C" fn(Hid, *const c_char, *mut [u64; 8], Hid) -> c_int,
+    iterate: unsafe extern "C" fn(Hid, c_int, c_int, *mut u64, Visit, *mut c_void) -> c_int,
     aexists: unsafe extern "C" fn(Hid, *const c_char) -> c_int,
     aopen: unsafe extern "C" fn(Hid, *const c_char, Hid) -> Hid,
     aclose: unsafe extern "C" fn(Hid) -> c_int,
@@ -151,9 +172,7 @@ fn load() -> Result<Api, String> {
         oopen: function!("H5Oopen"),
         oclose: function!("H5Oclose"),
         id_type: function!("H5Iget_type"),
-        group_info: function!("H5Gget_info"),
-        link_name: function!("H5Lget_name_by_idx"),
-        link_info: function!("H5Lget_info2", "H5Lget_info"),
+        iterate: function!("H5Literate2", "H5Literate"),
         aexists: function!("H5Aexists"),
         aopen: function!("H5Aopen"),
         aclose: function!("H5Aclose"),
@@ -249,74 +268,42 @@ impl Drop for H5File {
 }
 
 impl<'a> Group<'a> {
-    /// How many links the group holds.
-    pub fn len(&self) -> Result<u64, String> {
-        let mut info = GroupInfo {
-            storage: 0,
-            links: 0,
-            max_order: 0,
-            mounted: false,
+    /// The group's links (name, whether hard), in the order of their
+    /// names, or why not: more than `most`, or a name over 1024 bytes.
+    /// One pass over the group (`H5Literate`): linear in its size.
+    pub fn links(&self, most: usize) -> Result<Vec<(String, bool)>, String> {
+        let mut links = Links {
+            found: Vec::new(),
+            most,
+            stop: None,
         };
-        // SAFETY: an open group and an out-pointer of `H5G_info_t`.
-        if unsafe { (self.api.group_info)(self.id, &mut info) } < 0 {
-            return Err("HDF5 cannot list a group".into());
-        }
-        Ok(info.links)
-    }
-
-    /// The name of link `k` (in the order of the names), at most `most` bytes.
-    pub fn name(&self, k: u64, most: usize) -> Result<String, String> {
-        let dot = c_name(".")?;
-        // SAFETY: an open group, a valid C string, no buffer (the length is asked).
-        let len = unsafe {
-            (self.api.link_name)(
+        let mut at = 0u64;
+        // SAFETY: an open group, the name index in increasing order, an
+        // out-pointer, and `visit` with the `Links` it expects.
+        let code = unsafe {
+            (self.api.iterate)(
                 self.id,
-                dot.as_ptr(),
                 0,
                 0,
-                k,
-                std::ptr::null_mut(),
-                0,
-                DEFAULT,
+                &mut at,
+                visit,
+                (&mut links as *mut Links).cast(),
             )
         };
-        let len = usize::try_from(len).map_err(|_| "HDF5 cannot name a link".to_string())?;
-        if len > most {
-            return Err(format!("a link name of {len} bytes (at most {most})"));
+        match links.stop {
+            Some(why) => Err(why),
+            None if code < 0 => Err("HDF5 cannot list a group".into()),
+            None => Ok(links.found),
         }
-        let mut buf = vec![0 as c_char; len + 1];
-        // SAFETY: a buffer of the length reported plus the zero.
-        unsafe {
-            (self.api.link_name)(
-                self.id,
-                dot.as_ptr(),
-                0,
-                0,
-                k,
-                buf.as_mut_ptr(),
-                len + 1,
-                DEFAULT,
-            )
-        };
-        // SAFETY: zero-terminated (the last byte stays 0).
-        let name = unsafe { CStr::from_ptr(buf.as_ptr()) };
-        Ok(name.to_string_lossy().into_owned())
     }
 
-    /// What the link `name` leads to (a soft or external link is not followed).
-    pub fn object(&self, name: &str) -> Result<Object, String> {
-        let c = c_name(name)?;
-        // Room for `H5L_info2_t` (and the smaller `H5L_info_t`); the
-        // link's type comes first in both.
-        let mut info = [0u64; 8];
-        // SAFETY: an open group, a valid C string, a buffer larger than
-        // either struct.
-        if unsafe { (self.api.link_info)(self.id, c.as_ptr(), &mut info, DEFAULT) } < 0 {
-            return Err(format!("HDF5 cannot read the link {name:?}"));
-        }
-        if info[0] as u32 as c_int != HARD {
+    /// What the link `name` leads to; a soft or external link (`hard`
+    /// false) is not followed.
+    pub fn object(&self, name: &str, hard: bool) -> Result<Object, String> {
+        if !hard {
             return Ok(Object::Other);
         }
+        let c = c_name(name)?;
         // SAFETY: an open group and a hard link's name.
         let id = unsafe { (self.api.oopen)(self.id, c.as_ptr(), DEFAULT) };
         if id < 0 {

@@ -142,7 +142,7 @@ impl Tree {
         check(unsafe { cgio_number_children(self.cgio, id, &mut n) })?;
         let n = usize::try_from(n).unwrap_or(0);
         if n > most {
-            return Err(format!("{n} children (at most {most})"));
+            return Err(format!("{n} children"));
         }
         if n == 0 {
             return Ok(Vec::new());
