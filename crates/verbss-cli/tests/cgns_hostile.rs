@@ -17,9 +17,7 @@ use verbss_testkit::needs;
 /// The valid square changed by `change`, written as `dir/name`.
 fn square(dir: &Path, name: &str, change: impl FnOnce(&mut Node)) -> PathBuf {
     let path = dir.join(name);
-    let mut tree = nodes::square();
-    change(&mut tree[1]);
-    nodes::write(&path, &tree).unwrap();
+    nodes::write_square(&path, change).unwrap();
     path
 }
 

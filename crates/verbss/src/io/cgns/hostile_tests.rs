@@ -7,12 +7,10 @@ use std::path::{Path, PathBuf};
 use super::nodes::{self, section, Node};
 use crate::io::read;
 
-/// The file `name` in `dir`, written from the valid square changed by `change`.
+/// The valid square changed by `change`, written as `dir/name`.
 fn square(dir: &Path, name: &str, change: impl FnOnce(&mut Node)) -> PathBuf {
     let path = dir.join(name);
-    let mut tree = nodes::square();
-    change(&mut tree[1]);
-    nodes::write(&path, &tree).unwrap();
+    nodes::write_square(&path, change).unwrap();
     path
 }
 

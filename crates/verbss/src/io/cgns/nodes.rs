@@ -123,6 +123,13 @@ pub fn square() -> Vec<Node> {
     ]
 }
 
+/// Writes the [`square`] changed by `change` (given its base) as `path`.
+pub fn write_square(path: &Path, change: impl FnOnce(&mut Node)) -> Result<(), String> {
+    let mut tree = square();
+    change(&mut tree[1]);
+    write(path, &tree)
+}
+
 /// Writes `nodes` under the root of a new HDF5 CGNS file `path`.
 pub fn write(path: &Path, nodes: &[Node]) -> Result<(), String> {
     #[cfg(not(with_cgns))]
