@@ -69,9 +69,36 @@ fn shape_text(shape: &[usize]) -> String {
 }
 
 /// Node ids from a 1-D or 2-D integer array: the ids (row-major) and the
-/// number of columns (1 for a 1-D array).
+/// number of columns (1 for a 1-D array). Floating-point ids are taken only
+/// when every one is a whole number (a cast would cut 0.9 to 0); any other
+/// kind of array (bool, text, objects) is refused.
 fn node_ids(value: &Bound<'_, PyAny>, n: usize, what: &str) -> PyResult<(Vec<usize>, usize)> {
-    let array = asarray(value, "int64")?;
+    let raw = value
+        .py()
+        .import("numpy")?
+        .getattr("asarray")?
+        .call1((value,))?;
+    let dtype = raw.getattr("dtype")?;
+    match dtype.getattr("kind")?.extract::<String>()?.as_str() {
+        "i" | "u" => {}
+        "f" => {
+            let flat = asarray(&raw, "float64")?.call_method0("ravel")?;
+            let values: PyReadonlyArray1<f64> = flat.extract()?;
+            let values = values.as_array();
+            if let Some((k, v)) = values.iter().enumerate().find(|(_, v)| v.fract() != 0.0) {
+                return Err(invalid_mesh(format!(
+                    "{what} holds {v} at flat index {k}: node ids must be whole numbers"
+                )));
+            }
+        }
+        _ => {
+            return Err(invalid_mesh(format!(
+                "{what} is an array of {} (expected integer node ids)",
+                dtype.str()?
+            )))
+        }
+    }
+    let array = asarray(&raw, "int64")?;
     let ndim: usize = array.getattr("ndim")?.extract()?;
     let (ids, columns) = match ndim {
         1 => {

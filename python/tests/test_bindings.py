@@ -335,6 +335,11 @@ def test_bad_displacements_are_named():
     )
 
 
+def test_whole_float_ids_are_taken():
+    whole = verbss.Mesh([[0, 0], [1, 0], [0, 1]], {"triangle": np.array([[0.0, 1.0, 2.0]])})
+    assert whole.cells["triangle"].tolist() == [[0, 1, 2]]
+
+
 def test_bad_settings_and_arrays_are_named():
     mesh = verbss.read(NACA)
     cases = [
@@ -374,6 +379,14 @@ def test_bad_settings_and_arrays_are_named():
          "invalid mesh: node 2 has a non-finite coordinate"),
         (lambda: verbss.Mesh([0.0, 1.0], {}),
          "invalid mesh: points is a 1-dimensional array (expected an (N, D) array)"),
+        # Float ids were cut (0.9 became 0, 1.9 became 1): refused, unless whole.
+        (lambda: verbss.Mesh([[0, 0], [1, 0], [0, 1]], {"triangle": np.array([[0, 1, 2]]) + 0.9}),
+         "invalid mesh: cells 'triangle' holds 0.9 at flat index 0: node ids must be whole numbers"),
+        (lambda: verbss.Mesh([[0, 0], [1, 0], [0, 1]], {"triangle": [[0, 1, 2]]},
+                             {"wall": [0.7, 1.9]}),
+         "invalid mesh: group 'wall' holds 0.7 at flat index 0: node ids must be whole numbers"),
+        (lambda: verbss.Mesh([[0, 0], [1, 0], [0, 1]], {"triangle": [["0", "1", "2"]]}),
+         "invalid mesh: cells 'triangle' is an array of <U1 (expected integer node ids)"),
     ]
     for make, message in cases:
         with pytest.raises(verbss.VerbssError) as e:

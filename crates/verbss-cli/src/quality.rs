@@ -70,16 +70,20 @@ fn print_table(v: &Value) {
     println!("  dimension  {}", v["dimension"]);
     println!("  nodes      {}", v["nodes"]);
     println!("  elements   {}", v["elements"]);
-    if let Some(kinds) = v["kinds"].as_object() {
-        for (name, count) in kinds {
-            println!("    {name:<12} {count}");
-        }
+    let (kinds, groups) = (v["kinds"].as_object(), v["groups"].as_object());
+    // One column for the counts: past the longest kind or group name.
+    let width = kinds
+        .into_iter()
+        .chain(groups)
+        .flat_map(|m| m.keys())
+        .map(|name| name.chars().count())
+        .fold(12, usize::max);
+    for (name, count) in kinds.into_iter().flatten() {
+        println!("    {name:<width$} {count}");
     }
     println!("  groups (distinct nodes)");
-    if let Some(groups) = v["groups"].as_object() {
-        for (name, count) in groups {
-            println!("    {name:<12} {count}");
-        }
+    for (name, count) in groups.into_iter().flatten() {
+        println!("    {name:<width$} {count}");
     }
     let q = &v["quality"];
     println!(

@@ -95,6 +95,42 @@ fn quality_table_for_a_hybrid_mesh() {
     assert!(out.contains("inverted   0"), "{out}");
 }
 
+/// Issue 43, 18: a group name longer than 12 characters pushed its count
+/// out of the column.
+#[test]
+fn quality_table_aligns_long_group_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(asset("su2/mesh_NACA0012_inv.su2")).unwrap();
+    let long = "airfoil_surface_of_the_wing";
+    let mesh = dir.path().join("long.su2");
+    std::fs::write(
+        &mesh,
+        text.replace("MARKER_TAG= airfoil", &format!("MARKER_TAG= {long}")),
+    )
+    .unwrap();
+    let o = verbss(&["quality", mesh.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    let rows: Vec<&str> = out
+        .lines()
+        .skip_while(|l| !l.starts_with("  elements"))
+        .skip(1)
+        .take_while(|l| !l.starts_with("  quality"))
+        .filter(|l| l.starts_with("    "))
+        .collect();
+    assert_eq!(rows.len(), 3, "{out}");
+    let column: Vec<usize> = rows.iter().map(|r| r.rfind(' ').unwrap()).collect();
+    assert!(column.iter().all(|&c| c == column[0]), "{out}");
+    assert!(out.contains(&format!("    {long} 200\n")), "{out}");
+    assert!(
+        out.contains(&format!(
+            "    triangle{} 10216\n",
+            " ".repeat(long.len() - 8)
+        )),
+        "{out}"
+    );
+}
+
 #[test]
 fn convert_round_trips_through_every_format() {
     let dir = tempfile::tempdir().unwrap();

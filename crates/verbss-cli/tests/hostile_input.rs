@@ -192,6 +192,59 @@ fn a_positions_file_naming_a_node_off_the_moving_groups_is_refused() {
     );
 }
 
+/// Issue 43, 12: a coordinate of 1e308 was blamed on the mesh (`nodes 287
+/// and 5 coincide`); it is refused where it stands.
+#[test]
+fn a_positions_file_with_a_coordinate_beyond_1e100_is_refused_at_its_line() {
+    let (dir, square) = folder();
+    let positions = dir.path().join("positions.dat");
+    std::fs::write(&positions, "0 0.1 0\n3 1e308 1\n").expect("write positions");
+    rejected(
+        &square,
+        "left",
+        &["--positions", positions.to_str().unwrap()],
+        &format!(
+            "{}:2: coordinate '1e308' of node 3 is beyond ±1e100 (a position that far from the \
+             mesh would overflow the solve)",
+            positions.display()
+        ),
+    );
+}
+
+/// Issue 43, 7: an input that is a FIFO blocked forever; it is refused
+/// before it is opened, as a mesh and as a positions file.
+#[test]
+fn an_input_that_is_a_fifo_is_refused() {
+    let (dir, square) = folder();
+    let fifo = dir.path().join("positions.dat");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+    let message = |p: &Path| {
+        format!(
+            "{}: a FIFO, not a regular file (verbss reads its inputs from regular files only)",
+            p.display()
+        )
+    };
+    rejected(
+        &square,
+        "left",
+        &["--positions", fifo.to_str().unwrap()],
+        &message(&fifo),
+    );
+    let cgns = verbss::io::cgns::available().is_ok();
+    for name in ["m.su2", "m.msh", "m.vtu", "m.cgns"]
+        .into_iter()
+        .filter(|n| cgns || !n.ends_with(".cgns"))
+    {
+        let mesh = dir.path().join(name);
+        let made = std::process::Command::new("mkfifo").arg(&mesh).status();
+        assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+        let o = verbss(&["quality", mesh.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "{name}: {}", stderr(&o));
+        assert_eq!(stderr(&o), format!("error: {}\n", message(&mesh)), "{name}");
+    }
+}
+
 #[test]
 fn an_output_below_a_regular_file_is_refused() {
     // Root cannot bypass this one: a regular file is not a folder.

@@ -316,3 +316,99 @@ fn a_binary_case_reads_as_its_ascii_original() {
     assert!(case.join("2/polyMesh/points").is_file());
     assert_mesh_ok(&case);
 }
+
+/// `verbss quality CASE`, killed after 30 s: its exit code and standard error.
+fn quality_within_30_s(case: &Path) -> (Option<i32>, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_verbss"))
+        .arg("quality")
+        .arg(case)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed().as_secs() > 30 {
+            child.kill().unwrap();
+            panic!("verbss quality {} ran past 30 s", case.display());
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let o = child.wait_with_output().unwrap();
+    (o.status.code(), stderr(&o))
+}
+
+/// Issue 43, 7–9: a `points` that is a FIFO blocked `quality` forever; one
+/// point at x = 1e300 was blamed on a patch (the planes' tolerance grew with
+/// the largest extent); two patches of one name were merged into one group.
+#[test]
+fn a_fifo_a_far_point_and_a_repeated_patch_name_are_refused_with_their_place() {
+    if !have_openfoam() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("case");
+    block_case(&case, 4, 1);
+    let poly = case.join("constant/polyMesh");
+    let copy = |name: &str| {
+        let to = dir.path().join(name);
+        std::fs::create_dir_all(to.join("constant/polyMesh")).unwrap();
+        for f in ["points", "faces", "owner", "neighbour", "boundary"] {
+            std::fs::copy(poly.join(f), to.join("constant/polyMesh").join(f)).unwrap();
+        }
+        to
+    };
+    let fifo = copy("fifo");
+    let points = fifo.join("constant/polyMesh/points");
+    std::fs::remove_file(&points).unwrap();
+    let made = Command::new("mkfifo").arg(&points).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+    assert_eq!(
+        quality_within_30_s(&fifo),
+        (
+            Some(2),
+            format!(
+                "error: {}: a FIFO, not a regular file (verbss reads its inputs from regular files only)\n",
+                points.display()
+            )
+        )
+    );
+    // Point 4 (line 25) of the back plane moved to x = 1e300, its front
+    // point (29) left where it was: the cell joining them is named.
+    let far = copy("far");
+    let points = far.join("constant/polyMesh/points");
+    let text = std::fs::read_to_string(&points).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[24], "(-0.5 -1.5 0)");
+    let moved = text.replacen("\n(-0.5 -1.5 0)\n", "\n(1e300 -1.5 0)\n", 1);
+    std::fs::write(&points, moved).unwrap();
+    assert_eq!(
+        quality_within_30_s(&far),
+        (
+            Some(2),
+            format!(
+                "error: {}:28: cell 3 (hexahedron) has an edge between the planes that is not \
+                 along z: point 4 at (1.000000e300, -1.500000, 0.000000) to point 29 at \
+                 (-0.500000, -1.500000, 0.200000)\n",
+                far.join("constant/polyMesh/owner").display()
+            )
+        )
+    );
+    let twice = copy("twice");
+    let boundary = twice.join("constant/polyMesh/boundary");
+    let text = std::fs::read_to_string(&boundary).unwrap();
+    let line = |name: &str| 1 + text.lines().position(|l| l.trim() == name).unwrap();
+    let (wing, farfield) = (line("wing"), line("farfield"));
+    std::fs::write(&boundary, text.replace("    farfield\n", "    wing\n")).unwrap();
+    assert_eq!(
+        quality_within_30_s(&twice),
+        (
+            Some(2),
+            format!(
+                "error: {}:{farfield}: patch 'wing' is given twice (first at line {wing}): each \
+                 patch needs a name of its own\n",
+                boundary.display()
+            )
+        )
+    );
+}

@@ -331,6 +331,16 @@ fn per_step_chart(
     })
 }
 
+/// A wall time as a reader takes it in: `12.35 s`, `287.2 ms` (not the
+/// nanosecond digits `report.json` keeps).
+fn duration(seconds: f64) -> String {
+    if seconds >= 1.0 {
+        format!("{seconds:.2} s")
+    } else {
+        format!("{:.1} ms", 1e3 * seconds)
+    }
+}
+
 /// The slowest step's eq.-8 value per sweep, or a note when not recorded.
 fn convergence(steps: &[StepReport]) -> Result<String> {
     let slowest = steps
@@ -341,8 +351,10 @@ fn convergence(steps: &[StepReport]) -> Result<String> {
         return Ok(String::new());
     };
     let mut out = format!(
-        "<h2>Convergence of the slowest step (step {}, {} sweeps, {} s)</h2>\n",
-        s.step, s.iterations, s.seconds
+        "<h2>Convergence of the slowest step (step {}, {} sweeps, {})</h2>\n",
+        s.step,
+        s.iterations,
+        duration(s.seconds)
     );
     let history: Vec<(f64, f64)> = s
         .history
@@ -431,8 +443,16 @@ mod tests {
         assert!(!page.contains("src=\"http"));
         assert!(!page.contains("<link"));
         assert_eq!(page.matches("<svg").count(), 5);
-        assert!(page.contains("Convergence of the slowest step (step 2, 20 sweeps, 0.002000001 s)"));
+        // Issue 43, 18: the heading showed `0.002000001 s`.
+        assert!(page.contains("Convergence of the slowest step (step 2, 20 sweeps, 2.0 ms)"));
         assert!(page.contains("<tr><td>2</td><td>20</td><td>0.0000001</td><td>false</td><td>0.002000001</td><td>0.3333333333333333</td>"));
+    }
+
+    #[test]
+    fn durations_are_shown_to_a_tenth_of_a_millisecond_or_a_hundredth_of_a_second() {
+        assert_eq!(duration(0.287163945), "287.2 ms");
+        assert_eq!(duration(12.3456), "12.35 s");
+        assert_eq!(duration(1.0), "1.00 s");
     }
 
     #[test]

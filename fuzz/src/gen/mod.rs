@@ -3,6 +3,8 @@
 //! extra or repeated sections, so that the fuzzer spends its time past the
 //! readers' first checks instead of on the syntax.
 
+pub mod cgns;
+pub mod foam;
 pub mod msh;
 pub mod su2;
 pub mod vtu;

@@ -6,7 +6,7 @@
 //! a path without an extension is an OpenFOAM case.
 
 use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::{BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
@@ -198,11 +198,52 @@ fn read_one(format: Format, path: &Path) -> Result<Mesh> {
     }
 }
 
-/// A file's bytes.
-fn read_bytes(path: &Path) -> Result<Vec<u8>> {
-    std::fs::read(path).map_err(|source| Error::Io {
+/// A file's bytes (see [`open_input`]).
+pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    open_input(path)?
+        .read_to_end(&mut bytes)
+        .map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    Ok(bytes)
+}
+
+/// Opens the input file `path`, which must be a regular file (links
+/// followed): a FIFO, device or socket is refused before it is opened
+/// (opening one can block forever, and its bytes are no mesh).
+pub(crate) fn open_input(path: &Path) -> Result<File> {
+    let io = |source| Error::Io {
         path: path.to_path_buf(),
         source,
+    };
+    regular_input(path)?;
+    File::open(path).map_err(io)
+}
+
+/// Refuses `path` when it exists and is a FIFO, device or socket (a
+/// missing file is left to whoever opens it).
+pub(crate) fn regular_input(path: &Path) -> Result<()> {
+    use std::os::unix::fs::FileTypeExt;
+    let Ok(kind) = std::fs::metadata(path).map(|m| m.file_type()) else {
+        return Ok(());
+    };
+    let what = if kind.is_fifo() {
+        "a FIFO"
+    } else if kind.is_char_device() || kind.is_block_device() {
+        "a device"
+    } else if kind.is_socket() {
+        "a socket"
+    } else {
+        return Ok(());
+    };
+    Err(Error::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!("{what}, not a regular file (verbss reads its inputs from regular files only)"),
+        ),
     })
 }
 

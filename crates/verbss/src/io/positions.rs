@@ -115,13 +115,13 @@ impl Positions {
     }
 }
 
+/// The largest coordinate a position may have: beyond it the springs'
+/// products overflow (the bound of the motions' own points).
+const MAX_COORDINATE: f64 = 1e100;
+
 /// Reads a positions file of dimension `dim`.
 pub fn read(path: &Path, dim: usize) -> Result<Positions> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    parse(&bytes, path, dim)
+    parse(&crate::io::read_bytes(path)?, path, dim)
 }
 
 /// Parses a positions file's bytes (`dim` is 2 or 3); `path` is only used in
@@ -207,6 +207,16 @@ pub fn parse(bytes: &[u8], path: &Path, dim: usize) -> Result<Positions> {
                 return Err(err(
                     line,
                     format!("non-finite coordinate '{f}' (expected a finite number)"),
+                ));
+            }
+            if x.abs() > MAX_COORDINATE {
+                return Err(err(
+                    line,
+                    format!(
+                        "coordinate '{f}' of node {} is beyond ±1e100 (a position that far from \
+                         the mesh would overflow the solve)",
+                        fields[0]
+                    ),
                 ));
             }
             p.coords.push(x);

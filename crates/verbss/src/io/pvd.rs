@@ -55,11 +55,7 @@ fn write_to(w: &mut dyn Write, entries: &[(f64, String)]) -> std::io::Result<()>
 
 /// Reads the `(timestep, file)` entries of a collection, in file order.
 pub fn read(path: &Path) -> Result<Vec<(f64, String)>> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    parse(&bytes, path)
+    parse(&crate::io::read_bytes(path)?, path)
 }
 
 /// Parses a collection's bytes; `path` is only used in error messages.

@@ -56,7 +56,7 @@
 
 use std::path::Path;
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::mesh::Mesh;
 
 mod assemble;
@@ -105,11 +105,7 @@ pub struct VtuData {
 
 /// Reads a `.vtu` file.
 pub fn read(path: &Path) -> Result<VtuData> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    parse(&bytes, path)
+    parse(&crate::io::read_bytes(path)?, path)
 }
 
 /// Writes `mesh` and `fields` to `path` atomically (see [`crate::io::write_atomic`]).

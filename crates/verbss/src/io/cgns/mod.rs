@@ -30,7 +30,12 @@
 
 pub mod blocks;
 #[cfg(with_cgns)]
+mod check;
+#[cfg(with_cgns)]
+mod container;
+#[cfg(with_cgns)]
 mod ffi;
+pub mod nodes;
 #[cfg(with_cgns)]
 mod read;
 #[cfg(with_cgns)]
@@ -121,3 +126,6 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64]) -> Result<()> {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(all(test, with_cgns))]
+mod hostile_tests;

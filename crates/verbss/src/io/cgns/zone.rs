@@ -54,10 +54,11 @@ pub(super) const KINDS: [(c_int, CellKind); 7] = [
 ];
 
 /// The kinds verbss reads, for messages.
-const READ: &str = "BAR_2, TRI_3, QUAD_4, TETRA_4, PYRA_5, PENTA_6, HEXA_8 and MIXED of those";
+pub(super) const READ: &str =
+    "BAR_2, TRI_3, QUAD_4, TETRA_4, PYRA_5, PENTA_6, HEXA_8 and MIXED of those";
 
 /// The name of an `ElementType_t` value.
-fn type_name(kind: c_int) -> String {
+pub(super) fn type_name(kind: c_int) -> String {
     usize::try_from(kind)
         .ok()
         .and_then(|k| TYPE_NAMES.get(k))
@@ -89,6 +90,8 @@ pub(super) struct Head {
 /// dimension 2 or 3, an unstructured zone with vertices.
 pub(super) fn open(path: &Path) -> Result<(File, Head)> {
     let fail = |m: String| error(path, m);
+    crate::io::regular_input(path)?;
+    super::check::check(path).map_err(fail)?;
     let file =
         File::open(path, Mode::Read).map_err(|m| fail(format!("cannot open as CGNS: {m}")))?;
     if file.bases().map_err(fail)? < 1 {
@@ -288,17 +291,16 @@ pub(super) fn conditions(file: &File, head: &Head) -> std::result::Result<Vec<Co
     (1..=bocos)
         .map(|bc| {
             let info = file.boco(1, 1, bc)?;
-            let (points, location, family) =
-                file.boco_points((&head.base, &head.zone), (1, 1, bc), &info)?;
             let place = format!("boundary condition '{}' of {at}", info.name);
+            let (points, location, family) = file
+                .boco_points((&head.base, &head.zone), (1, 1, bc), &info)
+                .map_err(|m| format!("{place}: {m}"))?;
+            // `boco_points` reads ranges of 2 points and lists only.
             let numbers = match info.point_set {
                 ffi::POINT_RANGE | ffi::ELEMENT_RANGE => {
                     Numbers::Range(i64::from(points[0]), i64::from(points[1]))
                 }
-                ffi::POINT_LIST | ffi::ELEMENT_LIST => {
-                    Numbers::List(points.iter().map(|&p| i64::from(p)).collect())
-                }
-                t => return Err(format!("{place} has point set type {t} (verbss reads PointRange, PointList, ElementRange, ElementList)")),
+                _ => Numbers::List(points.iter().map(|&p| i64::from(p)).collect()),
             };
             let of_elements = match (info.point_set, location) {
                 (ffi::ELEMENT_RANGE | ffi::ELEMENT_LIST, _) => true,

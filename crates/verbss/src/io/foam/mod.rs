@@ -181,3 +181,6 @@ fn patches(poly: &read::PolyMesh) -> Vec<Group> {
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod hostile_tests;

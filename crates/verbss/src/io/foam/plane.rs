@@ -25,23 +25,18 @@ pub(super) struct Flat {
 }
 
 /// Which plane a point lies on: `Some(true)` the back (smallest z),
-/// `Some(false)` the front, `None` neither.
-fn sides(mesh: &PolyMesh) -> (Vec<Option<bool>>, f64) {
+/// `Some(false)` the front, `None` neither (farther than 1e-9 of the
+/// planes' z scale from both).
+fn sides(mesh: &PolyMesh) -> Vec<Option<bool>> {
     let z = |p: usize| mesh.points[3 * p + 2];
     let n = mesh.points.len() / 3;
     let (lo, hi) = (0..n).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
         (lo.min(z(p)), hi.max(z(p)))
     });
-    let extent = (0..3)
-        .map(|d| {
-            let (a, b) = (0..n).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-                (a.min(mesh.points[3 * p + d]), b.max(mesh.points[3 * p + d]))
-            });
-            b - a
-        })
-        .fold(0.0, f64::max);
-    let tol = 1e-9 * extent;
-    let side = (0..n)
+    // Relative to the planes' own z (their distance, and their distance
+    // from 0): an x or y however large never merges the two planes.
+    let tol = 1e-9 * (hi - lo).max(lo.abs()).max(hi.abs());
+    (0..n)
         .map(|p| {
             if (z(p) - lo).abs() <= tol {
                 Some(true)
@@ -51,8 +46,22 @@ fn sides(mesh: &PolyMesh) -> (Vec<Option<bool>>, f64) {
                 None
             }
         })
-        .collect();
-    (side, tol)
+        .collect()
+}
+
+/// 1e-9 of the largest extent of the points in x or y: how far an edge
+/// between the planes may stray from z.
+fn along_z(mesh: &PolyMesh) -> f64 {
+    let n = mesh.points.len() / 3;
+    let extent = (0..2)
+        .map(|d| {
+            let (a, b) = (0..n).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(mesh.points[3 * p + d]), b.max(mesh.points[3 * p + d]))
+            });
+            b - a
+        })
+        .fold(0.0, f64::max);
+    1e-9 * extent
 }
 
 /// The 2D mesh of `mesh`, whose 3D cells are `cells`.
@@ -62,7 +71,7 @@ pub(super) fn flatten(mesh: &PolyMesh, cells: &Cells) -> Result<Flat> {
         line,
         message,
     };
-    let (side, tol) = sides(mesh);
+    let (side, tol) = (sides(mesh), along_z(mesh));
     let n_points = side.len();
     if let Some(p) = side.iter().position(Option::is_none) {
         return Err(err(
@@ -107,7 +116,13 @@ pub(super) fn flatten(mesh: &PolyMesh, cells: &Cells) -> Result<Flat> {
             let moved = (0..2)
                 .any(|d| (mesh.points[3 * lower + d] - mesh.points[3 * upper + d]).abs() > tol);
             if moved || (below[upper] != usize::MAX && below[upper] != lower) {
-                return Err(refuse("has an edge between the planes that is not along z"));
+                let at = |p: usize| crate::error::format_point(&mesh.points[3 * p..3 * p + 3]);
+                return Err(refuse(&format!(
+                    "has an edge between the planes that is not along z: point {lower} at {} to \
+                     point {upper} at {}",
+                    at(lower),
+                    at(upper)
+                )));
             }
             below[upper] = lower;
         }

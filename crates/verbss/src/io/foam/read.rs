@@ -65,6 +65,7 @@ impl PolyMesh {
 /// saying so when only a compressed `name.gz` is there).
 fn bytes_of(dir: &Path, name: &str) -> Result<(PathBuf, Vec<u8>)> {
     let path = dir.join(name);
+    crate::io::regular_input(&path)?;
     match std::fs::read(&path) {
         Ok(b) => Ok((path, b)),
         Err(source) if dir.join(format!("{name}.gz")).is_file() => Err(Error::Io {
@@ -306,6 +307,18 @@ fn boundary(dir: &Path) -> Result<Vec<Patch>> {
         })
     })?;
     end(&mut lx)?;
+    let mut names: Vec<&Patch> = patches.iter().collect();
+    names.sort_by(|a, b| (&a.name, a.line).cmp(&(&b.name, b.line)));
+    if let Some(w) = names.windows(2).find(|w| w[0].name == w[1].name) {
+        return Err(parse_err(
+            &path,
+            w[1].line,
+            format!(
+                "patch '{}' is given twice (first at line {}): each patch needs a name of its own",
+                w[1].name, w[0].line
+            ),
+        ));
+    }
     if patches.len() > MAX_GROUPS {
         return Err(parse_err(
             &path,

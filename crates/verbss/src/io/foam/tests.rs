@@ -101,7 +101,7 @@ fn poly_files(mesh: &Mesh, empty: &[&str]) -> Vec<(&'static str, String)> {
 }
 
 /// Writes `files` into `dir/constant/polyMesh`.
-fn write_files(dir: &Path, files: &[(&str, String)]) {
+pub(super) fn write_files(dir: &Path, files: &[(&str, String)]) {
     let poly = dir.join("constant/polyMesh");
     std::fs::create_dir_all(&poly).unwrap();
     for (name, text) in files {
@@ -213,7 +213,7 @@ fn compact_and_countless_lists_and_comments_read_the_same() {
 
 /// Two unit squares side by side, 0.1 thick: a 2D case with `left` (x = 0),
 /// `other` (the rest of the outline) and `sides` (front and back, `empty`).
-fn two_squares() -> (Mesh, Vec<(&'static str, String)>) {
+pub(super) fn two_squares() -> (Mesh, Vec<(&'static str, String)>) {
     let mut coords = Vec::new();
     for z in [0.0, 0.1] {
         for (x, y) in [(0., 0.), (1., 0.), (2., 0.), (0., 1.), (1., 1.), (2., 1.)] {

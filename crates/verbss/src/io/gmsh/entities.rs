@@ -107,6 +107,14 @@ fn read_all(
             } else {
                 read_ascii(c, dim, partitioned, entities)?
             };
+            // A partition entity of a model entity of another dimension
+            // (a piece of the boundary between partitions) is never part of
+            // a physical group, whatever tags the file gives it (its
+            // parent's, say): its elements are no group's facets.
+            let between = entities.partitioned.get(&(dim, tag));
+            if between.is_some_and(|p| p.parent.0 != dim) {
+                entities.physicals.truncate(start);
+            }
             dedupe(&mut entities.physicals, start);
             entities
                 .map

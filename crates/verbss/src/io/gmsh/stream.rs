@@ -29,7 +29,7 @@ impl<'p> Stream<'p> {
             path: path.to_path_buf(),
             source,
         };
-        let file = File::open(path).map_err(io)?;
+        let file = crate::io::open_input(path)?;
         let len = file.metadata().map_err(io)?.len() as usize;
         Ok(Stream {
             reader: BufReader::with_capacity(1 << 16, file),

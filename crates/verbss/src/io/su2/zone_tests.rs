@@ -41,18 +41,24 @@ fn error_of(text: &str, zone: usize) -> String {
         .to_string()
 }
 
+/// `text` reads as `zones` (whole and zone by zone), and each zone read is
+/// written back as `text`.
+fn reads_as(text: &str, zones: &[Mesh]) {
+    assert_eq!(parse_zones(text.as_bytes(), path()).unwrap(), zones);
+    for (k, zone) in zones.iter().enumerate() {
+        let (mut mesh, count) = parse_zone(text.as_bytes(), path(), k + 1).unwrap();
+        assert_eq!(count, 2);
+        assert_eq!(written(&mesh), text, "zone {} written back", k + 1);
+        mesh.origin.su2_skipped.clear();
+        assert_eq!(&mesh, zone);
+    }
+}
+
 #[test]
 fn every_zone_reads_as_the_mesh_written() {
     for zones in cases() {
         let text = zones_text(&zones);
-        assert_eq!(parse_zones(text.as_bytes(), path()).unwrap(), zones);
-        for (k, zone) in zones.iter().enumerate() {
-            let (mut mesh, count) = parse_zone(text.as_bytes(), path(), k + 1).unwrap();
-            assert_eq!(count, 2);
-            assert_eq!(written(&mesh), text, "zone {} written back", k + 1);
-            mesh.origin.su2_skipped.clear();
-            assert_eq!(&mesh, zone);
-        }
+        reads_as(&text, &zones);
     }
     let text = zones_text(&cases()[0]);
     assert!(text.starts_with("NZONE= 2\nIZONE= 1\nNDIME= 2\nNELEM= 16\n"));
@@ -162,6 +168,20 @@ fn a_single_zone_file_is_zone_1_of_1() {
     );
 }
 
+/// Issue 43, 16: SU2's own fluid–structure meshes give the file's `NDIME=`
+/// before `NZONE=`, then again in each zone; SU2 reads each zone from after
+/// its `IZONE=` line. Before or after `NZONE=`, the file reads as without it,
+/// and an SU2 output keeps it where it stood.
+#[test]
+fn a_file_ndime_before_the_zones_is_read_as_su2_reads_it() {
+    let zones = cases()[0].clone();
+    let text = zones_text(&zones);
+    let after = text.replacen("NZONE= 2\n", "NZONE= 2\nNDIME= 2\n", 1);
+    for text in [format!("NDIME= 2\n{text}"), after] {
+        reads_as(&text, &zones);
+    }
+}
+
 #[test]
 fn inconsistent_zones_are_named_with_their_line() {
     let text = zones_text(&cases()[0]);
@@ -179,8 +199,8 @@ fn inconsistent_zones_are_named_with_their_line() {
         (replaced(1, "% no NZONE"), 1, "z.su2:2: IZONE= without NZONE= (a multi-zone file starts with NZONE= N)".into()),
         (replaced(1, "NZONE= 3"), 1, format!("z.su2:{end}: file ends after 2 of the 3 zones announced by NZONE= at line 1")),
         (replaced(1, "NZONE= 1"), 1, format!("z.su2:{second}: IZONE= 2 is one more zone than the 1 announced by NZONE= at line 1")),
-        (replaced(2, "% no IZONE= 1"), 1, format!("z.su2:{first_ndime}: NDIME= before IZONE= 1 (NZONE= 2 at line 1: expected IZONE= 1 before the first zone's sections)")),
-        (format!("NDIME= 2\n{text}"), 1, "z.su2:2: NZONE= after NDIME= at line 1 (expected NZONE= first)".into()),
+        (replaced(2, "% no IZONE= 1"), 1, format!("z.su2:{}: NELEM= before IZONE= 1 (NZONE= 2 at line 1: expected IZONE= 1 before the first zone's sections)", first_ndime + 1)),
+        (format!("NELEM= 0\n{text}"), 1, "z.su2:2: NZONE= after NELEM= at line 1 (expected NZONE= first)".into()),
         (format!("NZONE= 2\n{text}"), 1, "z.su2:2: NZONE= given twice (first at line 1)".into()),
         (replaced(1, "NZONE= 0"), 1, "z.su2:1: NZONE= 0 (expected 1 to 65536 zones)".into()),
         (replaced(1, "NZONE= 99999999999999999999"), 1, "z.su2:1: expected a count after NZONE=, found '99999999999999999999'".into()),

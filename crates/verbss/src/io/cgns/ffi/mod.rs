@@ -1,11 +1,18 @@
 //! The crate's only `unsafe` code: safe wrappers of the CGNS mid-level
-//! library calls that the reader and the writers use.
+//! library calls that the reader and the writers use, and of the node layer
+//! under it ([`Tree`]).
 //!
 //! Every wrapper hands the library buffers sized from the counts the library
-//! itself reported (names: 33 bytes, CGNS names having at most 32
-//! characters). The library keeps global state (open files, the last error,
-//! the `cg_gopath` position) and is not thread-safe: a [`File`] holds a
-//! process-wide lock from opening to closing.
+//! itself reported, or from the stored array's own dimensions where the
+//! library copies the whole array (a boundary condition's point set). Some
+//! buffers have a fixed size that only a well-formed tree respects: names
+//! of 33 bytes (the node layer cuts names at 32 characters), family names
+//! of 1024 (at most 32 characters), 9 zone sizes and 3 normal indices (an
+//! index dimension of at most 3); the reader checks the tree for these
+//! before the library opens the file (`io::cgns::check`). The library keeps
+//! global state (open files, the last error, the `cg_gopath` position) and
+//! is not thread-safe: a [`File`] or [`Tree`] holds a process-wide lock
+//! from opening to closing.
 #![allow(unsafe_code)]
 
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
@@ -64,9 +71,13 @@ pub const EDGE_CENTER: c_int = 8;
 /// `CG_NODE_NOT_FOUND`.
 const NODE_NOT_FOUND: c_int = 2;
 
+mod hdf5;
 mod sys;
+mod tree;
 
+pub use hdf5::{Attribute, Group, H5File, Object};
 use sys::*;
+pub use tree::{NodeHead, NodeId, Tree};
 
 /// The lock every open [`File`] holds.
 static LIBRARY: Mutex<()> = Mutex::new(());
@@ -185,7 +196,8 @@ impl File {
         let mut name: NameBuf = [0; 33];
         // Nine entries: what a 3D structured zone fills, the most there is.
         let mut size: [CgSize; 9] = [0; 9];
-        // SAFETY: a 33-byte name buffer and a size buffer of the largest kind.
+        // SAFETY: a 33-byte name buffer and 9 sizes: three per index
+        // dimension, which the tree's check holds to at most 3.
         check(unsafe { cg_zone_read(self.id, b, z, name.as_mut_ptr(), size.as_mut_ptr()) })?;
         Ok((name_of(&name), size[0], size[1]))
     }
@@ -370,7 +382,9 @@ impl File {
         // No parent data asked for (a null pointer).
         let code = if kind == MIXED {
             let mut offsets: Vec<CgSize> = vec![0; count + 1];
-            // SAFETY: buffers of the data size and count + 1 offsets.
+            // SAFETY: buffers of the data size and count + 1 offsets; the
+            // tree's check made sure every element type the library steps
+            // through is one it knows and that the offsets agree.
             unsafe {
                 cg_poly_elements_partial_read(
                     self.id,
@@ -467,7 +481,8 @@ impl File {
         let mut name: NameBuf = [0; 33];
         let (mut kind, mut set, mut count, mut normal_index) = (0, 0, 0, [0; 3]);
         let (mut normal_size, mut normal_kind, mut datasets) = (0, 0, 0);
-        // SAFETY: a 33-byte name buffer and out-pointers (three normal indices at most).
+        // SAFETY: a 33-byte name buffer and out-pointers; the library writes
+        // one normal index per index dimension (at most 3, checked in the tree).
         check(unsafe {
             cg_boco_info(
                 self.id,
@@ -499,12 +514,36 @@ impl File {
         (b, z, bc): (c_int, c_int, c_int),
         info: &BocoInfo,
     ) -> Result<(Vec<CgSize>, c_int, Option<String>), String> {
-        let count = match info.point_set {
-            POINT_RANGE | ELEMENT_RANGE => 2,
-            _ => usize::try_from(info.count).map_err(|_| format!("{} points", info.count))?,
+        let (set, count) = match info.point_set {
+            POINT_RANGE => ("PointRange", 2),
+            ELEMENT_RANGE => ("ElementRange", 2),
+            POINT_LIST => ("PointList", info.count),
+            ELEMENT_LIST => ("ElementList", info.count),
+            t => {
+                return Err(format!(
+                    "point set type {t} (verbss reads PointRange, PointList, ElementRange, ElementList)"
+                ))
+            }
         };
-        let mut points: Vec<CgSize> = vec![0; count];
-        // SAFETY: a buffer of the point count; no normals asked for.
+        let stored = self.dimensions(&format!(
+            "/{}/{}/ZoneBC/{}/{set}",
+            path.0, path.1, info.name
+        ))?;
+        let values: i64 = stored.iter().product();
+        // `cg_boco_read` copies the whole stored array (and, converting
+        // between I4 and I8, into a buffer of its own sized from `count`):
+        // only the shape 1 × count, an unstructured zone's index dimension
+        // being 1, fits both.
+        if stored.len() != 2 || stored[0] != 1 || values != i64::from(count) {
+            let shape: Vec<String> = stored.iter().map(i64::to_string).collect();
+            return Err(format!(
+                "{set} of shape {} (expected 1 × {count} in an unstructured zone)",
+                shape.join(" × ")
+            ));
+        }
+        let mut points: Vec<CgSize> = vec![0; values as usize];
+        // SAFETY: a buffer of the stored array's size (checked above to be
+        // the count the library reports); no normals asked for.
         check(unsafe {
             cg_boco_read(self.id, b, z, bc, points.as_mut_ptr(), std::ptr::null_mut())
         })?;
@@ -515,13 +554,32 @@ impl File {
         // SAFETY: a valid C string.
         check(unsafe { cg_gopath(self.id, node.as_ptr()) })?;
         let mut family: FamilyBuf = [0; 1024];
-        // SAFETY: a family name buffer longer than any name or path of them.
+        // SAFETY: a 1024-byte buffer; the tree's check holds family names to
+        // 32 characters.
         let code = unsafe { cg_famname_read(family.as_mut_ptr()) };
         let family = match code {
             NODE_NOT_FOUND => None,
             code => check(code).map(|()| Some(name_of(&family)))?,
         };
         Ok((points, at, family))
+    }
+
+    /// The dimensions of the data of the node at `path`, as stored.
+    fn dimensions(&self, path: &str) -> Result<Vec<i64>, String> {
+        let node = c_name(path)?;
+        let (mut cgio, mut root, mut id) = (0, 0.0, 0.0);
+        let mut dims: [CgSize; tree::MAX_DIMENSIONS] = [0; tree::MAX_DIMENSIONS];
+        let mut n = 0;
+        // SAFETY: out-pointers, a valid C string and 12 dimensions
+        // (`CGIO_MAX_DIMENSIONS`, the most the node layer writes).
+        unsafe {
+            check(cg_get_cgio(self.id, &mut cgio))?;
+            check(cg_root_id(self.id, &mut root))?;
+            tree::check(cgio_get_node_id(cgio, root, node.as_ptr(), &mut id))?;
+            tree::check(cgio_get_dimensions(cgio, id, &mut n, dims.as_mut_ptr()))?;
+        }
+        let n = usize::try_from(n).unwrap_or(0).min(tree::MAX_DIMENSIONS);
+        Ok(dims[..n].iter().map(|&d| i64::from(d)).collect())
     }
 
     /// The family each family of base `b` belongs to (its first
@@ -550,7 +608,8 @@ impl File {
             check(unsafe { cg_nfamily_names(self.id, b, f, &mut names) })?;
             if names >= 1 {
                 let (mut node, mut parent): (FamilyBuf, FamilyBuf) = ([0; 1024], [0; 1024]);
-                // SAFETY: buffers longer than any name or family path.
+                // SAFETY: 1024-byte buffers; the tree's check holds node and
+                // family names to 32 characters.
                 check(unsafe {
                     cg_family_name_read(self.id, b, f, 1, node.as_mut_ptr(), parent.as_mut_ptr())
                 })?;

@@ -213,4 +213,68 @@ extern "C" {
     pub fn cg_gopath(f: c_int, path: *const c_char) -> c_int;
     pub fn cg_famname_read(name: *mut c_char) -> c_int;
     pub fn cg_famname_write(name: *const c_char) -> c_int;
+    pub fn cg_get_cgio(f: c_int, cgio: *mut c_int) -> c_int;
+    pub fn cg_root_id(f: c_int, root: *mut f64) -> c_int;
+}
+
+// The node layer (`cgns_io.h`) under the mid-level library: what
+// `super::tree` reads and writes a node tree with.
+#[link(name = "cgns")]
+extern "C" {
+    pub fn cgio_open_file(name: *const c_char, mode: c_int, kind: c_int, cgio: *mut c_int)
+        -> c_int;
+    pub fn cgio_close_file(cgio: c_int) -> c_int;
+    pub fn cgio_error_message(message: *mut c_char) -> c_int;
+    pub fn cgio_get_root_id(cgio: c_int, root: *mut f64) -> c_int;
+    pub fn cgio_get_node_id(cgio: c_int, parent: f64, path: *const c_char, id: *mut f64) -> c_int;
+    pub fn cgio_release_id(cgio: c_int, id: f64) -> c_int;
+    pub fn cgio_is_link(cgio: c_int, id: f64, len: *mut c_int) -> c_int;
+    pub fn cgio_link_size(cgio: c_int, id: f64, file: *mut c_int, name: *mut c_int) -> c_int;
+    pub fn cgio_get_link(cgio: c_int, id: f64, file: *mut c_char, name: *mut c_char) -> c_int;
+    pub fn cgio_number_children(cgio: c_int, id: f64, n: *mut c_int) -> c_int;
+    pub fn cgio_children_ids(
+        cgio: c_int,
+        id: f64,
+        start: c_int,
+        max: c_int,
+        n: *mut c_int,
+        ids: *mut f64,
+    ) -> c_int;
+    pub fn cgio_get_name(cgio: c_int, id: f64, name: *mut c_char) -> c_int;
+    pub fn cgio_get_label(cgio: c_int, id: f64, label: *mut c_char) -> c_int;
+    pub fn cgio_get_data_type(cgio: c_int, id: f64, kind: *mut c_char) -> c_int;
+    pub fn cgio_get_dimensions(cgio: c_int, id: f64, n: *mut c_int, dims: *mut CgSize) -> c_int;
+    #[allow(clippy::too_many_arguments)]
+    pub fn cgio_read_data_type(
+        cgio: c_int,
+        id: f64,
+        s_start: *const CgSize,
+        s_end: *const CgSize,
+        s_stride: *const CgSize,
+        m_kind: *const c_char,
+        m_dims: c_int,
+        m_size: *const CgSize,
+        m_start: *const CgSize,
+        m_end: *const CgSize,
+        m_stride: *const CgSize,
+        data: *mut c_void,
+    ) -> c_int;
+    pub fn cgio_create_node(cgio: c_int, parent: f64, name: *const c_char, id: *mut f64) -> c_int;
+    pub fn cgio_set_label(cgio: c_int, id: f64, label: *const c_char) -> c_int;
+    pub fn cgio_set_dimensions(
+        cgio: c_int,
+        id: f64,
+        kind: *const c_char,
+        n: c_int,
+        dims: *const CgSize,
+    ) -> c_int;
+    pub fn cgio_write_all_data(cgio: c_int, id: f64, data: *const c_void) -> c_int;
+    pub fn cgio_create_link(
+        cgio: c_int,
+        parent: f64,
+        name: *const c_char,
+        file: *const c_char,
+        name_in_file: *const c_char,
+        id: *mut f64,
+    ) -> c_int;
 }

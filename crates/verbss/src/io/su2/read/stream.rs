@@ -3,7 +3,6 @@
 //! left, its points, elements and marker facets handed over and dropped
 //! before the next chunk is read.
 
-use std::fs::File;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 
@@ -67,7 +66,7 @@ pub fn stream(
         path: path.to_path_buf(),
         source,
     };
-    let mut reader = BufReader::new(File::open(path).map_err(io)?);
+    let mut reader = BufReader::new(crate::io::open_input(path)?);
     let mut state = State::new();
     let mut buffer = Vec::new();
     let (mut line, mut points, mut elements, mut chunks) = (0, 0, 0, 0);

@@ -74,6 +74,10 @@ impl Layout {
                     layout.nzone = Some((n, p.line));
                 }
                 "IZONE" => layout.zone(&p, value, first_section)?,
+                // A file's own NDIME= before its zones (before or after
+                // NZONE=, as SU2's fluid–structure meshes have it): SU2 reads
+                // each zone's from after its IZONE= line, and so does verbss.
+                "NDIME" if layout.zones.is_empty() && first_section.is_none() => {}
                 k if layout.zones.is_empty() && ZONE_KEYWORDS.contains(&k) => {
                     if let Some((n, line)) = layout.nzone.filter(|z| z.0 > 1) {
                         let message = format!(
