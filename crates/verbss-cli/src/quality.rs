@@ -101,4 +101,9 @@ fn print_table(v: &Value) {
         }
     }
     println!("  inverted   {}", v["inverted"]);
+    let c = &v["checkmesh"];
+    println!(
+        "  checkMesh  {} negative-volume cells, {} incorrectly oriented faces, {} open cells",
+        c["negative_volume_cells"], c["incorrectly_oriented_faces"], c["open_cells"]
+    );
 }

@@ -5,7 +5,7 @@
 //! inverted cell, named as one process names it.
 
 use verbss::deform::StepReport;
-use verbss::quality::{inversions, qualities_and_inversions, Summary};
+use verbss::quality::{inversions, qualities_and_inversions, Failure, Summary};
 use verbss::{Error, Mesh};
 
 use crate::Comm;
@@ -56,11 +56,12 @@ pub fn inverted_error(
     step: usize,
 ) -> Option<Error> {
     let inverted = inversions(mesh, coords, orientation);
-    let mut worst = vec![f64::INFINITY; 1 + mesh.dim];
+    let mut worst = vec![f64::INFINITY; 3 + mesh.dim];
     let mut tags = [0, inverted.len() as u64];
     if let Some(w) = inverted.iter().min_by(|a, b| a.volume.total_cmp(&b.volume)) {
         worst[0] = w.volume;
-        worst[1..].copy_from_slice(&w.centroid);
+        worst[1..=mesh.dim].copy_from_slice(&w.centroid);
+        worst[mesh.dim + 1..].copy_from_slice(&w.failure.to_numbers());
         tags[0] = mesh.cell_tags[w.cell];
     }
     let worst = comm.all_gather(&worst);
@@ -77,7 +78,8 @@ pub fn inverted_error(
         step,
         count: count as usize,
         element: tags[r][0],
-        centroid: worst[r][1..].to_vec(),
+        centroid: worst[r][1..=mesh.dim].to_vec(),
         volume: worst[r][0],
+        failure: Failure::from_numbers([worst[r][mesh.dim + 1], worst[r][mesh.dim + 2]]),
     })
 }

@@ -468,6 +468,7 @@ impl<S: SpringSolver> Deformer<S> {
                         element: self.mesh.cell_tags[worst.cell],
                         centroid: worst.centroid.clone(),
                         volume: worst.volume,
+                        failure: worst.failure,
                     },
                     _ => Error::NotConverged {
                         step: n,

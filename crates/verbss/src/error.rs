@@ -85,9 +85,11 @@ pub enum Error {
     /// `verbss-render` crate).
     #[error("cannot draw the picture: {0}")]
     Render(String),
-    /// A step inverted elements (relative to the input mesh's orientation).
+    /// A step inverted elements (relative to the input mesh's orientation),
+    /// or left one that the flow solver refuses
+    /// ([`crate::quality::Failure`]).
     #[error(
-        "step {step}: element {element} inverted at {}, signed volume {volume:.3e} ({count} inverted element(s))",
+        "step {step}: element {element} {failure} at {}, signed volume {volume:.3e} ({count} inverted element(s))",
         format_point(.centroid)
     )]
     Inverted {
@@ -100,8 +102,11 @@ pub enum Error {
         /// Its centroid.
         centroid: Vec<f64>,
         /// Its worst corner's signed area (2D) or volume (3D), relative to the
-        /// input orientation (≤ 0).
+        /// input orientation (≤ 0), or the signed volume of the test it fails
+        /// ([`crate::quality::Inversion::volume`]).
         volume: f64,
+        /// The test it fails.
+        failure: crate::quality::Failure,
     },
     /// No solver reached a solution that could be trusted.
     #[error(

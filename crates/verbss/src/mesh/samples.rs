@@ -334,7 +334,7 @@ fn orient_positive(dim: usize, coords: &[f64], cells: &mut Cells) {
                 CellKind::Quad | CellKind::Pyramid => &[[1, 3]],
                 CellKind::Hexahedron => &[[1, 3], [5, 7]],
                 CellKind::Wedge => &[[1, 2], [4, 5]],
-                CellKind::Vertex | CellKind::Line => &[],
+                CellKind::Vertex | CellKind::Line | CellKind::Polygon | CellKind::Polyhedron => &[],
             };
             let start = cells.offsets[c];
             for [a, b] in swaps {
