@@ -103,7 +103,11 @@ fn print_table(v: &Value) {
     println!("  inverted   {}", v["inverted"]);
     let c = &v["checkmesh"];
     println!(
-        "  checkMesh  {} negative-volume cells, {} incorrectly oriented faces, {} open cells",
-        c["negative_volume_cells"], c["incorrectly_oriented_faces"], c["open_cells"]
+        "  checkMesh  {} negative-volume cells, {} incorrectly oriented faces, {} open cells, \
+         {} of aspect ratio above 1000",
+        c["negative_volume_cells"],
+        c["incorrectly_oriented_faces"],
+        c["open_cells"],
+        c["high_aspect_ratio_cells"]
     );
 }

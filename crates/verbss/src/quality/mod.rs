@@ -87,7 +87,7 @@ mod measures;
 mod valid;
 
 pub use histogram::{bin_index, Bin, Report, Summary, BIN_EDGES};
-pub use valid::{Failure, Verdict, CLOSED};
+pub use valid::{Failure, Verdict, ASPECT, CLOSED};
 
 use rayon::prelude::*;
 
@@ -409,7 +409,9 @@ pub fn inversions(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<Inversio
 
 /// The quality of cell `c` on `coords` relative to `s`, and the test it
 /// fails with its signed volume: the corner test first (for the kinds with
-/// corners), then the flow solver's.
+/// corners), then the flow solver's; an aspect ratio above [`ASPECT`] only
+/// where the cell's is not above it on the mesh's own coordinates (the
+/// input of a run).
 fn assess<const D: usize>(mesh: &Mesh, coords: &[f64], c: usize, s: f64) -> (f64, Option<(Failure, f64)>) {
     let kind = mesh.cells.kinds[c];
     let nodes = mesh.cells.cell(c);
@@ -424,7 +426,19 @@ fn assess<const D: usize>(mesh: &Mesh, coords: &[f64], c: usize, s: f64) -> (f64
         }
         measure(kind, &p, s, &w)
     };
-    (q, verdict::<D>(nodes, local, coords, s).failure())
+    let v = verdict::<D>(nodes, local, coords, s);
+    if let Some(failed) = v.failure() {
+        return (q, Some(failed));
+    }
+    let stretched = v.aspect_ratio > ASPECT
+        && !(verdict::<D>(nodes, local, &mesh.coords, s).aspect_ratio > ASPECT);
+    let failed = stretched.then_some((
+        Failure::Stretched {
+            aspect_ratio: v.aspect_ratio,
+        },
+        v.volume,
+    ));
+    (q, failed)
 }
 
 /// The flow solver's tests (`valid`) on one cell relative to `s`.
@@ -513,7 +527,7 @@ pub fn report(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Report {
 /// inverted count and, under `checkmesh`, what OpenFOAM's checkMesh would
 /// count (`valid`): cells of zero or negative volume, incorrectly oriented
 /// faces (face pyramids below zero, counted per cell side as checkMesh
-/// does) and open cells. The mesh is measured against its own orientation
+/// does), open cells and cells of aspect ratio above [`ASPECT`]. The mesh is measured against its own orientation
 /// ([`orientation`]), so `inverted` counts tangled or degenerate elements
 /// and, on an OpenFOAM case, every cell whose faces' convention it breaks.
 pub fn summary_json(mesh: &Mesh) -> serde_json::Value {
@@ -535,6 +549,7 @@ pub fn summary_json(mesh: &Mesh) -> serde_json::Value {
     let negative = verdicts.iter().filter(|v| !(v.volume >= 1e-300)).count();
     let pyramids: usize = verdicts.iter().map(|v| v.bad_pyramids).sum();
     let open = verdicts.iter().filter(|v| v.openness > CLOSED).count();
+    let stretched = verdicts.iter().filter(|v| v.aspect_ratio > ASPECT).count();
     json!({
         "dimension": mesh.dim,
         "nodes": mesh.node_count(),
@@ -547,6 +562,7 @@ pub fn summary_json(mesh: &Mesh) -> serde_json::Value {
             "negative_volume_cells": negative,
             "incorrectly_oriented_faces": pyramids,
             "open_cells": open,
+            "high_aspect_ratio_cells": stretched,
         },
     })
 }

@@ -18,7 +18,14 @@
 //!   (`checkFacePyramids`: a face whose pyramid on the cell centre points
 //!   inward is "incorrectly oriented");
 //! - **closedness**: the openness `max_k |Σ_F A_F,k| / (Σ_F |A_F,k| + 10⁻¹⁵⁰)`
-//!   at most `10⁻⁶` (`checkClosedCells`).
+//!   at most `10⁻⁶` (`checkClosedCells`);
+//! - **aspect ratio** (`checkClosedCells` too): with `m_k = Σ_F |A_F,k|`
+//!   over the mesh's directions (x, y, and z in 3D),
+//!   `max_k m_k / (min_k m_k + 10⁻¹⁵⁰)`, in 3D at least
+//!   `Σ_k m_k / 6 / max(V, 10⁻¹⁵⁰)^(2/3)`, at most 1000. checkMesh fails a
+//!   mesh with a larger one; a step fails only when it makes a cell exceed
+//!   it that did not in the input mesh (boundary layers of larger ratios
+//!   are common in the meshes users bring, and their solvers run on them).
 //!
 //! A 2D cell is the prism OpenFOAM would hold for it, one unit thick: its
 //! polygon (nodes in cyclic order) as the back and front faces, one
@@ -37,6 +44,8 @@ use crate::mesh::Local;
 
 /// OpenFOAM's `closedThreshold_`: the largest openness of a closed cell.
 pub const CLOSED: f64 = 1e-6;
+/// OpenFOAM's `aspectThreshold_`: the largest aspect ratio checkMesh passes.
+pub const ASPECT: f64 = 1000.0;
 /// OpenFOAM's `SMALL`: a face pyramid down to `−SMALL` is accepted.
 const SMALL: f64 = 1e-15;
 /// OpenFOAM's `VSMALL`: the smallest valid cell volume.
@@ -63,6 +72,11 @@ pub enum Failure {
         /// Its openness.
         openness: f64,
     },
+    /// Its aspect ratio went above [`ASPECT`] (it was not in the input).
+    Stretched {
+        /// Its aspect ratio.
+        aspect_ratio: f64,
+    },
 }
 
 impl Failure {
@@ -74,6 +88,7 @@ impl Failure {
             Failure::Volume => [1.0, 0.0],
             Failure::Pyramid { face } => [2.0, face as f64],
             Failure::Open { openness } => [3.0, openness],
+            Failure::Stretched { aspect_ratio } => [4.0, aspect_ratio],
         }
     }
 
@@ -83,6 +98,9 @@ impl Failure {
             1 => Failure::Volume,
             2 => Failure::Pyramid { face: n[1] as usize },
             3 => Failure::Open { openness: n[1] },
+            4 => Failure::Stretched {
+                aspect_ratio: n[1],
+            },
             _ => Failure::Corner,
         }
     }
@@ -101,6 +119,10 @@ impl fmt::Display for Failure {
             Failure::Open { openness } => write!(
                 f,
                 "is open (openness {openness:.3e} over checkMesh's {CLOSED:.0e})"
+            ),
+            Failure::Stretched { aspect_ratio } => write!(
+                f,
+                "is stretched (aspect ratio {aspect_ratio:.1} over checkMesh's {ASPECT})"
             ),
         }
     }
@@ -151,11 +173,14 @@ pub struct Verdict {
     pub worst_pyramid: (usize, f64),
     /// Its openness (0 in 2D).
     pub openness: f64,
+    /// Its aspect ratio.
+    pub aspect_ratio: f64,
 }
 
 impl Verdict {
     /// The first test failed (volume, then pyramids, then closedness) with
-    /// the cell's volume (the failing pyramid's for a pyramid), or `None`.
+    /// the cell's volume (the failing pyramid's for a pyramid), or `None`;
+    /// the aspect ratio is judged against the input's by the caller.
     pub fn failure(&self) -> Option<(Failure, f64)> {
         if !(self.volume >= VSMALL) {
             Some((Failure::Volume, self.volume))
@@ -176,7 +201,7 @@ impl Verdict {
 }
 
 /// The tests of the module docs on a cell with faces `faces` (centres and
-/// outward area vectors); `closed`: whether to measure openness.
+/// outward area vectors); `closed`: whether to measure openness (3D).
 fn judge(faces: &[FaceGeometry], closed: bool) -> Verdict {
     let m = faces.len() as f64;
     let estimate: [f64; 3] = std::array::from_fn(|k| faces.iter().map(|f| f.0[k]).sum::<f64>() / m);
@@ -198,6 +223,7 @@ fn judge(faces: &[FaceGeometry], closed: bool) -> Verdict {
         bad_pyramids: 0,
         worst_pyramid: (0, f64::INFINITY),
         openness: 0.0,
+        aspect_ratio: 0.0,
     };
     for (face, (x, a)) in faces.iter().enumerate() {
         let v = dot(a, &sub(x, &centre)) / 3.0;
@@ -208,17 +234,26 @@ fn judge(faces: &[FaceGeometry], closed: bool) -> Verdict {
             verdict.worst_pyramid = (face, v);
         }
     }
-    if closed {
-        let (mut sum, mut mag) = ([0.0; 3], [0.0; 3]);
-        for (_, a) in faces {
-            for k in 0..3 {
-                sum[k] += a[k];
-                mag[k] += a[k].abs();
-            }
+    let (mut sum, mut mag) = ([0.0; 3], [0.0; 3]);
+    for (_, a) in faces {
+        for k in 0..3 {
+            sum[k] += a[k];
+            mag[k] += a[k].abs();
         }
+    }
+    let dims = if closed { 3 } else { 2 };
+    let (lo, hi) = mag[..dims]
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &m| (lo.min(m), hi.max(m)));
+    verdict.aspect_ratio = hi / (lo + ROOTVSMALL);
+    if closed {
         verdict.openness = (0..3)
             .map(|k| sum[k].abs() / (mag[k] + ROOTVSMALL))
             .fold(0.0, f64::max);
+        let v = verdict.volume.max(ROOTVSMALL);
+        verdict.aspect_ratio = verdict
+            .aspect_ratio
+            .max(mag.iter().sum::<f64>() / 6.0 / v.powf(2.0 / 3.0));
     }
     verdict
 }
