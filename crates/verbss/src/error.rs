@@ -45,6 +45,21 @@ pub enum Error {
         /// What was found and what was expected.
         message: String,
     },
+    /// The output format cannot hold a cell or facet of the mesh (a polygon
+    /// or polyhedron in SU2 or Gmsh).
+    #[error(
+        "{}: the {format} format cannot hold {what} (write .vtu, or an OpenFOAM case; a mesh \
+         read from a .cgns file also writes back as .cgns)",
+        path.display()
+    )]
+    Unrepresentable {
+        /// The file.
+        path: PathBuf,
+        /// The format's name.
+        format: &'static str,
+        /// The element or facet, named (`element 17, a polyhedron`).
+        what: String,
+    },
     /// The file's extension does not name a format verbss knows.
     #[error("{}: unknown mesh format (expected .msh, .su2, .vtu, .cgns or an OpenFOAM case directory)", path.display())]
     UnknownFormat {

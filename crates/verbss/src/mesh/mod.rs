@@ -55,25 +55,40 @@ impl Cells {
     /// counter-clockwise seen from outside: its nodes are the faces' nodes
     /// in the order they first appear.
     pub fn push_polyhedron<'a>(&mut self, faces: impl IntoIterator<Item = &'a [usize]> + Clone) {
-        let start = self.nodes.len();
+        let mut nodes: Vec<usize> = Vec::new();
+        for face in faces.clone() {
+            for &v in face {
+                if !nodes.contains(&v) {
+                    nodes.push(v);
+                }
+            }
+        }
+        self.push_polyhedron_on(&nodes, faces)
+            .expect("every face node is listed");
+    }
+
+    /// Appends the polyhedron of nodes `nodes` (distinct) and faces `faces`
+    /// (node indices, counter-clockwise seen from outside); the first face
+    /// node not among `nodes`, if any, is refused.
+    pub fn push_polyhedron_on<'a>(
+        &mut self,
+        nodes: &[usize],
+        faces: impl IntoIterator<Item = &'a [usize]>,
+    ) -> std::result::Result<(), usize> {
         let mut local: Vec<Vec<usize>> = Vec::new();
         for face in faces {
-            local.push(
-                face.iter()
-                    .map(|&v| match self.nodes[start..].iter().position(|&u| u == v) {
-                        Some(k) => k,
-                        None => {
-                            self.nodes.push(v);
-                            self.nodes.len() - 1 - start
-                        }
-                    })
-                    .collect(),
-            );
+            let mut l = Vec::with_capacity(face.len());
+            for &v in face {
+                l.push(nodes.iter().position(|&u| u == v).ok_or(v)?);
+            }
+            local.push(l);
         }
         self.faces
             .push(self.kinds.len(), local.iter().map(Vec::as_slice));
         self.kinds.push(CellKind::Polyhedron);
+        self.nodes.extend_from_slice(nodes);
         self.offsets.push(self.nodes.len());
+        Ok(())
     }
 
     /// Appends cell `c` of `other` with its nodes mapped by `map`.

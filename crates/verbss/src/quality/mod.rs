@@ -411,7 +411,11 @@ pub fn inversions(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<Inversio
 /// fails with its signed volume: the corner test first (for the kinds with
 /// corners), then the flow solver's; an aspect ratio above [`ASPECT`] only
 /// where the cell's is not above it on the mesh's own coordinates (the
-/// input of a run).
+/// input of a run). On a mesh oriented by its file's convention (an
+/// OpenFOAM case) a cell that fails the corner test on the mesh's own
+/// coordinates (a concave quadrilateral snappyHexMesh left at a trailing
+/// edge) is judged by the flow solver's tests alone, as its solver judges
+/// it; every other cell passes the corner test too.
 fn assess<const D: usize>(mesh: &Mesh, coords: &[f64], c: usize, s: f64) -> (f64, Option<(Failure, f64)>) {
     let kind = mesh.cells.kinds[c];
     let nodes = mesh.cells.cell(c);
@@ -421,10 +425,13 @@ fn assess<const D: usize>(mesh: &Mesh, coords: &[f64], c: usize, s: f64) -> (f64
     } else {
         let p = gather::<D>(coords, nodes);
         let w = worst(kind.table(), &p, s);
-        if w.inverted() {
-            return (measure(kind, &p, s, &w), Some((Failure::Corner, w.volume)));
+        let q = measure(kind, &p, s, &w);
+        let judged_by_corners = !mesh.origin.oriented
+            || !worst(kind.table(), &gather::<D>(&mesh.coords, nodes), s).inverted();
+        if w.inverted() && judged_by_corners {
+            return (q, Some((Failure::Corner, w.volume)));
         }
-        measure(kind, &p, s, &w)
+        q
     };
     let v = verdict::<D>(nodes, local, coords, s);
     if let Some(failed) = v.failure() {
