@@ -409,9 +409,9 @@ pub fn inversions(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<Inversio
 
 /// The quality of cell `c` on `coords` relative to `s`, and the test it
 /// fails with its signed volume: the corner test first (for the kinds with
-/// corners), then the flow solver's; an aspect ratio above [`ASPECT`] only
-/// where the cell's is not above it on the mesh's own coordinates (the
-/// input of a run). On a mesh oriented by its file's convention (an
+/// corners), then the flow solver's; on an OpenFOAM case (oriented by its
+/// file's convention), an aspect ratio above [`ASPECT`] where the cell's is
+/// not above it on the mesh's own coordinates (the input of a run). On a mesh oriented by its file's convention (an
 /// OpenFOAM case) a cell that fails the corner test on the mesh's own
 /// coordinates (a concave quadrilateral snappyHexMesh left at a trailing
 /// edge) is judged by the flow solver's tests alone, as its solver judges
@@ -437,7 +437,8 @@ fn assess<const D: usize>(mesh: &Mesh, coords: &[f64], c: usize, s: f64) -> (f64
     if let Some(failed) = v.failure() {
         return (q, Some(failed));
     }
-    let stretched = v.aspect_ratio > ASPECT
+    let stretched = mesh.origin.oriented
+        && v.aspect_ratio > ASPECT
         && !(verdict::<D>(nodes, local, &mesh.coords, s).aspect_ratio > ASPECT);
     let failed = stretched.then_some((
         Failure::Stretched {

@@ -23,9 +23,11 @@
 //!   over the mesh's directions (x, y, and z in 3D),
 //!   `max_k m_k / (min_k m_k + 10⁻¹⁵⁰)`, in 3D at least
 //!   `Σ_k m_k / 6 / max(V, 10⁻¹⁵⁰)^(2/3)`, at most 1000. checkMesh fails a
-//!   mesh with a larger one; a step fails only when it makes a cell exceed
-//!   it that did not in the input mesh (boundary layers of larger ratios
-//!   are common in the meshes users bring, and their solvers run on them).
+//!   mesh with a larger one, though its solvers run on it (boundary layers
+//!   of larger ratios are common) and the measure changes when a mesh
+//!   merely turns (it is taken along the axes). So it judges a step only on
+//!   an OpenFOAM case, where checkMesh is the user's test, and only for a
+//!   cell it did not fail in the input mesh.
 //!
 //! A 2D cell is the prism OpenFOAM would hold for it, one unit thick: its
 //! polygon (nodes in cyclic order) as the back and front faces, one
