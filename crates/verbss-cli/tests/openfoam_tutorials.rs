@@ -21,7 +21,12 @@ fn check_mesh_failures(case: &Path, args: &[&str]) -> Vec<String> {
 
 /// `verbss deform CASE -o OUT ARGS… --quiet`.
 fn deform(case: &Path, out: &Path, args: &[&str]) -> std::process::Output {
-    let mut all = vec!["deform", case.to_str().unwrap(), "-o", out.to_str().unwrap()];
+    let mut all = vec![
+        "deform",
+        case.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ];
     all.extend_from_slice(args);
     all.push("--quiet");
     verbss(&all)
@@ -133,7 +138,13 @@ fn wing_motion(dir: &Path) -> PathBuf {
 #[test]
 fn wing_motion_pitches_40_degrees_and_every_step_written_passes_check_mesh() {
     let name = "incompressible/pimpleFoam/RAS/wingMotion";
-    let tools = ["blockMesh", "snappyHexMesh", "extrudeMesh", "createPatch", "checkMesh"];
+    let tools = [
+        "blockMesh",
+        "snappyHexMesh",
+        "extrudeMesh",
+        "createPatch",
+        "checkMesh",
+    ];
     if !have_tutorial(name) || !have_utilities(&tools) {
         return;
     }
@@ -158,8 +169,16 @@ fn wing_motion_pitches_40_degrees_and_every_step_written_passes_check_mesh() {
         &case,
         &out,
         &[
-            "--moving", "wing", "--rotate", "40", "--center", "0.25,0.007", "--steps", "40",
-            "--every", "10",
+            "--moving",
+            "wing",
+            "--rotate",
+            "40",
+            "--center",
+            "0.25,0.007",
+            "--steps",
+            "40",
+            "--every",
+            "10",
         ],
     );
     assert!(o.status.success(), "{}", stderr(&o));
@@ -258,7 +277,11 @@ fn sphere_case(case: &Path) {
          mergeTolerance 1e-6;\n";
     let system = case.join("system");
     std::fs::write(system.join("blockMeshDict"), head("blockMeshDict") + block).unwrap();
-    std::fs::write(system.join("snappyHexMeshDict"), head("snappyHexMeshDict") + snappy).unwrap();
+    std::fs::write(
+        system.join("snappyHexMeshDict"),
+        head("snappyHexMeshDict") + snappy,
+    )
+    .unwrap();
     foam("blockMesh", case, &[]);
     foam("snappyHexMesh", case, &["-overwrite"]);
 }
@@ -280,7 +303,11 @@ fn a_snappy_hex_mesh_sphere_moves_and_passes_check_mesh() {
         .filter(|&&k| k == verbss::CellKind::Polyhedron)
         .count();
     assert_eq!(count_after(&log, "polyhedra:"), Some(polyhedra), "{log}");
-    assert_eq!(count_after(&log, "cells:"), Some(mesh.cell_count()), "{log}");
+    assert_eq!(
+        count_after(&log, "cells:"),
+        Some(mesh.cell_count()),
+        "{log}"
+    );
     assert!(polyhedra > 500, "{polyhedra} polyhedra");
     // The paper's method (springs on every cell, the polyhedra's from
     // their faces) and the default: both pass checkMesh.
@@ -290,13 +317,23 @@ fn a_snappy_hex_mesh_sphere_moves_and_passes_check_mesh() {
             &case,
             &out,
             &[
-                "--moving", "sphere", "--translate", "0.1,0.05,0", "--steps", "5", "--method",
+                "--moving",
+                "sphere",
+                "--translate",
+                "0.1,0.05,0",
+                "--steps",
+                "5",
+                "--method",
                 method,
             ],
         );
         assert!(o.status.success(), "{method}: {}", stderr(&o));
         write_system(&out);
-        assert_eq!(check_mesh_failures(&out, &[]), Vec::<String>::new(), "{method}");
+        assert_eq!(
+            check_mesh_failures(&out, &[]),
+            Vec::<String>::new(),
+            "{method}"
+        );
     }
     // The polyhedra written to .vtu and read back; SU2 cannot hold them.
     let vtu = dir.path().join("sphere.vtu");

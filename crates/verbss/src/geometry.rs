@@ -323,7 +323,11 @@ pub fn nearest_on_quad(x: &[f64; 3], q: &[[f64; 3]; 4]) -> Option<([f64; 3], [f6
 /// `α` on `v_k`, `β` on `v_{k+1}` and `γ/m` on every point, so that each
 /// weight lies in `[0, 1]` and they sum to 1. The first nearest triangle
 /// wins a tie.
-pub fn nearest_on_polygon<const D: usize>(x: &[f64; D], v: &[[f64; D]], w: &mut Vec<f64>) -> [f64; D] {
+pub fn nearest_on_polygon<const D: usize>(
+    x: &[f64; D],
+    v: &[[f64; D]],
+    w: &mut Vec<f64>,
+) -> [f64; D] {
     let m = v.len();
     let c: [f64; D] = std::array::from_fn(|k| v.iter().map(|p| p[k]).sum::<f64>() / m as f64);
     let mut best = (f64::INFINITY, 0, [0.0; 3], c);

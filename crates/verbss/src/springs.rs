@@ -28,8 +28,7 @@ use rayon::prelude::*;
 
 use crate::geometry::{
     add_outer, morton_keys, nearest_on_polygon, nearest_on_quad, nearest_on_segment,
-    nearest_on_triangle, norm,
-    packed_len, packed_mul, point, sub,
+    nearest_on_triangle, norm, packed_len, packed_mul, point, sub,
 };
 use crate::mesh::{Cells, CompactCells, Mesh};
 use crate::topology::{self, Csr};

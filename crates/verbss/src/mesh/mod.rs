@@ -104,7 +104,11 @@ impl Cells {
 
     /// The local topology (edges, facets) of cell `c`.
     pub fn local(&self, c: usize) -> Local<'_> {
-        Local::of(self.kinds[c], self.offsets[c + 1] - self.offsets[c], self.faces.of(c))
+        Local::of(
+            self.kinds[c],
+            self.offsets[c + 1] - self.offsets[c],
+            self.faces.of(c),
+        )
     }
 
     /// The first cell of a general kind (polygon or polyhedron), if any.
@@ -499,7 +503,10 @@ fn check_cells(
             _ => Ok(()),
         };
         if let Err(why) = shape {
-            return Err(Error::InvalidMesh(format!("{what} {c} ({}) {why}", kind.name())));
+            return Err(Error::InvalidMesh(format!(
+                "{what} {c} ({}) {why}",
+                kind.name()
+            )));
         }
     }
     Ok(())
@@ -533,7 +540,9 @@ fn polyhedron_shape(nodes: &[usize], faces: Option<FaceList>) -> std::result::Re
     let mut used = vec![false; nodes.len()];
     for (f, face) in faces.iter().enumerate() {
         if face.len() < 3 || face.iter().any(|&l| l >= nodes.len()) {
-            return Err(format!("has a face ({f}) of fewer than 3 nodes or out of its nodes"));
+            return Err(format!(
+                "has a face ({f}) of fewer than 3 nodes or out of its nodes"
+            ));
         }
         for k in 0..face.len() {
             used[face[k]] = true;
@@ -545,11 +554,16 @@ fn polyhedron_shape(nodes: &[usize], faces: Option<FaceList>) -> std::result::Re
     }
     sides.sort_unstable();
     if sides.windows(2).any(|w| w[0] == w[1]) {
-        return Err("has two faces that run along one side the same way (faces not oriented \
+        return Err(
+            "has two faces that run along one side the same way (faces not oriented \
                     consistently outward)"
-            .into());
+                .into(),
+        );
     }
-    if let Some(&(a, b)) = sides.iter().find(|&&(a, b)| sides.binary_search(&(b, a)).is_err()) {
+    if let Some(&(a, b)) = sides
+        .iter()
+        .find(|&&(a, b)| sides.binary_search(&(b, a)).is_err())
+    {
         return Err(format!(
             "is not closed: its side {}-{} belongs to one face only",
             nodes[a], nodes[b]

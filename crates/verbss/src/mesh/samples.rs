@@ -199,6 +199,32 @@ pub fn solid_airfoil() -> Mesh {
     Mesh::new(2, coords, volume, groups).expect("a valid solid zone")
 }
 
+/// `mesh` with every cell of a fixed kind written as the general kind of
+/// its dimension: a 2D cell as the polygon of its nodes, a 3D cell as the
+/// polyhedron of its facets (the same nodes, edges and faces).
+pub fn as_general(mesh: &Mesh) -> Mesh {
+    let mut cells = Cells::new();
+    for (c, (kind, nodes)) in mesh.cells.iter().enumerate() {
+        if kind.dim() == 2 {
+            cells.push(CellKind::Polygon, nodes);
+        } else {
+            let faces: Vec<Vec<usize>> = kind
+                .table()
+                .facets
+                .iter()
+                .map(|f| f.iter().map(|&l| nodes[l]).collect())
+                .collect();
+            cells
+                .push_polyhedron_on(nodes, faces.iter().map(Vec::as_slice))
+                .expect("a facet's nodes are the cell's");
+        }
+        debug_assert_eq!(cells.cell(c), nodes);
+    }
+    let mut general = mesh.clone();
+    general.cells = cells;
+    general
+}
+
 /// A structured mesh of `[0, 1]^dim` with `n` nodes a side, cells of the kind
 /// chosen by `kind` (2D: triangles, quads, both; 3D: hexahedra, prisms,
 /// tetrahedra, pyramids, hexahedra and pyramids), every cell positively

@@ -262,7 +262,13 @@ pub fn cell_quality<const D: usize>(
     coords: &[f64],
     sign: i8,
 ) -> f64 {
-    quality_of::<D>(kind, nodes, Local::of(kind, nodes.len(), None), coords, sign)
+    quality_of::<D>(
+        kind,
+        nodes,
+        Local::of(kind, nodes.len(), None),
+        coords,
+        sign,
+    )
 }
 
 /// [`cell_quality`] of a cell of any kind, with its topology `local`.
@@ -326,7 +332,14 @@ fn per_cell<T: Send>(
 ) -> Vec<T> {
     (0..mesh.cells.len())
         .into_par_iter()
-        .map(|c| f(c, mesh.cells.kinds[c], mesh.cells.cell(c), mesh.cells.local(c)))
+        .map(|c| {
+            f(
+                c,
+                mesh.cells.kinds[c],
+                mesh.cells.cell(c),
+                mesh.cells.local(c),
+            )
+        })
         .collect()
 }
 
@@ -416,7 +429,12 @@ pub fn inversions(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<Inversio
 /// coordinates (a concave quadrilateral snappyHexMesh left at a trailing
 /// edge) is judged by the flow solver's tests alone, as its solver judges
 /// it; every other cell passes the corner test too.
-fn assess<const D: usize>(mesh: &Mesh, coords: &[f64], c: usize, s: f64) -> (f64, Option<(Failure, f64)>) {
+fn assess<const D: usize>(
+    mesh: &Mesh,
+    coords: &[f64],
+    c: usize,
+    s: f64,
+) -> (f64, Option<(Failure, f64)>) {
     let kind = mesh.cells.kinds[c];
     let nodes = mesh.cells.cell(c);
     let local = mesh.cells.local(c);

@@ -98,11 +98,11 @@ impl Failure {
     pub fn from_numbers(n: [f64; 2]) -> Failure {
         match n[0] as u8 {
             1 => Failure::Volume,
-            2 => Failure::Pyramid { face: n[1] as usize },
-            3 => Failure::Open { openness: n[1] },
-            4 => Failure::Stretched {
-                aspect_ratio: n[1],
+            2 => Failure::Pyramid {
+                face: n[1] as usize,
             },
+            3 => Failure::Open { openness: n[1] },
+            4 => Failure::Stretched { aspect_ratio: n[1] },
             _ => Failure::Corner,
         }
     }
@@ -246,7 +246,9 @@ fn judge(faces: &[FaceGeometry], closed: bool) -> Verdict {
     let dims = if closed { 3 } else { 2 };
     let (lo, hi) = mag[..dims]
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &m| (lo.min(m), hi.max(m)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &m| {
+            (lo.min(m), hi.max(m))
+        });
     verdict.aspect_ratio = hi / (lo + ROOTVSMALL);
     if closed {
         verdict.openness = (0..3)
@@ -282,7 +284,14 @@ pub(super) fn check_3d(nodes: &[usize], local: Local, coords: &[f64], s: f64) ->
         }
         count += 1;
     });
-    judge(if count > FACES { &heap } else { &inline[..count] }, true)
+    judge(
+        if count > FACES {
+            &heap
+        } else {
+            &inline[..count]
+        },
+        true,
+    )
 }
 
 /// [`check_3d`] for a 2D cell whose nodes `nodes` are its polygon in cyclic

@@ -130,10 +130,7 @@ fn shape(faces: &[Vec<usize>]) -> Option<(CellKind, Vec<usize>)> {
     let base = first.len();
     match kind {
         CellKind::Tetra | CellKind::Pyramid => {
-            let apex = edges
-                .iter()
-                .flatten()
-                .find(|p| !base_face.contains(p))?;
+            let apex = edges.iter().flatten().find(|p| !base_face.contains(p))?;
             nodes[base] = *apex;
         }
         _ => {

@@ -327,14 +327,24 @@ fn a_general_polyhedron_is_read_with_its_faces() {
     let mesh = read(dir.path()).unwrap();
     assert_eq!(mesh.cells.kinds, [CellKind::Polyhedron]);
     assert_eq!(mesh.cells.cell(0), [0, 3, 2, 1, 4, 5, 6, 7]);
-    let faces: Vec<Vec<usize>> = mesh.cells.faces.of(0).unwrap().iter().map(<[usize]>::to_vec).collect();
+    let faces: Vec<Vec<usize>> = mesh
+        .cells
+        .faces
+        .of(0)
+        .unwrap()
+        .iter()
+        .map(<[usize]>::to_vec)
+        .collect();
     assert_eq!(faces[0], [0, 1, 2]);
     assert_eq!(faces[1], [0, 2, 3]);
     assert_eq!(faces.len(), 7);
     // The unit cube: valid, of quality 1 (the cube's decomposition).
     let summary = crate::quality::summary_json(&mesh);
     assert_eq!(summary["inverted"], 0);
-    assert!((summary["quality"]["min"].as_f64().unwrap() - 1.0).abs() < 1e-12, "{summary}");
+    assert!(
+        (summary["quality"]["min"].as_f64().unwrap() - 1.0).abs() < 1e-12,
+        "{summary}"
+    );
     // One face missing: the cell is open, named with the file and the side.
     let mut open = files.clone();
     open[1].1 = "6(3(0 3 2) 3(0 2 1) 4(4 5 6 7) 4(0 1 5 4) 4(1 2 6 5) 4(2 3 7 6))".into();

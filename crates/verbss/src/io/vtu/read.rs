@@ -583,7 +583,9 @@ const MAX_GENERAL: usize = 256;
 fn face_stream(stream: &[i64], n: usize) -> std::result::Result<Vec<Vec<usize>>, String> {
     let count = |v: Option<&i64>, what: &str| match v.map(|&v| usize::try_from(v)) {
         Some(Ok(v)) if v <= MAX_GENERAL => Ok(v),
-        _ => Err(format!("its face stream has no valid {what} count (at most {MAX_GENERAL})")),
+        _ => Err(format!(
+            "its face stream has no valid {what} count (at most {MAX_GENERAL})"
+        )),
     };
     let mut it = stream.iter();
     let faces = count(it.next(), "face")?;
