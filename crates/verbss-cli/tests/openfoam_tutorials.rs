@@ -99,9 +99,13 @@ fn cells_a_case_holds_inverted_are_counted_as_check_mesh_counts_them() {
             .unwrap()
     };
     let (a, b) = (at(0.25, 0.25, 0.25), at(0.5, 0.75, 0.5));
-    coords[3 * a] += 0.4;
-    coords[3 * a + 1] += 0.1;
-    coords[3 * b + 2] -= 0.35;
+    for (k, (da, db)) in [(0.71, 0.05), (0.23, -0.11), (0.11, -0.62)]
+        .iter()
+        .enumerate()
+    {
+        coords[3 * a + k] += da;
+        coords[3 * b + k] += db;
+    }
     let moved = dir.path().join("tangled");
     verbss::io::write_moved(&moved, &mesh, &coords, &WriteOptions::default()).unwrap();
     write_system(&moved);
@@ -115,6 +119,10 @@ fn cells_a_case_holds_inverted_are_counted_as_check_mesh_counts_them() {
     let ours = &v["checkmesh"];
     assert_eq!(ours["negative_volume_cells"], negative, "{log}");
     assert_eq!(ours["incorrectly_oriented_faces"], pyramids, "{log}");
+    let stretched = log
+        .find("High aspect ratio cells found")
+        .map_or(0, |at| count_after(&log[at..], "number of cells").unwrap());
+    assert_eq!(ours["high_aspect_ratio_cells"], stretched, "{log}");
     // Orientation comes from the faces' convention: every such cell is
     // inverted, none a valid mirrored one.
     assert!(v["inverted"].as_u64().unwrap() >= negative as u64, "{v}");
@@ -182,20 +190,22 @@ fn wing_motion_pitches_40_degrees_and_every_step_written_passes_check_mesh() {
         ],
     );
     assert!(o.status.success(), "{}", stderr(&o));
-    // Steps 10, 20 and 30 of the series, and the last, as times of the new
-    // case: checkMesh finds nothing but that skewness on any.
-    for step in [10, 20, 30] {
+    // Steps 10, 20, 30 and 40 of the series as times of the new case (the
+    // last also in its constant/polyMesh): checkMesh finds nothing but that
+    // skewness on any.
+    let last = verbss::io::read(&out).unwrap();
+    let frame = verbss::io::read(&dir.path().join("pitched_0040.vtu")).unwrap();
+    assert_eq!(frame.coords, last.coords);
+    for step in [10, 20, 30, 40] {
         let frame = dir.path().join(format!("pitched_{step:04}.vtu"));
         let coords = verbss::io::read(&frame).unwrap().coords;
-        let options = WriteOptions {
-            foam_time: Some(step.to_string()),
-            ..WriteOptions::default()
-        };
+        let mut options = WriteOptions::default();
+        options.foam_time = Some(step.to_string());
         let moved = verbss::io::read(&out).unwrap();
         verbss::io::write_moved(&out, &moved, &coords, &options).unwrap();
     }
     write_system(&out);
-    let log = foam("checkMesh", &out, &["-allTimes"]);
+    let log = foam("checkMesh", &out, &["-time", "10:40"]);
     assert_eq!(log.matches("Time = ").count(), 4, "{log}");
     let found = failures(&log);
     assert!(
@@ -309,24 +319,20 @@ fn a_snappy_hex_mesh_sphere_moves_and_passes_check_mesh() {
         "{log}"
     );
     assert!(polyhedra > 500, "{polyhedra} polyhedra");
-    // The paper's method (springs on every cell, the polyhedra's from
-    // their faces) and the default: both pass checkMesh.
-    for (out, method) in [("moved", "verbss"), ("blended", "robust")] {
+    // The default (5 steps) and the paper's method (springs on every cell,
+    // the polyhedra's from their faces; one step, to keep the test short):
+    // both pass checkMesh.
+    for (out, method, steps) in [("blended", "robust", "5"), ("moved", "verbss", "1")] {
         let out = dir.path().join(out);
-        let o = deform(
-            &case,
-            &out,
-            &[
-                "--moving",
-                "sphere",
-                "--translate",
-                "0.1,0.05,0",
-                "--steps",
-                "5",
-                "--method",
-                method,
-            ],
-        );
+        let motion = [
+            "--moving",
+            "sphere",
+            "--translate",
+            "0.1,0.05,0",
+            "--steps",
+            steps,
+        ];
+        let o = deform(&case, &out, &[&motion[..], &["--method", method]].concat());
         assert!(o.status.success(), "{method}: {}", stderr(&o));
         write_system(&out);
         assert_eq!(

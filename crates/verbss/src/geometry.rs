@@ -316,6 +316,23 @@ pub fn nearest_on_quad(x: &[f64; 3], q: &[[f64; 3]; 4]) -> Option<([f64; 3], [f6
     Some((p, w))
 }
 
+/// Node `i` of `coords` (`D` numbers a node) as a 3D point (`z = 0` in 2D).
+pub fn lifted<const D: usize>(coords: &[f64], i: usize) -> [f64; 3] {
+    let p = point::<D>(coords, i);
+    [p[0], p[1], if D == 3 { p[2] } else { 0.0 }]
+}
+
+/// The mean of nodes `nodes` of `coords` as a 3D point ([`lifted`]).
+pub fn mean_of<const D: usize>(coords: &[f64], nodes: impl Iterator<Item = usize>) -> [f64; 3] {
+    let (mut sum, mut n) = ([0.0; 3], 0.0);
+    for i in nodes {
+        let p = lifted::<D>(coords, i);
+        (0..3).for_each(|k| sum[k] += p[k]);
+        n += 1.0;
+    }
+    sum.map(|v| v / n)
+}
+
 /// The point of polygon `v` (`m ≥ 3` points in cyclic order) nearest to `x`
 /// on its decomposition into the triangles `(v_k, v_{k+1}, c)` about its
 /// centre `c = Σ v_k / m`, and its weights on the `m` points, written into

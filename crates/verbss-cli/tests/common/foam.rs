@@ -28,12 +28,15 @@ pub fn have_openfoam() -> bool {
     )
 }
 
-/// Runs an OpenFOAM utility on `case` with `args`; its standard output.
+/// Runs an OpenFOAM utility on `case` with `args`, in `case` (as a
+/// tutorial's Allrun runs it: some dictionaries name paths relative to
+/// it); its standard output.
 pub fn foam(utility: &str, case: &Path, args: &[&str]) -> String {
     let out = Command::new(utility)
         .arg("-case")
         .arg(case)
         .args(args)
+        .current_dir(case)
         .env(
             "WM_PROJECT_DIR",
             std::env::var("WM_PROJECT_DIR").unwrap_or(FOAM_DIR.into()),

@@ -66,6 +66,8 @@ use crate::mesh::Mesh;
 mod assemble;
 mod binary;
 #[cfg(test)]
+mod general_tests;
+#[cfg(test)]
 mod hostile_tests;
 mod read;
 #[cfg(test)]

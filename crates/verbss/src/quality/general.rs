@@ -24,7 +24,7 @@
 
 use super::measures;
 use super::ZERO;
-use crate::geometry::{cross, dot, norm, point, sub};
+use crate::geometry::{cross, dot, lifted, mean_of, norm, sub};
 use crate::mesh::Local;
 
 /// `h/R` of the unit square.
@@ -42,20 +42,8 @@ fn simplices<const D: usize>(
     coords: &[f64],
     mut f: impl FnMut(f64, f64, f64, f64),
 ) {
-    let at = |l: usize| {
-        let p = point::<D>(coords, nodes[l]);
-        [p[0], p[1], if D == 3 { p[2] } else { 0.0 }]
-    };
-    let mean = |ls: &mut dyn Iterator<Item = usize>| {
-        let (mut sum, mut n) = ([0.0; 3], 0.0);
-        for l in ls {
-            let p = at(l);
-            (0..3).for_each(|k| sum[k] += p[k]);
-            n += 1.0;
-        }
-        sum.map(|v| v / n)
-    };
-    let c = mean(&mut (0..nodes.len()));
+    let at = |l: usize| lifted::<D>(coords, nodes[l]);
+    let c = mean_of::<D>(coords, nodes.iter().copied());
     if D == 2 {
         let n = nodes.len();
         for k in 0..n {
@@ -68,7 +56,7 @@ fn simplices<const D: usize>(
         return;
     }
     local.facets(|face| {
-        let xf = mean(&mut face.iter().copied());
+        let xf = mean_of::<D>(coords, face.iter().map(|&l| nodes[l]));
         for k in 0..face.len() {
             let (a, b) = (at(face[k]), at(face[(k + 1) % face.len()]));
             let (ab, af, ca) = (sub(&b, &a), sub(&xf, &a), sub(&a, &c));

@@ -130,7 +130,8 @@ impl fmt::Display for Failure {
     }
 }
 
-/// The faces of a cell measured at once; more go to the heap.
+/// The faces of a cell (points of a face) held in place; more go to the
+/// heap.
 const FACES: usize = 16;
 
 /// A face's centre and (outward) area vector.
@@ -262,50 +263,78 @@ fn judge(faces: &[FaceGeometry], closed: bool) -> Verdict {
     verdict
 }
 
+/// Up to `N` values held in place, more on the heap: a cell's faces or a
+/// face's points, measured without an allocation for the paper's kinds.
+struct Buffer<T: Copy, const N: usize> {
+    inline: [T; N],
+    len: usize,
+    heap: Vec<T>,
+}
+
+impl<T: Copy, const N: usize> Buffer<T, N> {
+    fn new(zero: T) -> Self {
+        Buffer {
+            inline: [zero; N],
+            len: 0,
+            heap: Vec::new(),
+        }
+    }
+
+    fn clear(&mut self) {
+        self.len = 0;
+        self.heap.clear();
+    }
+
+    fn push(&mut self, v: T) {
+        if self.len < N {
+            self.inline[self.len] = v;
+        } else {
+            if self.len == N {
+                self.heap.extend_from_slice(&self.inline);
+            }
+            self.heap.push(v);
+        }
+        self.len += 1;
+    }
+
+    fn as_slice(&self) -> &[T] {
+        if self.len > N {
+            &self.heap
+        } else {
+            &self.inline[..self.len]
+        }
+    }
+}
+
 /// The tests of the module docs on the 3D cell with nodes `nodes` and
 /// topology `local` at `coords`, relative to orientation `s`.
 pub(super) fn check_3d(nodes: &[usize], local: Local, coords: &[f64], s: f64) -> Verdict {
-    let mut inline = [([0.0; 3], [0.0; 3]); FACES];
-    let mut heap: Vec<FaceGeometry> = Vec::new();
-    let mut count = 0;
-    let mut points = Vec::new();
+    let mut faces: Buffer<FaceGeometry, FACES> = Buffer::new(([0.0; 3], [0.0; 3]));
+    let mut points: Buffer<[f64; 3], FACES> = Buffer::new([0.0; 3]);
     local.facets(|facet| {
         points.clear();
-        points.extend(facet.iter().map(|&l| point::<3>(coords, nodes[l])));
-        let (x, a) = face_geometry(&points);
-        let g = (x, a.map(|v| s * v));
-        if count < FACES {
-            inline[count] = g;
-        } else {
-            if count == FACES {
-                heap.extend_from_slice(&inline);
-            }
-            heap.push(g);
+        for &l in facet {
+            points.push(point::<3>(coords, nodes[l]));
         }
-        count += 1;
+        let (x, a) = face_geometry(points.as_slice());
+        faces.push((x, a.map(|v| s * v)));
     });
-    judge(
-        if count > FACES {
-            &heap
-        } else {
-            &inline[..count]
-        },
-        true,
-    )
+    judge(faces.as_slice(), true)
 }
 
 /// [`check_3d`] for a 2D cell whose nodes `nodes` are its polygon in cyclic
 /// order (the prism of the module docs).
 pub(super) fn check_2d(nodes: &[usize], coords: &[f64], s: f64) -> Verdict {
     let n = nodes.len();
-    let at = |k: usize| {
+    let mut polygon: Buffer<[f64; 3], FACES> = Buffer::new([0.0; 3]);
+    for k in 0..n {
         let k = if s < 0.0 { n - 1 - k } else { k };
         let p = point::<2>(coords, nodes[k]);
-        [p[0], p[1], 0.0]
-    };
-    let polygon: Vec<[f64; 3]> = (0..n).map(at).collect();
-    let (centre, area) = face_geometry(&polygon);
-    let mut faces: Vec<FaceGeometry> = Vec::with_capacity(n + 2);
+        polygon.push([p[0], p[1], 0.0]);
+    }
+    let polygon = polygon.as_slice();
+    let (centre, area) = face_geometry(polygon);
+    let mut faces: Buffer<FaceGeometry, FACES> = Buffer::new(([0.0; 3], [0.0; 3]));
     for k in 0..n {
         let (a, b) = (polygon[k], polygon[(k + 1) % n]);
         faces.push((
@@ -315,44 +344,33 @@ pub(super) fn check_2d(nodes: &[usize], coords: &[f64], s: f64) -> Verdict {
     }
     faces.push(([centre[0], centre[1], 1.0], [0.0, 0.0, area[2]]));
     faces.push(([centre[0], centre[1], 0.0], [0.0, 0.0, -area[2]]));
-    judge(&faces, false)
+    judge(faces.as_slice(), false)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// A unit cube's six faces, outward, at `x`, its 8 points.
+    /// The hexahedron's six faces, outward, at points `x`.
     fn cube(x: &[[f64; 3]; 8]) -> Vec<FaceGeometry> {
-        let faces = [
-            [0, 3, 2, 1],
-            [4, 5, 6, 7],
-            [0, 1, 5, 4],
-            [1, 2, 6, 5],
-            [2, 3, 7, 6],
-            [3, 0, 4, 7],
-        ];
-        faces
+        crate::mesh::CellKind::Hexahedron
+            .table()
+            .facets
             .iter()
-            .map(|f| face_geometry(&f.map(|l| x[l])))
+            .map(|f| face_geometry(&f.iter().map(|&l| x[l]).collect::<Vec<_>>()))
             .collect()
     }
 
-    const CUBE: [[f64; 3]; 8] = [
-        [0., 0., 0.],
-        [1., 0., 0.],
-        [1., 1., 0.],
-        [0., 1., 0.],
-        [0., 0., 1.],
-        [1., 0., 1.],
-        [1., 1., 1.],
-        [0., 1., 1.],
-    ];
+    /// The unit cube of the samples, its 8 points in the hexahedron's order.
+    fn unit_cube() -> [[f64; 3]; 8] {
+        let c = &crate::mesh::samples::hex_wedge_pyramid_tet().coords[..24];
+        std::array::from_fn(|k| [c[3 * k], c[3 * k + 1], c[3 * k + 2]])
+    }
 
     #[test]
     fn a_cube_passes_and_its_mirror_fails_on_volume() {
-        assert_eq!(judge(&cube(&CUBE), true).failure(), None);
-        let mirrored = CUBE.map(|p| [-p[0], p[1], p[2]]);
+        assert_eq!(judge(&cube(&unit_cube()), true).failure(), None);
+        let mirrored = unit_cube().map(|p| [-p[0], p[1], p[2]]);
         let (failure, volume) = judge(&cube(&mirrored), true).failure().unwrap();
         assert_eq!(failure, Failure::Volume);
         assert!((volume + 1.0).abs() < 1e-14, "{volume}");
@@ -362,7 +380,7 @@ mod tests {
     fn a_face_pushed_through_the_centre_is_incorrectly_oriented() {
         // The top face's nodes pushed down below the centre but keeping a
         // positive total volume: the pyramid of the top face turns over.
-        let mut x = CUBE;
+        let mut x = unit_cube();
         x[6] = [1.0, 1.0, -3.0];
         let r = judge(&cube(&x), true).failure();
         assert!(

@@ -15,7 +15,7 @@
 use rayon::prelude::*;
 
 use super::{relax, Frame, CHUNK};
-use crate::geometry::{cross, det, ldlt_mul, norm, point, sub};
+use crate::geometry::{cross, det, ldlt_mul, lifted, mean_of, norm, point, sub};
 use crate::mesh::{CellKind, Local};
 use crate::springs::Connectivity;
 
@@ -71,23 +71,11 @@ pub fn cell_height<const D: usize>(
 /// the mean of its nodes and `n_F` its unit normal (the sum of the normals
 /// of its triangles about `x_F`).
 fn general_height<const D: usize>(nodes: &[usize], local: Local, coords: &[f64]) -> f64 {
-    let at = |l: usize| {
-        let p = point::<D>(coords, nodes[l]);
-        [p[0], p[1], if D == 3 { p[2] } else { 0.0 }]
-    };
-    let mean = |ls: &mut dyn Iterator<Item = usize>| {
-        let (mut sum, mut n) = ([0.0; 3], 0.0);
-        for l in ls {
-            let p = at(l);
-            (0..3).for_each(|k| sum[k] += p[k]);
-            n += 1.0;
-        }
-        sum.map(|v| v / n)
-    };
-    let c = mean(&mut (0..nodes.len()));
+    let at = |l: usize| lifted::<D>(coords, nodes[l]);
+    let c = mean_of::<D>(coords, nodes.iter().copied());
     let mut height = f64::INFINITY;
     local.facets(|facet| {
-        let xf = mean(&mut facet.iter().copied());
+        let xf = mean_of::<D>(coords, facet.iter().map(|&l| nodes[l]));
         let normal = if D == 2 {
             let d = sub(&at(facet[1]), &at(facet[0]));
             [-d[1], d[0], 0.0]

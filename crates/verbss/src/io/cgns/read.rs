@@ -92,7 +92,8 @@ fn sections(file: &super::ffi::File, head: &Head) -> std::result::Result<Vec<Sec
                 let (data, offsets) =
                     file.elements_and_offsets((1, 1, s), info.kind, (info.start, info.end))?;
                 if info.kind == ffi::NGON_N {
-                    cells = zone::ngon(&data, &offsets, head.vertices, (first, &place))?;
+                    cells =
+                        zone::ngon(&data, &offsets, (head.vertices, head.dim), (first, &place))?;
                 } else {
                     nface = zone::nface(&data, &offsets, (first, &place))?;
                 }

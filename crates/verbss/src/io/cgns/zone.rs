@@ -223,14 +223,28 @@ pub(super) fn elements(
     Ok(cells)
 }
 
+/// The 1-based node numbers `stored` as 0-based indices in `nodes`
+/// (cleared first); the first number outside `1..=n`, if any.
+fn zero_based(stored: &[CgSize], n: usize, nodes: &mut Vec<usize>) -> std::result::Result<(), i64> {
+    nodes.clear();
+    for &v in stored {
+        let v = i64::from(v);
+        if v < 1 || v > n as i64 {
+            return Err(v);
+        }
+        nodes.push(v as usize - 1);
+    }
+    Ok(())
+}
+
 /// The faces of an `NGON_n` section (elements `first..`, connectivity
-/// `data` cut by `offsets`), each as the facet of its node count (a line,
-/// triangle, quadrilateral or polygon), 1-based node numbers checked
-/// against `n`.
+/// `data` cut by `offsets`) of a zone of cell dimension `dim`, each as the
+/// facet of its node count (in 2D a line, in 3D a triangle, quadrilateral
+/// or polygon), 1-based node numbers checked against `n`.
 pub(super) fn ngon(
     data: &[CgSize],
     offsets: &[CgSize],
-    n: usize,
+    (n, dim): (usize, usize),
     (first, place): (i64, &str),
 ) -> std::result::Result<Cells, String> {
     let mut cells = Cells::new();
@@ -240,18 +254,23 @@ pub(super) fn ngon(
         let range = usize::try_from(w[0]).ok().zip(usize::try_from(w[1]).ok());
         let stored = range
             .and_then(|(a, b)| data.get(a..b))
-            .filter(|f| f.len() >= 2)
             .ok_or_else(|| format!("{place}: face {number} has no valid node range"))?;
-        nodes.clear();
-        for &v in stored {
-            let v = i64::from(v);
-            if v < 1 || v > n as i64 {
-                return Err(format!(
-                    "{place}: face {number} has node {v}, outside the zone's 1..={n}"
-                ));
-            }
-            nodes.push(v as usize - 1);
+        let fits = if dim == 2 {
+            stored.len() == 2
+        } else {
+            stored.len() >= 3
+        };
+        if !fits {
+            return Err(format!(
+                "{place}: face {number} has {} nodes (expected {} in a base of cell dimension \
+                 {dim})",
+                stored.len(),
+                if dim == 2 { "2" } else { "3 or more" }
+            ));
         }
+        zero_based(stored, n, &mut nodes).map_err(|v| {
+            format!("{place}: face {number} has node {v}, outside the zone's 1..={n}")
+        })?;
         cells.push(CellKind::facet_kind(nodes.len()), &nodes);
     }
     Ok(cells)
@@ -310,16 +329,9 @@ fn decode(
         let stored = data
             .get(pos..end)
             .ok_or_else(|| format!("{place}: the connectivity ends inside element {number}"))?;
-        nodes.clear();
-        for &v in stored {
-            let v = i64::from(v);
-            if v < 1 || v > n as i64 {
-                return Err(format!(
-                    "{place}: element {number} has node {v}, outside the zone's 1..={n}"
-                ));
-            }
-            nodes.push(v as usize - 1);
-        }
+        zero_based(stored, n, &mut nodes).map_err(|v| {
+            format!("{place}: element {number} has node {v}, outside the zone's 1..={n}")
+        })?;
         cells.push(element, &nodes);
         pos = end;
     }

@@ -131,3 +131,60 @@ fn polyhedra_are_read_from_their_faces_and_written_back_as_read() {
         "{e}"
     );
 }
+
+#[test]
+fn polygons_are_read_from_their_edges() {
+    if !needs(LIBRARY, available()) {
+        return;
+    }
+    // Two unit squares side by side: nodes 1 + i + 3 j, edges 1–7, cells 8–9.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("squares.cgns");
+    let file = File::open(&path, Mode::Write).unwrap();
+    let b = file.write_base("Base", 2, 2).unwrap();
+    let z = file
+        .write_zone(b, "Zone", ffi::UNSTRUCTURED, &[6, 2, 0])
+        .unwrap();
+    file.write_coordinate(b, z, "CoordinateX", &[0., 1., 2., 0., 1., 2.])
+        .unwrap();
+    file.write_coordinate(b, z, "CoordinateY", &[0., 0., 0., 1., 1., 1.])
+        .unwrap();
+    let edges: [CgSize; 14] = [1, 2, 2, 3, 4, 5, 5, 6, 1, 4, 2, 5, 3, 6];
+    let offsets: Vec<CgSize> = (0..=7).map(|k| 2 * k).collect();
+    file.write_section(b, z, "Edges", ffi::NGON_N, (1, 7), &edges, &offsets)
+        .unwrap();
+    let cells: [CgSize; 8] = [1, 6, -3, -5, 2, 7, -4, -6];
+    file.write_section(b, z, "Cells", ffi::NFACE_N, (8, 9), &cells, &[0, 4, 8])
+        .unwrap();
+    file.close().unwrap();
+    let mesh = read(&path).unwrap();
+    assert_eq!(mesh.cells.kinds, [CellKind::Polygon; 2]);
+    assert_eq!(mesh.cells.cell(0), [0, 1, 4, 3]);
+    assert_eq!(mesh.cells.cell(1), [1, 2, 5, 4]);
+    let summary = crate::quality::summary_json(&mesh);
+    assert_eq!(summary["inverted"], 0, "{summary}");
+    assert!(
+        (summary["quality"]["min"].as_f64().unwrap() - 1.0).abs() < 1e-12,
+        "{summary}"
+    );
+}
+
+#[test]
+fn a_face_that_does_not_fit_the_base_is_refused() {
+    if !needs(LIBRARY, available()) {
+        return;
+    }
+    // scripts/make_cgns_fixtures.c: a 2D square with an NGON_n "face" of 3 nodes.
+    let path = Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../assets/meshes/bad/polyhedral.cgns"
+    ));
+    assert_eq!(
+        read(path).unwrap_err().to_string(),
+        format!(
+            "{}: section 'Faces' of zone 'Zone' (zone 1 of base 'Base'): face 5 has 3 nodes \
+             (expected 2 in a base of cell dimension 2)",
+            path.display()
+        )
+    );
+}
