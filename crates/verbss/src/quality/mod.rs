@@ -457,7 +457,7 @@ fn assess<const D: usize>(
     }
     let stretched = mesh.origin.oriented
         && v.aspect_ratio > ASPECT
-        && !(verdict::<D>(nodes, local, &mesh.coords, s).aspect_ratio > ASPECT);
+        && verdict::<D>(nodes, local, &mesh.coords, s).aspect_ratio <= ASPECT;
     let failed = stretched.then_some((
         Failure::Stretched {
             aspect_ratio: v.aspect_ratio,
@@ -572,7 +572,7 @@ pub fn summary_json(mesh: &Mesh) -> serde_json::Value {
     let reference = orientation(mesh);
     let report = report(mesh, &mesh.coords, &reference);
     let verdicts = verdicts(mesh, &mesh.coords, &reference);
-    let negative = verdicts.iter().filter(|v| !(v.volume >= 1e-300)).count();
+    let negative = verdicts.iter().filter(|v| v.negative_volume()).count();
     let pyramids: usize = verdicts.iter().map(|v| v.bad_pyramids).sum();
     let open = verdicts.iter().filter(|v| v.openness > CLOSED).count();
     let stretched = verdicts.iter().filter(|v| v.aspect_ratio > ASPECT).count();

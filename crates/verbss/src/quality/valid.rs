@@ -181,11 +181,17 @@ pub struct Verdict {
 }
 
 impl Verdict {
+    /// Whether its volume is below OpenFOAM's `VSMALL` (or not a number):
+    /// checkMesh's "zero or negative cell volume".
+    pub fn negative_volume(&self) -> bool {
+        self.volume.is_nan() || self.volume < VSMALL
+    }
+
     /// The first test failed (volume, then pyramids, then closedness) with
     /// the cell's volume (the failing pyramid's for a pyramid), or `None`;
     /// the aspect ratio is judged against the input's by the caller.
     pub fn failure(&self) -> Option<(Failure, f64)> {
-        if !(self.volume >= VSMALL) {
+        if self.negative_volume() {
             Some((Failure::Volume, self.volume))
         } else if self.bad_pyramids > 0 {
             let (face, v) = self.worst_pyramid;
@@ -230,7 +236,7 @@ fn judge(faces: &[FaceGeometry], closed: bool) -> Verdict {
     };
     for (face, (x, a)) in faces.iter().enumerate() {
         let v = dot(a, &sub(x, &centre)) / 3.0;
-        if !(v >= -SMALL) {
+        if v.is_nan() || v < -SMALL {
             verdict.bad_pyramids += 1;
         }
         if v < verdict.worst_pyramid.1 || v.is_nan() {

@@ -342,12 +342,12 @@ fn polygon_face_weights_lie_in_the_unit_interval_and_sum_to_one() {
     for r in 0..11 {
         let mut sum = [0.0; 6];
         for e in b.offsets[r]..b.offsets[r + 1] {
-            for k in 0..6 {
-                sum[k] += b.blocks[6 * e + k];
+            for (s, v) in sum.iter_mut().zip(&b.blocks[6 * e..6 * e + 6]) {
+                *s += v;
             }
         }
-        for k in 0..6 {
-            assert!((sum[k] - b.diag[6 * r + k]).abs() < 1e-12, "row {r}");
+        for (s, d) in sum.iter().zip(&b.diag[6 * r..6 * r + 6]) {
+            assert!((s - d).abs() < 1e-12, "row {r}");
         }
     }
     let mut w = Vec::new();

@@ -117,7 +117,7 @@ fn sections(file: &super::ffi::File, head: &Head) -> std::result::Result<Vec<Sec
 }
 
 /// The nodes of face element `number` of an `NGON_n` section.
-fn face<'s>(sections: &'s [Section], number: i64) -> Option<&'s [usize]> {
+fn face(sections: &[Section], number: i64) -> Option<&[usize]> {
     sections.iter().find_map(|s| {
         let e = usize::try_from(number - s.head.first).ok()?;
         (e < s.cells.len()).then(|| s.cells.cell(e))
