@@ -70,3 +70,43 @@ fn a_polyhedron_without_its_faces_is_refused() {
         "{e}"
     );
 }
+
+/// SU2, Gmsh and fresh CGNS files have no polygon or polyhedron: writing
+/// one is refused, naming the format and the element (or facet), and
+/// nothing is written.
+#[test]
+fn formats_without_general_cells_refuse_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let solid = samples::as_general(&samples::hex_wedge_pyramid_tet());
+    let options = crate::io::WriteOptions::default();
+    for (name, format) in [("s.su2", "SU2"), ("s.msh", "Gmsh MSH")] {
+        let path = dir.path().join(name);
+        let e = crate::io::write(&path, &solid, &options).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "{}: the {format} format cannot hold element 1, a polyhedron (write .vtu, or an \
+                 OpenFOAM case; a mesh read from a .cgns file also writes back as .cgns)",
+                path.display()
+            )
+        );
+        assert!(!path.exists());
+    }
+    // A hexahedron mesh whose boundary group holds a pentagon.
+    let mut mesh = samples::hex_wedge_pyramid_tet();
+    let mut facets = Cells::new();
+    facets.push(CellKind::Polygon, &[0, 1, 8, 2, 3]);
+    mesh.groups.push(Group {
+        name: "floor5".into(),
+        tag: None,
+        facets,
+    });
+    let path = dir.path().join("p.su2");
+    let e = crate::io::write(&path, &mesh, &options)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("cannot hold facet 0 of group 'floor5', a polygon of 5 nodes"),
+        "{e}"
+    );
+}
