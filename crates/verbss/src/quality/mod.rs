@@ -72,6 +72,20 @@
 //! Vertices and lines are never volume cells of a valid mesh; they have no
 //! corner, hence zero volume: orientation 0, quality 0, inverted.
 //!
+//! Polygons and polyhedra are measured on their decomposition into
+//! simplices on centres that follow the nodes (`general`, docs/method.md,
+//! "Quality").
+//!
+//! # Validity
+//!
+//! A cell that passes the corner test must also pass what OpenFOAM's
+//! checkMesh checks for it — volume and face pyramids from its face
+//! decomposition, closedness, and on OpenFOAM cases the aspect ratio
+//! (`valid`, docs/method.md, "Validity"): [`inversions`] and
+//! [`qualities_and_inversions`] list every cell that fails either, with the
+//! test it fails ([`Failure`]); [`verdicts`] gives checkMesh's numbers of
+//! every cell.
+//!
 //! # Histogram
 //!
 //! [`Summary`] holds the minimum, the mean and the paper's five bins
