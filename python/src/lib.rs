@@ -175,6 +175,14 @@ fn cells_dict<'py>(py: Python<'py>, cells: &Cells) -> PyResult<Bound<'py, PyDict
             kinds.push(k);
         }
     }
+    if let Some(kind) = kinds.iter().find(|k| k.is_general()) {
+        return Err(invalid_mesh(format!(
+            "the mesh has {} cells, which have no (M, k) array here: the Python bindings \
+             take triangles, quads, tetrahedra, hexahedra, prisms and pyramids (read and move \
+             such a mesh with the verbss command)",
+            kind.name()
+        )));
+    }
     let dict = PyDict::new(py);
     for kind in kinds {
         let rows: Vec<&[usize]> = cells
@@ -231,7 +239,7 @@ impl Mesh {
         let mut volume = Cells::new();
         for (name, array) in pairs(cells)? {
             let kind = CellKind::from_name(&name)
-                .filter(|k| k.dim() >= 2)
+                .filter(|k| k.dim() >= 2 && !k.is_general())
                 .ok_or_else(|| {
                     invalid_mesh(format!(
                         "unknown cell kind '{name}' (expected triangle, quad, tetra, \
@@ -263,7 +271,7 @@ impl Mesh {
                     let (ids, columns) = node_ids(&array, n, &what)?;
                     let kind = if nested {
                         CellKind::from_name(&kind_name)
-                            .filter(|k| k.dim() < dim && k.node_count() == columns)
+                            .filter(|k| k.dim() < dim && !k.is_general() && k.node_count() == columns)
                             .ok_or_else(|| {
                                 invalid_mesh(format!(
                                     "{what} has facets '{kind_name}' with {columns} nodes, \

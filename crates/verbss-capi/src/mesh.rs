@@ -22,7 +22,7 @@ pub const VERBSS_WEDGE: i32 = 13;
 pub const VERBSS_PYRAMID: i32 = 14;
 
 fn kind_of(code: i32, cell: usize) -> Result<CellKind, Failure> {
-    match CellKind::from_vtk_id(code.into()).filter(|k| k.dim() >= 2) {
+    match CellKind::from_vtk_id(code.into()).filter(|k| k.dim() >= 2 && !k.is_general()) {
         Some(kind) => Ok(kind),
         None => Err(Error::InvalidMesh(format!(
             "cell {cell} has kind {code} (expected 5 triangle, 9 quad, 10 tetra, \

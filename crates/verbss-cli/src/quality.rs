@@ -105,4 +105,13 @@ fn print_table(v: &Value) {
         }
     }
     println!("  inverted   {}", v["inverted"]);
+    let c = &v["checkmesh"];
+    println!(
+        "  checkMesh  {} negative-volume cells, {} incorrectly oriented faces, {} open cells, \
+         {} of aspect ratio above 1000",
+        c["negative_volume_cells"],
+        c["incorrectly_oriented_faces"],
+        c["open_cells"],
+        c["high_aspect_ratio_cells"]
+    );
 }

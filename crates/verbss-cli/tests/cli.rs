@@ -36,7 +36,8 @@ fn quality_json_has_the_documented_shape() {
             "kinds",
             "groups",
             "quality",
-            "inverted"
+            "inverted",
+            "checkmesh"
         ]
     );
     assert_eq!(v["dimension"], 2);

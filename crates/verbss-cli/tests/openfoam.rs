@@ -3,85 +3,11 @@
 //! wrote (a new time directory of the input case, or a whole new case).
 
 use std::path::Path;
-use std::process::Command;
 
 mod common;
 
+use common::foam::{assert_mesh_ok, foam, have_openfoam, write_system, write_system_as};
 use common::{stderr, verbss};
-use verbss_testkit::{needs, program};
-
-/// The OpenFOAM installation the Debian package `openfoam` makes.
-const FOAM_DIR: &str = "/usr/share/openfoam";
-
-/// Whether `blockMesh` and `checkMesh` run.
-fn have_openfoam() -> bool {
-    needs(
-        "OpenFOAM's blockMesh and checkMesh (Debian openfoam)",
-        program(
-            "sh",
-            &[
-                "-c",
-                &format!(
-                    "export WM_PROJECT_DIR=${{WM_PROJECT_DIR:-{FOAM_DIR}}}; \
-                     blockMesh -help >/dev/null && checkMesh -help >/dev/null"
-                ),
-            ],
-        ),
-    )
-}
-
-/// Runs an OpenFOAM utility on `case` with `args`; its standard output.
-fn foam(utility: &str, case: &Path, args: &[&str]) -> String {
-    let out = Command::new(utility)
-        .arg("-case")
-        .arg(case)
-        .args(args)
-        .env(
-            "WM_PROJECT_DIR",
-            std::env::var("WM_PROJECT_DIR").unwrap_or(FOAM_DIR.into()),
-        )
-        .output()
-        .expect("run an OpenFOAM utility");
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{utility} failed:\n{text}{}",
-        stderr(&out)
-    );
-    text
-}
-
-/// The `system` files `blockMesh` and `checkMesh` read (OpenFOAM writes
-/// ASCII files).
-fn write_system(case: &Path) {
-    write_system_as(case, "ascii");
-}
-
-/// The `system` files, with `writeFormat` `format`.
-fn write_system_as(case: &Path, format: &str) {
-    let head = |object: &str| {
-        format!("FoamFile {{ version 2.0; format ascii; class dictionary; object {object}; }}\n")
-    };
-    let system = case.join("system");
-    std::fs::create_dir_all(&system).unwrap();
-    let files = [
-        (
-            "controlDict",
-            "application none; startFrom latestTime; startTime 0; stopAt endTime; \
-             endTime 1; deltaT 1; writeControl timeStep; writeInterval 1; writeFormat FORMAT;\n",
-        ),
-        (
-            "fvSchemes",
-            "ddtSchemes {} gradSchemes {} divSchemes {} laplacianSchemes {} \
-             interpolationSchemes {} snGradSchemes {}\n",
-        ),
-        ("fvSolution", ""),
-    ];
-    for (name, body) in files {
-        let body = body.replace("FORMAT", format);
-        std::fs::write(system.join(name), head(name) + &body).unwrap();
-    }
-}
 
 /// A square body (patch `wing`, side 1) in a square box (patch `farfield`,
 /// side 3), 8 blocks of `n × n` cells and `layers` cells in z (0 to 0.2):
@@ -160,12 +86,6 @@ fn block_case(case: &Path, n: usize, layers: usize) {
     );
     std::fs::write(case.join("system/blockMeshDict"), dict).unwrap();
     foam("blockMesh", case, &[]);
-}
-
-/// Whether `checkMesh` passes the mesh of `case` at its latest time.
-fn assert_mesh_ok(case: &Path) {
-    let log = foam("checkMesh", case, &["-latestTime"]);
-    assert!(log.contains("Mesh OK."), "checkMesh:\n{log}");
 }
 
 #[test]

@@ -71,6 +71,14 @@ impl<'c> Distributed<'c> {
     /// rank's sweeper (collective).
     pub fn new(comm: &'c Comm, setup: &SolverSetup) -> Result<Distributed<'c>> {
         let mesh = setup.mesh;
+        if let Some(c) = mesh.cells.first_general() {
+            return Err(Error::InvalidMesh(format!(
+                "element {} is a {}: verbss-mpi does not cut polygons or polyhedra over its \
+                 ranks (move this mesh with verbss, one process)",
+                mesh.cell_tags[c],
+                mesh.cells.kinds[c].name()
+            )));
+        }
         let mut owner = if comm.rank() == 0 {
             partition(mesh, comm.size() as usize)?
         } else {

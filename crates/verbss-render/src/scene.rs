@@ -258,18 +258,18 @@ impl Scene {
         };
         let x = |i: usize| &state.coords[3 * i..3 * i + 3];
         let mut polygon: Vec<[f64; 3]> = Vec::with_capacity(12);
-        for (c, (kind, nodes)) in mesh.cells.iter().enumerate() {
+        for (c, (_, nodes)) in mesh.cells.iter().enumerate() {
             let s = |k: usize| x(nodes[k])[axis] - at;
             polygon.clear();
-            for e in kind.table().edges {
-                let (sa, sb) = (s(e[0]), s(e[1]));
+            mesh.cells.local(c).edges(|a, b| {
+                let (sa, sb) = (s(a), s(b));
                 if (sa < 0.0) != (sb < 0.0) {
                     let t = sa / (sa - sb);
-                    let (pa, pb) = (x(nodes[e[0]]), x(nodes[e[1]]));
+                    let (pa, pb) = (x(nodes[a]), x(nodes[b]));
                     let lerp = |k: usize| pa[k] + t * (pb[k] - pa[k]);
                     polygon.push([lerp(iu), lerp(iv), 0.0]);
                 }
-            }
+            });
             if polygon.len() < 3 {
                 continue;
             }
@@ -299,24 +299,23 @@ impl Scene {
     }
 }
 
-/// Sorted node key of a facet, padded with `usize::MAX`.
-fn key(nodes: &[usize]) -> [usize; 4] {
-    let mut k = [usize::MAX; 4];
-    k[..nodes.len()].copy_from_slice(nodes);
+/// Sorted node key of a facet.
+fn key(nodes: &[usize]) -> Vec<usize> {
+    let mut k = nodes.to_vec();
     k.sort_unstable();
     k
 }
 
 /// Every facet of every cell and the first cell that has it.
-fn facet_owners(mesh: &Mesh) -> HashMap<[usize; 4], usize> {
-    let mut owners: HashMap<[usize; 4], usize> = HashMap::new();
+fn facet_owners(mesh: &Mesh) -> HashMap<Vec<usize>, usize> {
+    let mut owners: HashMap<Vec<usize>, usize> = HashMap::new();
     let mut local = Vec::with_capacity(4);
-    for (c, (kind, nodes)) in mesh.cells.iter().enumerate() {
-        for f in kind.table().facets {
+    for (c, (_, nodes)) in mesh.cells.iter().enumerate() {
+        mesh.cells.local(c).facets(|f| {
             local.clear();
             local.extend(f.iter().map(|&k| nodes[k]));
             owners.entry(key(&local)).or_insert(c);
-        }
+        });
     }
     owners
 }

@@ -259,11 +259,11 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
         let orientation = crate::quality::orientation(mesh);
         let start = Instant::now();
         let check = accept::check(mesh, &mesh.coords, &orientation, &on);
-        if let Some((element, centroid, _)) = &check.summary.worst {
+        if let Some(worst) = &check.summary.worst {
             return Err(Error::InvalidMesh(format!(
-                "element {element} is inverted or degenerate (tangled, or of zero area or \
-                 volume) at {}",
-                format_point(centroid)
+                "element {} is inverted or degenerate (tangled, or of zero area or volume) at {}",
+                worst.element,
+                format_point(&worst.centroid)
             )));
         }
         let mut report = report::summarize(&check.summary);

@@ -45,6 +45,21 @@ pub enum Error {
         /// What was found and what was expected.
         message: String,
     },
+    /// The output format cannot hold a cell or facet of the mesh (a polygon
+    /// or polyhedron in SU2 or Gmsh).
+    #[error(
+        "{}: the {format} format cannot hold {what} (write .vtu, or an OpenFOAM case; a mesh \
+         read from a .cgns file also writes back as .cgns)",
+        path.display()
+    )]
+    Unrepresentable {
+        /// The file.
+        path: PathBuf,
+        /// The format's name.
+        format: &'static str,
+        /// The element or facet, named (`element 17, a polyhedron`).
+        what: String,
+    },
     /// The file's extension does not name a format verbss knows.
     #[error("{}: unknown mesh format (expected .msh, .su2, .vtu, .cgns or an OpenFOAM case directory)", path.display())]
     UnknownFormat {
@@ -89,9 +104,11 @@ pub enum Error {
     /// `verbss-render` crate).
     #[error("cannot draw the picture: {0}")]
     Render(String),
-    /// A step inverted elements (relative to the input mesh's orientation).
+    /// A step inverted elements (relative to the input mesh's orientation),
+    /// or left one that the flow solver refuses
+    /// ([`crate::quality::Failure`]).
     #[error(
-        "step {step}: element {element} inverted at {}, signed volume {volume:.3e} ({count} inverted element(s))",
+        "step {step}: element {element} {failure} at {}, signed volume {volume:.3e} ({count} inverted element(s))",
         format_point(.centroid)
     )]
     Inverted {
@@ -104,8 +121,11 @@ pub enum Error {
         /// Its centroid.
         centroid: Vec<f64>,
         /// Its worst corner's signed area (2D) or volume (3D), relative to the
-        /// input orientation (≤ 0).
+        /// input orientation (≤ 0), or the signed volume of the test it fails
+        /// ([`crate::quality::Inversion::volume`]).
         volume: f64,
+        /// The test it fails.
+        failure: crate::quality::Failure,
     },
     /// No solver reached a solution that could be trusted.
     #[error(

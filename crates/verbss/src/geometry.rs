@@ -307,6 +307,53 @@ pub fn nearest_on_quad(x: &[f64; 3], q: &[[f64; 3]; 4]) -> Option<([f64; 3], [f6
     Some((p, w))
 }
 
+/// Node `i` of `coords` (`D` numbers a node) as a 3D point (`z = 0` in 2D).
+pub fn lifted<const D: usize>(coords: &[f64], i: usize) -> [f64; 3] {
+    let p = point::<D>(coords, i);
+    [p[0], p[1], if D == 3 { p[2] } else { 0.0 }]
+}
+
+/// The mean of nodes `nodes` of `coords` as a 3D point ([`lifted`]).
+pub fn mean_of<const D: usize>(coords: &[f64], nodes: impl Iterator<Item = usize>) -> [f64; 3] {
+    let (mut sum, mut n) = ([0.0; 3], 0.0);
+    for i in nodes {
+        let p = lifted::<D>(coords, i);
+        (0..3).for_each(|k| sum[k] += p[k]);
+        n += 1.0;
+    }
+    sum.map(|v| v / n)
+}
+
+/// The point of polygon `v` (`m ≥ 3` points in cyclic order) nearest to `x`
+/// on its decomposition into the triangles `(v_k, v_{k+1}, c)` about its
+/// centre `c = Σ v_k / m`, and its weights on the `m` points, written into
+/// `w` (resized to `m`): the triangle's barycentric weights `(α, β, γ)` put
+/// `α` on `v_k`, `β` on `v_{k+1}` and `γ/m` on every point, so that each
+/// weight lies in `[0, 1]` and they sum to 1. The first nearest triangle
+/// wins a tie.
+pub fn nearest_on_polygon<const D: usize>(
+    x: &[f64; D],
+    v: &[[f64; D]],
+    w: &mut Vec<f64>,
+) -> [f64; D] {
+    let m = v.len();
+    let c: [f64; D] = std::array::from_fn(|k| v.iter().map(|p| p[k]).sum::<f64>() / m as f64);
+    let mut best = (f64::INFINITY, 0, [0.0; 3], c);
+    for k in 0..m {
+        let (p, t) = nearest_on_triangle(x, &v[k], &v[(k + 1) % m], &c);
+        let d = norm(&sub(&p, x));
+        if d < best.0 {
+            best = (d, k, t, p);
+        }
+    }
+    let (_, k, t, p) = best;
+    w.clear();
+    w.resize(m, t[2] / m as f64);
+    w[k] += t[0];
+    w[(k + 1) % m] += t[1];
+    p
+}
+
 /// An orthonormal frame whose last row is the unit normal `n`: rows
 /// `t₁ … t_{D−1}, n`. In 2D `t = (−n_y, n_x)`; in 3D `t₁` is the coordinate
 /// axis least aligned with `n` made orthogonal to it, `t₂ = n × t₁`.

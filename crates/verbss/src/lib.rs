@@ -1,8 +1,8 @@
 //! # verbss — Vertex-Ball Spring Smoothing for unstructured hybrid meshes
 //!
 //! When a boundary moves, verbss moves the interior nodes of a 2D/3D hybrid mesh
-//! (triangles, quads, tetrahedra, hexahedra, prisms, pyramids) so that no
-//! element inverts, by the VerBSS method of Lin, Guan, Chang & Lo
+//! (triangles, quads, tetrahedra, hexahedra, prisms, pyramids, polygons and
+//! polyhedra) so that no element inverts, by the VerBSS method of Lin, Guan, Chang & Lo
 //! ("Vertex-Ball Spring Smoothing: an efficient method for unstructured dynamic
 //! hybrid meshes"): edge springs plus ball-vertex springs, solved node by node
 //! with small LDLᵀ block solves and over-relaxation.
@@ -13,10 +13,10 @@
 //! | module | what it holds |
 //! |---|---|
 //! | [`io`] | the formats: Gmsh MSH 2.2/4.1, SU2, VTU/PVD, CGNS, OpenFOAM polyMesh, positions files: file in, [`Mesh`] out, moved mesh back |
-//! | [`mesh`] | the [`Mesh`] (flat coordinates, cells, named groups) and per-kind tables |
+//! | [`mesh`] | the [`Mesh`] (flat coordinates, cells, a polyhedron's faces, named groups) and per-kind tables |
 //! | [`topology`] | node→cell, edges, boundary facets and nodes, colouring, BFS layers |
 //! | [`geometry`] | small fixed-size kernels: determinants, nearest points, LDLᵀ |
-//! | [`quality`] | ρ = C r/R, scaled Jacobians, the validity of a cell, the paper's histogram |
+//! | [`quality`] | ρ = C r/R, scaled Jacobians, the validity of a cell (checkMesh's cell tests), the paper's histogram |
 //! | [`springs`] | assembles the node-block system `K_ii u_i = Σ_j B_ij u_j` |
 //! | [`solve`] | the [`solve::Engine`]: VerBSS block SOR, scalar SOR, sparse LU, Laplacian; the multigrid; the escalation |
 //! | [`motion`] | boundary motions: translation, rotation, pitch–plunge, undulation, bending, positions |

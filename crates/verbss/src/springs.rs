@@ -27,8 +27,8 @@ use crate::error::{Error, Result};
 use rayon::prelude::*;
 
 use crate::geometry::{
-    add_outer, morton_keys, nearest_on_quad, nearest_on_segment, nearest_on_triangle, norm,
-    packed_len, packed_mul, point, sub,
+    add_outer, morton_keys, nearest_on_polygon, nearest_on_quad, nearest_on_segment,
+    nearest_on_triangle, norm, packed_len, packed_mul, point, sub,
 };
 use crate::mesh::{Cells, CompactCells, Mesh};
 use crate::topology::{self, Csr};
@@ -405,6 +405,7 @@ fn row<const D: usize>(
     if springs == Springs::Edge {
         return Ok(kii);
     }
+    let mut wide = Vec::new();
     for c in conn.node_cells.entries(i) {
         let nodes = conn.cells.cell(c);
         let local = nodes.iter().position(|&v| v == i).expect("incidence");
@@ -413,60 +414,78 @@ fn row<const D: usize>(
         } else {
             nodes.iter().map(|&v| phi(v)).sum::<f64>() / nodes.len() as f64
         };
-        for facet in conn.cells.kinds[c].table().facets {
-            if facet.contains(&local) {
-                continue;
+        let mut failed = None;
+        conn.cells.local(c).facets(|facet| {
+            if failed.is_some() || facet.contains(&local) {
+                return;
             }
-            let (p, w, m) = nearest::<D>(coords, &xi, &nodes, facet).ok_or_else(|| {
-                Error::InvalidMesh(format!(
+            let Some(p) = nearest::<D>(coords, &xi, &nodes, facet, &mut wide) else {
+                failed = Some(Error::InvalidMesh(format!(
                     "cell {} has a degenerate quadrilateral face",
                     conn.cell_tags.tag(c)
-                ))
-            })?;
+                )));
+                return;
+            };
             let d = sub(&p, &xi);
             let h = norm(&d);
-            if !(h > 0.0 && h.is_finite() && w[..m].iter().all(|v| v.is_finite())) {
-                return Err(Error::InvalidMesh(format!(
+            if !(h > 0.0 && h.is_finite() && wide.iter().all(|v| v.is_finite())) {
+                failed = Some(Error::InvalidMesh(format!(
                     "node {} lies on a facet of cell {} (a collapsed cell: \
                      zero ball-vertex spring length)",
                     conn.node_tags[i],
                     conn.cell_tags.tag(c)
                 )));
+                return;
             }
             let n = d.map(|v| v / h);
             add_outer(&mut kii, scale / h, &n);
-            for (&f, &wf) in facet.iter().zip(&w[..m]) {
+            for (&f, &wf) in facet.iter().zip(&wide) {
                 let at = slot(nodes[f]);
                 add_outer(&mut acc[at..at + s], scale * wf / h, &n);
             }
+        });
+        if let Some(e) = failed {
+            return Err(e);
         }
     }
     Ok(kii)
 }
 
 /// The nearest point of facet `facet` (local indices into `nodes`) to `x`,
-/// its weights and their number; `None` for a degenerate quadrilateral.
+/// its weights left in `w` (one per facet node); `None` for a degenerate
+/// quadrilateral. A facet of five or more nodes (a polyhedron's polygonal
+/// face) is measured on its triangles about its centre
+/// ([`crate::geometry::nearest_on_polygon`]).
 fn nearest<const D: usize>(
     coords: &[f64],
     x: &[f64; D],
     nodes: &[usize],
     facet: &[usize],
-) -> Option<([f64; D], [f64; 4], usize)> {
+    w: &mut Vec<f64>,
+) -> Option<[f64; D]> {
     let at = |k: usize| point::<D>(coords, nodes[facet[k]]);
     let widen = |v: &[f64; D]| std::array::from_fn::<f64, 3, _>(|k| if k < D { v[k] } else { 0.0 });
+    w.clear();
     match facet.len() {
         2 => {
-            let (p, w) = nearest_on_segment(x, &at(0), &at(1));
-            Some((p, [w[0], w[1], 0.0, 0.0], 2))
+            let (p, t) = nearest_on_segment(x, &at(0), &at(1));
+            w.extend_from_slice(&t);
+            Some(p)
         }
         3 => {
-            let (p, w) = nearest_on_triangle(x, &at(0), &at(1), &at(2));
-            Some((p, [w[0], w[1], w[2], 0.0], 3))
+            let (p, t) = nearest_on_triangle(x, &at(0), &at(1), &at(2));
+            w.extend_from_slice(&t);
+            Some(p)
         }
-        _ => {
+        4 => {
             let q = [0, 1, 2, 3].map(|k| widen(&at(k)));
-            let (p, w) = nearest_on_quad(&widen(x), &q)?;
-            Some((std::array::from_fn(|k| p[k]), w, 4))
+            let (p, t) = nearest_on_quad(&widen(x), &q)?;
+            w.extend_from_slice(&t);
+            Some(std::array::from_fn(|k| p[k]))
+        }
+        m => {
+            let v: Vec<[f64; D]> = (0..m).map(at).collect();
+            Some(nearest_on_polygon(x, &v, w))
         }
     }
 }

@@ -132,7 +132,7 @@ pub fn edge_graph(cells: &Cells, nodes: usize) -> Csr {
 pub fn all_simplices(cells: &Cells) -> bool {
     cells.kinds.iter().all(|kind| {
         let n = kind.node_count();
-        kind.table().edges.len() == n * (n - 1) / 2
+        !kind.is_general() && kind.table().edges.len() == n * (n - 1) / 2
     })
 }
 
@@ -143,14 +143,14 @@ pub fn edge_graph_from(cells: &Cells, node_cells: &Csr) -> Csr {
     Csr::from_rows(node_cells.rows(), |i, row| {
         for c in node_cells.entries(i) {
             let nodes = cells.cell(c);
-            for e in cells.kinds[c].table().edges {
-                let (a, b) = (nodes[e[0]], nodes[e[1]]);
+            cells.local(c).edges(|a, b| {
+                let (a, b) = (nodes[a], nodes[b]);
                 if a == i {
                     row.push(b);
                 } else if b == i {
                     row.push(a);
                 }
-            }
+            });
         }
     })
 }
@@ -174,15 +174,25 @@ pub fn edges(cells: &Cells, nodes: usize) -> Vec<[usize; 2]> {
     edges
 }
 
-/// Sorted node key of the facet of `cell` whose local nodes are `facet`
-/// (at most four), padded with `usize::MAX`.
-fn facet_key_in(cell: &[usize], facet: &[usize]) -> [usize; 4] {
+/// A facet's key: its nodes sorted, the first four in place (padded with
+/// `usize::MAX`), all of them on the heap only for a facet of more than
+/// four (a polygonal face). Two facets with the same nodes are one.
+type FacetKey = ([usize; 4], Vec<usize>);
+
+/// The key of the facet of `cell` whose local nodes are `facet`.
+fn facet_key_in(cell: &[usize], facet: &[usize]) -> FacetKey {
     let mut key = [usize::MAX; 4];
+    if facet.len() > 4 {
+        let mut all: Vec<usize> = facet.iter().map(|&local| cell[local]).collect();
+        all.sort_unstable();
+        key.copy_from_slice(&all[..4]);
+        return (key, all);
+    }
     for (k, &local) in key.iter_mut().zip(facet) {
         *k = cell[local];
     }
     key.sort_unstable();
-    key
+    (key, Vec::new())
 }
 
 /// The boundary facets: facets that belong to exactly one cell, in the order
@@ -194,16 +204,18 @@ pub fn boundary_facets(cells: &Cells) -> Cells {
     let nodes = cells.nodes.iter().max().map_or(0, |&m| m + 1);
     let around = node_cells(cells, nodes);
     let mut single: Vec<(usize, usize)> = Vec::new();
-    let mut here: Vec<([usize; 4], usize, usize)> = Vec::new();
+    let mut here: Vec<(FacetKey, usize, usize)> = Vec::new();
     for v in 0..nodes {
         here.clear();
         for c in around.entries(v) {
             let cell = cells.cell(c);
-            for (k, f) in cells.kinds[c].table().facets.iter().enumerate() {
+            let mut k = 0;
+            cells.local(c).facets(|f| {
                 if f.iter().map(|&l| cell[l]).min() == Some(v) {
                     here.push((facet_key_in(cell, f), c, k));
                 }
-            }
+                k += 1;
+            });
         }
         here.sort_unstable();
         for run in here.chunk_by(|a, b| a.0 == b.0) {
@@ -217,8 +229,14 @@ pub fn boundary_facets(cells: &Cells) -> Cells {
     let mut local = Vec::with_capacity(4);
     for (c, k) in single {
         let cell = cells.cell(c);
-        local.clear();
-        local.extend(cells.kinds[c].table().facets[k].iter().map(|&l| cell[l]));
+        let mut at = 0;
+        cells.local(c).facets(|f| {
+            if at == k {
+                local.clear();
+                local.extend(f.iter().map(|&l| cell[l]));
+            }
+            at += 1;
+        });
         out.push(CellKind::facet_kind(local.len()), &local);
     }
     out
@@ -300,7 +318,7 @@ mod tests {
     use super::*;
     use crate::mesh::Mesh;
 
-    fn facet_key(nodes: &[usize]) -> [usize; 4] {
+    fn facet_key(nodes: &[usize]) -> FacetKey {
         facet_key_in(nodes, &(0..nodes.len()).collect::<Vec<_>>())
     }
 
@@ -410,7 +428,7 @@ mod tests {
                     *count.entry(facet_key_in(nodes, f)).or_insert(0) += 1;
                 }
             }
-            let once: Vec<[usize; 4]> = m
+            let once: Vec<FacetKey> = m
                 .cells
                 .iter()
                 .flat_map(|(kind, nodes)| {
@@ -421,7 +439,7 @@ mod tests {
                 })
                 .filter(|k| count[k] == 1)
                 .collect();
-            let found: Vec<[usize; 4]> = boundary_facets(&m.cells)
+            let found: Vec<FacetKey> = boundary_facets(&m.cells)
                 .iter()
                 .map(|(_, n)| facet_key(n))
                 .collect();

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use verbss::io::{MshVersion, WriteOptions};
-use verbss::mesh::samples::{hex_wedge_pyramid_tet, two_triangles_and_a_quad};
+use verbss::mesh::samples::{as_general, hex_wedge_pyramid_tet, two_triangles_and_a_quad};
 use verbss::Mesh;
 use verbss_testkit::{needs, python};
 
@@ -94,6 +94,27 @@ fn vtu_files_open_in_meshio() {
         &[
             ("hybrid_2d.vtu", &m2, WriteOptions::default()),
             ("mixed_3d.vtu", &m3, WriteOptions::default()),
+        ],
+    );
+}
+
+/// Polygons (VTK 7) and polyhedra (VTK 42 with `faces`): meshio reads a
+/// file of polyhedra only (it refuses polyhedra beside other cells, which
+/// VTK and ParaView read).
+#[test]
+fn vtu_polygons_and_polyhedra_open_in_meshio() {
+    if !python_ready() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let polygons = as_general(&two_triangles_and_a_quad());
+    let mut polyhedra = as_general(&hex_wedge_pyramid_tet());
+    polyhedra.groups.clear();
+    check(
+        dir.path(),
+        &[
+            ("polygons_2d.vtu", &polygons, WriteOptions::default()),
+            ("polyhedra_3d.vtu", &polyhedra, WriteOptions::default()),
         ],
     );
 }

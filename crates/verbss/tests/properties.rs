@@ -135,7 +135,7 @@ fn reference(kind: verbss::CellKind) -> (Vec<[f64; 3]>, Vec<[usize; 2]>) {
                 edges,
             )
         }
-        Vertex | Line => (Vec::new(), Vec::new()),
+        Vertex | Line | Polygon | Polyhedron => (Vec::new(), Vec::new()),
     }
 }
 

@@ -4,6 +4,8 @@
 // Each test binary compiles this module and uses a part of it.
 #![allow(dead_code)]
 
+pub mod foam;
+
 use std::process::{Command, Output};
 
 /// Runs the `verbss` binary with `args`.

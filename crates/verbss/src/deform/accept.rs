@@ -10,7 +10,7 @@
 
 use crate::collective::Collective;
 use crate::mesh::Mesh;
-use crate::quality::{self, Inversion, Summary};
+use crate::quality::{self, Failure, Inversion, Summary};
 use crate::solve::SolveInfo;
 
 /// A blended solve whose minimum quality falls below this fraction of the
@@ -42,8 +42,21 @@ pub struct Totals {
     /// The number of invalid cells.
     pub invalid: usize,
     /// The invalid cell of the lowest signed volume (the lowest element
-    /// tag among equals): its tag, centroid and volume.
-    pub worst: Option<(u64, Vec<f64>, f64)>,
+    /// tag among equals).
+    pub worst: Option<Worst>,
+}
+
+/// The worst invalid cell of a configuration, over every process.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Worst {
+    /// Its element tag in the input.
+    pub element: u64,
+    /// The mean of its nodes.
+    pub centroid: Vec<f64>,
+    /// Its signed volume ([`Inversion::volume`]).
+    pub volume: f64,
+    /// The test it fails.
+    pub failure: Failure,
 }
 
 /// Checks `mesh` at `coords` against the input orientations `orientation`
@@ -107,10 +120,11 @@ pub fn better(a: (&SolveInfo, &Check), b: (&SolveInfo, &Check)) -> bool {
 }
 
 /// The worst of every process's invalid cells `mine` (collective).
-fn worst(mesh: &Mesh, mine: &[&Inversion], on: &dyn Collective) -> Option<(u64, Vec<f64>, f64)> {
+fn worst(mesh: &Mesh, mine: &[&Inversion], on: &dyn Collective) -> Option<Worst> {
     let dim = mesh.dim;
-    // Per process: found, volume, tag, centroid.
-    let mut row = vec![0.0; 3 + dim];
+    // Per process: found, volume, tag, the failure's two numbers, centroid.
+    let width = 5 + dim;
+    let mut row = vec![0.0; width];
     if let Some(w) = mine.iter().min_by(|a, b| {
         a.volume
             .total_cmp(&b.volume)
@@ -119,11 +133,17 @@ fn worst(mesh: &Mesh, mine: &[&Inversion], on: &dyn Collective) -> Option<(u64, 
         row[0] = 1.0;
         row[1] = w.volume;
         row[2] = mesh.cell_tags[w.cell] as f64;
-        row[3..].copy_from_slice(&w.centroid);
+        row[3..5].copy_from_slice(&w.failure.to_numbers());
+        row[5..].copy_from_slice(&w.centroid);
     }
     let all = on.gather(&row);
-    all.chunks_exact(3 + dim)
+    all.chunks_exact(width)
         .filter(|r| r[0] == 1.0)
         .min_by(|a, b| a[1].total_cmp(&b[1]).then(a[2].total_cmp(&b[2])))
-        .map(|r| (r[2] as u64, r[3..].to_vec(), r[1]))
+        .map(|r| Worst {
+            element: r[2] as u64,
+            centroid: r[5..].to_vec(),
+            volume: r[1],
+            failure: Failure::from_numbers([r[3], r[4]]),
+        })
 }

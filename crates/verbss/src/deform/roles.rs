@@ -329,6 +329,10 @@ fn group_normal(mesh: &Mesh, g: usize, on: &dyn Collective) -> Result<[f64; 3]> 
                     &sub(p(nodes[2]), p(nodes[0])),
                     &sub(p(nodes[3]), p(nodes[1])),
                 ),
+                (CellKind::Polygon, 3) => (0..nodes.len()).fold([0.0; 3], |n, k| {
+                    let t = cross(&p(nodes[k]), &p(nodes[(k + 1) % nodes.len()]));
+                    [n[0] + t[0], n[1] + t[1], n[2] + t[2]]
+                }),
                 _ => return None,
             };
             Some((f, n))

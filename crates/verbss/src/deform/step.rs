@@ -126,12 +126,13 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
     /// `totals`: the worst invalid cell, or the solve that did not converge.
     fn failure(&self, n: usize, info: &SolveInfo, totals: &Totals) -> Error {
         match &totals.worst {
-            Some((element, centroid, volume)) if info.converged => Error::Inverted {
+            Some(worst) if info.converged => Error::Inverted {
                 step: n,
                 count: totals.invalid,
-                element: *element,
-                centroid: centroid.clone(),
-                volume: *volume,
+                element: worst.element,
+                centroid: worst.centroid.clone(),
+                volume: worst.volume,
+                failure: worst.failure,
             },
             _ => Error::NotConverged {
                 step: n,

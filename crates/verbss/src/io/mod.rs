@@ -265,7 +265,21 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], options: &WriteOpti
             mesh.dim
         )));
     }
-    match Format::from_path(path)? {
+    let format = Format::from_path(path)?;
+    let fixed_only = match format {
+        Format::Msh => Some("Gmsh MSH"),
+        Format::Su2 => Some("SU2"),
+        Format::Cgns if mesh.origin.cgns.is_none() => Some("CGNS (for a mesh not read from one)"),
+        _ => None,
+    };
+    if let (Some(name), Some(what)) = (fixed_only, general_cell(mesh)) {
+        return Err(Error::Unrepresentable {
+            path: path.to_path_buf(),
+            format: name,
+            what,
+        });
+    }
+    match format {
         Format::Msh => write_atomic(path, |w| {
             gmsh::write_moved_to(w, mesh, coords, options.msh_version, options.binary)
         }),
@@ -276,6 +290,28 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], options: &WriteOpti
         Format::Cgns => cgns::write_moved(path, mesh, coords),
         Format::Foam => foam::write_moved(path, mesh, coords, options.foam_time.as_deref()),
     }
+}
+
+/// The first polygon or polyhedron of `mesh`, among its cells or its
+/// groups' facets, named for a message (`element 17, a polyhedron`).
+fn general_cell(mesh: &Mesh) -> Option<String> {
+    if let Some(c) = mesh.cells.first_general() {
+        return Some(format!(
+            "element {}, a {}",
+            mesh.cell_tags[c],
+            mesh.cells.kinds[c].name()
+        ));
+    }
+    mesh.groups.iter().find_map(|g| {
+        g.facets.first_general().map(|f| {
+            format!(
+                "facet {f} of group '{}', a {} of {} nodes",
+                g.name,
+                g.facets.kinds[f].name(),
+                g.facets.cell(f).len()
+            )
+        })
+    })
 }
 
 /// The temporary file beside `path` that an atomic write fills first

@@ -14,8 +14,12 @@
 //! - `Points`: `Float64`, always 3 components (a 2D mesh gets `z = 0`), so
 //!   coordinates survive a round trip bit for bit.
 //! - `Cells`: `connectivity` and `offsets` as `Int64`, `types` as `UInt8` with
-//!   the VTK numbers 1 vertex, 3 line, 5 triangle, 9 quad, 10 tetra,
-//!   12 hexahedron, 13 wedge, 14 pyramid. The volume cells come first in mesh
+//!   the VTK numbers 1 vertex, 3 line, 5 triangle, 7 polygon, 9 quad,
+//!   10 tetra, 12 hexahedron, 13 wedge, 14 pyramid, 42 polyhedron; with
+//!   polyhedra, also VTK's `faces` (`Int64`: per polyhedron `nFaces`, then
+//!   `nPoints, point …` per face, outward) and `faceoffsets` (`Int64`: the
+//!   end of each cell's faces in `faces`, −1 for the other cells), which
+//!   ParaView reads (and verbss reads back). The volume cells come first in mesh
 //!   order, then the facets of group 0, group 1, … in group order. VTK
 //!   numbers a wedge's two triangles the other way round from the mesh (and
 //!   Gmsh): nodes `0 1 2 3 4 5` of a mesh wedge are written `0 2 1 3 5 4`, and
@@ -61,6 +65,8 @@ use crate::mesh::Mesh;
 
 mod assemble;
 mod binary;
+#[cfg(test)]
+mod general_tests;
 #[cfg(test)]
 mod hostile_tests;
 mod read;

@@ -26,6 +26,13 @@ pub enum CellKind {
     Wedge,
     /// 5-node pyramid.
     Pyramid,
+    /// A polygon of 3 or more nodes in cyclic order (counter-clockwise when
+    /// positive): a 2D cell of any shape, or a 3D boundary facet of 5 or more
+    /// nodes. Its edges and facets are its sides.
+    Polygon,
+    /// A polyhedron of any shape: its nodes, and its faces (polygons of
+    /// local node indices, outward) in [`crate::mesh::Faces`].
+    Polyhedron,
 }
 
 /// The reference table of one element kind.
@@ -50,7 +57,7 @@ pub struct KindTable {
 
 impl CellKind {
     /// All kinds, in declaration order.
-    pub const ALL: [CellKind; 8] = [
+    pub const ALL: [CellKind; 10] = [
         CellKind::Vertex,
         CellKind::Line,
         CellKind::Triangle,
@@ -59,6 +66,8 @@ impl CellKind {
         CellKind::Hexahedron,
         CellKind::Wedge,
         CellKind::Pyramid,
+        CellKind::Polygon,
+        CellKind::Polyhedron,
     ];
 
     /// The kind's reference table.
@@ -72,7 +81,16 @@ impl CellKind {
             CellKind::Hexahedron => &kinds::hexahedron::TABLE,
             CellKind::Wedge => &kinds::wedge::TABLE,
             CellKind::Pyramid => &kinds::pyramid::TABLE,
+            CellKind::Polygon => &kinds::general::POLYGON,
+            CellKind::Polyhedron => &kinds::general::POLYHEDRON,
         }
+    }
+
+    /// Whether the kind has no fixed node count (polygon, polyhedron): its
+    /// table lists no edge, facet or corner, and its cells are read through
+    /// [`crate::mesh::Local`].
+    pub fn is_general(self) -> bool {
+        matches!(self, CellKind::Polygon | CellKind::Polyhedron)
     }
 
     /// The name meshio uses (`"triangle"`, `"tetra"`, `"wedge"`, …).
@@ -80,7 +98,8 @@ impl CellKind {
         self.table().name
     }
 
-    /// Number of nodes of the kind.
+    /// Number of nodes of the kind (0 for a polygon or polyhedron, whose
+    /// cells have any number).
     pub fn node_count(self) -> usize {
         self.table().nodes
     }
@@ -96,8 +115,8 @@ impl CellKind {
     }
 
     /// The VTK cell type id of the kind (1 vertex, 3 line, 5 triangle, 9 quad,
-    /// 10 tetra, 12 hexahedron, 13 wedge, 14 pyramid), which SU2 files and the
-    /// C API use too.
+    /// 10 tetra, 12 hexahedron, 13 wedge, 14 pyramid, 7 polygon, 42
+    /// polyhedron), which SU2 files and the C API use too for the fixed kinds.
     pub fn vtk_id(self) -> u8 {
         match self {
             CellKind::Vertex => 1,
@@ -108,6 +127,8 @@ impl CellKind {
             CellKind::Hexahedron => 12,
             CellKind::Wedge => 13,
             CellKind::Pyramid => 14,
+            CellKind::Polygon => 7,
+            CellKind::Polyhedron => 42,
         }
     }
 
@@ -132,13 +153,15 @@ impl CellKind {
         }
     }
 
-    /// The kind of a facet with `n` nodes (2: line, 3: triangle, 4: quad).
+    /// The kind of a facet with `n` nodes (2: line, 3: triangle, 4: quad,
+    /// 5 or more: polygon).
     pub fn facet_kind(n: usize) -> CellKind {
         match n {
             1 => CellKind::Vertex,
             2 => CellKind::Line,
             3 => CellKind::Triangle,
-            _ => CellKind::Quad,
+            4 => CellKind::Quad,
+            _ => CellKind::Polygon,
         }
     }
 }

@@ -1,10 +1,12 @@
 //! The mesh model: flat coordinates, cells as kind + offsets + node indices,
 //! named boundary groups with their facets.
 
+mod faces;
 mod kind;
 pub mod kinds;
 pub mod samples;
 
+pub use faces::{FaceList, Faces, Local};
 pub use kind::{CellKind, KindTable};
 
 use std::collections::hash_map::{DefaultHasher, Entry};
@@ -15,7 +17,8 @@ use std::sync::Arc;
 use crate::error::{Error, Result};
 
 /// A list of cells of mixed kinds in compressed form: cell `c` has kind
-/// `kinds[c]` and nodes `nodes[offsets[c]..offsets[c + 1]]` (0-based node indices).
+/// `kinds[c]` and nodes `nodes[offsets[c]..offsets[c + 1]]` (0-based node
+/// indices); a polyhedron's faces are in `faces`.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct Cells {
     /// Kind of each cell.
@@ -24,6 +27,8 @@ pub struct Cells {
     pub offsets: Vec<usize>,
     /// Node indices of all cells, concatenated.
     pub nodes: Vec<usize>,
+    /// The faces of the polyhedra (local node indices, outward).
+    pub faces: Faces,
 }
 
 impl Cells {
@@ -33,15 +38,82 @@ impl Cells {
             kinds: Vec::new(),
             offsets: vec![0],
             nodes: Vec::new(),
+            faces: Faces::default(),
         }
     }
 
-    /// Appends one cell.
+    /// Appends one cell of a fixed kind, or a polygon (nodes in cyclic
+    /// order); a polyhedron goes through [`Cells::push_polyhedron`].
     pub fn push(&mut self, kind: CellKind, nodes: &[usize]) {
-        debug_assert_eq!(nodes.len(), kind.node_count());
+        debug_assert!(kind == CellKind::Polygon || nodes.len() == kind.node_count());
         self.kinds.push(kind);
         self.nodes.extend_from_slice(nodes);
         self.offsets.push(self.nodes.len());
+    }
+
+    /// Appends a polyhedron given by its faces, each a list of node indices
+    /// counter-clockwise seen from outside: its nodes are the faces' nodes
+    /// in the order they first appear.
+    pub fn push_polyhedron<'a>(&mut self, faces: impl IntoIterator<Item = &'a [usize]> + Clone) {
+        let mut nodes: Vec<usize> = Vec::new();
+        for face in faces.clone() {
+            for &v in face {
+                if !nodes.contains(&v) {
+                    nodes.push(v);
+                }
+            }
+        }
+        self.push_polyhedron_on(&nodes, faces)
+            .expect("every face node is listed");
+    }
+
+    /// Appends the polyhedron of nodes `nodes` (distinct) and faces `faces`
+    /// (node indices, counter-clockwise seen from outside); the first face
+    /// node not among `nodes`, if any, is refused.
+    pub fn push_polyhedron_on<'a>(
+        &mut self,
+        nodes: &[usize],
+        faces: impl IntoIterator<Item = &'a [usize]>,
+    ) -> std::result::Result<(), usize> {
+        let mut local: Vec<Vec<usize>> = Vec::new();
+        for face in faces {
+            let mut l = Vec::with_capacity(face.len());
+            for &v in face {
+                l.push(nodes.iter().position(|&u| u == v).ok_or(v)?);
+            }
+            local.push(l);
+        }
+        self.faces
+            .push(self.kinds.len(), local.iter().map(Vec::as_slice));
+        self.kinds.push(CellKind::Polyhedron);
+        self.nodes.extend_from_slice(nodes);
+        self.offsets.push(self.nodes.len());
+        Ok(())
+    }
+
+    /// Appends cell `c` of `other` with its nodes mapped by `map`.
+    pub fn push_from(&mut self, other: &Cells, c: usize, map: impl Fn(usize) -> usize) {
+        let nodes: Vec<usize> = other.cell(c).iter().map(|&v| map(v)).collect();
+        if let Some(faces) = other.faces.of(c) {
+            self.faces.push(self.kinds.len(), faces.iter());
+        }
+        self.kinds.push(other.kinds[c]);
+        self.nodes.extend_from_slice(&nodes);
+        self.offsets.push(self.nodes.len());
+    }
+
+    /// The local topology (edges, facets) of cell `c`.
+    pub fn local(&self, c: usize) -> Local<'_> {
+        Local::of(
+            self.kinds[c],
+            self.offsets[c + 1] - self.offsets[c],
+            self.faces.of(c),
+        )
+    }
+
+    /// The first cell of a general kind (polygon or polyhedron), if any.
+    pub fn first_general(&self) -> Option<usize> {
+        self.kinds.iter().position(|k| k.is_general())
     }
 
     /// Number of cells.
@@ -65,7 +137,8 @@ impl Cells {
     }
 }
 
-/// The most nodes a cell has (the hexahedron's 8).
+/// The most nodes a cell of a fixed kind has (the hexahedron's 8): a
+/// [`CellNodes`] holds this many in place.
 pub const MAX_CELL_NODES: usize = 8;
 
 /// A solver's copy of [`Cells`] with 32-bit offsets and node indices: 21
@@ -76,6 +149,7 @@ pub struct CompactCells {
     pub kinds: Vec<CellKind>,
     offsets: Vec<u32>,
     nodes: Vec<u32>,
+    faces: Faces,
 }
 
 impl CompactCells {
@@ -86,9 +160,13 @@ impl CompactCells {
             kinds: Vec::with_capacity(order.len()),
             offsets: Vec::with_capacity(order.len() + 1),
             nodes: Vec::new(),
+            faces: Faces::default(),
         };
         compact.offsets.push(0);
-        for c in order {
+        for (k, c) in order.enumerate() {
+            if let Some(faces) = cells.faces.of(c) {
+                compact.faces.push(k, faces.iter());
+            }
             compact.kinds.push(cells.kinds[c]);
             compact
                 .nodes
@@ -108,32 +186,50 @@ impl CompactCells {
         self.kinds.is_empty()
     }
 
-    /// The nodes of cell `c`, widened to indices.
+    /// The nodes of cell `c`, widened to indices (held in place up to
+    /// [`MAX_CELL_NODES`], on the heap for a larger polyhedron).
     pub fn cell(&self, c: usize) -> CellNodes {
         let stored = &self.nodes[self.offsets[c] as usize..self.offsets[c + 1] as usize];
         let mut nodes = [0; MAX_CELL_NODES];
-        for (n, &v) in nodes.iter_mut().zip(stored) {
-            *n = v as usize;
+        let mut wide = Vec::new();
+        if stored.len() > MAX_CELL_NODES {
+            wide.extend(stored.iter().map(|&v| v as usize));
+        } else {
+            for (n, &v) in nodes.iter_mut().zip(stored) {
+                *n = v as usize;
+            }
         }
         CellNodes {
             nodes,
             len: stored.len(),
+            wide,
         }
+    }
+
+    /// The local topology (edges, facets) of cell `c`.
+    pub fn local(&self, c: usize) -> Local<'_> {
+        let n = (self.offsets[c + 1] - self.offsets[c]) as usize;
+        Local::of(self.kinds[c], n, self.faces.of(c))
     }
 }
 
 /// The nodes of one cell of [`CompactCells`]; dereferences to `&[usize]`.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct CellNodes {
     nodes: [usize; MAX_CELL_NODES],
     len: usize,
+    wide: Vec<usize>,
 }
 
 impl std::ops::Deref for CellNodes {
     type Target = [usize];
 
     fn deref(&self) -> &[usize] {
-        &self.nodes[..self.len]
+        if self.len > MAX_CELL_NODES {
+            &self.wide
+        } else {
+            &self.nodes[..self.len]
+        }
     }
 }
 
@@ -199,6 +295,11 @@ pub struct FileOrigin {
     /// The OpenFOAM polyMesh, which writing the mesh as a case keeps (all but
     /// its points).
     pub foam: Option<Box<crate::io::foam::Origin>>,
+    /// Whether the file's convention fixes every cell's orientation
+    /// (OpenFOAM: a face's normal points out of its owner), so that each
+    /// cell as read is positively oriented by definition, whatever its
+    /// shape ([`crate::quality::orientation`]).
+    pub oriented: bool,
 }
 
 /// Two meshes are equal when everything but the file they came from is
@@ -340,22 +441,28 @@ impl Mesh {
 /// nodes, then compared).
 fn repeated_cell(cells: &Cells) -> Option<(usize, usize)> {
     let sorted = |c: usize| {
-        let mut key = [usize::MAX; 8];
-        let nodes = cells.cell(c);
-        key[..nodes.len()].copy_from_slice(nodes);
+        let mut key = cells.cell(c).to_vec();
         key.sort_unstable();
         key
     };
     let mut first = HashMap::with_capacity(cells.len());
+    let mut key = [usize::MAX; MAX_CELL_NODES];
     for c in 0..cells.len() {
-        let key = sorted(c);
+        let nodes = cells.cell(c);
         let mut h = DefaultHasher::new();
-        key.hash(&mut h);
+        if nodes.len() <= MAX_CELL_NODES {
+            key.fill(usize::MAX);
+            key[..nodes.len()].copy_from_slice(nodes);
+            key.sort_unstable();
+            key.hash(&mut h);
+        } else {
+            sorted(c).hash(&mut h);
+        }
         match first.entry(h.finish()) {
             Entry::Vacant(e) => {
                 e.insert(c);
             }
-            Entry::Occupied(e) if sorted(*e.get()) == key => return Some((*e.get(), c)),
+            Entry::Occupied(e) if sorted(*e.get()) == sorted(c) => return Some((*e.get(), c)),
             Entry::Occupied(_) => {}
         }
     }
@@ -380,19 +487,87 @@ fn check_cells(
                 kind.name()
             )));
         }
-        if nodes.len() != kind.node_count() {
-            return Err(Error::InvalidMesh(format!(
-                "{what} {c} ({}) has {} nodes (expected {})",
-                kind.name(),
-                nodes.len(),
-                kind.node_count()
-            )));
-        }
         if let Some(&bad) = nodes.iter().find(|&&i| i >= n) {
             return Err(Error::InvalidMesh(format!(
                 "{what} {c} uses node {bad} but the mesh has {n} nodes"
             )));
         }
+        let shape = match kind {
+            CellKind::Polygon => polygon_shape(nodes),
+            CellKind::Polyhedron => polyhedron_shape(nodes, cells.faces.of(c)),
+            _ if nodes.len() != kind.node_count() => Err(format!(
+                "has {} nodes (expected {})",
+                nodes.len(),
+                kind.node_count()
+            )),
+            _ => Ok(()),
+        };
+        if let Err(why) = shape {
+            return Err(Error::InvalidMesh(format!(
+                "{what} {c} ({}) {why}",
+                kind.name()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Why the nodes of a polygon do not make one: fewer than 3, or a node twice.
+fn polygon_shape(nodes: &[usize]) -> std::result::Result<(), String> {
+    if nodes.len() < 3 {
+        return Err(format!("has {} nodes (expected 3 or more)", nodes.len()));
+    }
+    let mut sorted = nodes.to_vec();
+    sorted.sort_unstable();
+    if sorted.windows(2).any(|w| w[0] == w[1]) {
+        return Err("has a node twice".into());
+    }
+    Ok(())
+}
+
+/// Why the faces of a polyhedron do not close it: fewer than 4 faces, a
+/// face of fewer than 3 nodes, a node on no face, or a side `a → b` of a
+/// face that no other face runs back `b → a` exactly once (an open or
+/// inconsistently oriented surface).
+fn polyhedron_shape(nodes: &[usize], faces: Option<FaceList>) -> std::result::Result<(), String> {
+    let Some(faces) = faces else {
+        return Err("has no faces".into());
+    };
+    if faces.len() < 4 {
+        return Err(format!("has {} faces (expected 4 or more)", faces.len()));
+    }
+    let mut sides = Vec::new();
+    let mut used = vec![false; nodes.len()];
+    for (f, face) in faces.iter().enumerate() {
+        if face.len() < 3 || face.iter().any(|&l| l >= nodes.len()) {
+            return Err(format!(
+                "has a face ({f}) of fewer than 3 nodes or out of its nodes"
+            ));
+        }
+        for k in 0..face.len() {
+            used[face[k]] = true;
+            sides.push((face[k], face[(k + 1) % face.len()]));
+        }
+    }
+    if let Some(l) = used.iter().position(|&u| !u) {
+        return Err(format!("has node {} on none of its faces", nodes[l]));
+    }
+    sides.sort_unstable();
+    if sides.windows(2).any(|w| w[0] == w[1]) {
+        return Err(
+            "has two faces that run along one side the same way (faces not oriented \
+                    consistently outward)"
+                .into(),
+        );
+    }
+    if let Some(&(a, b)) = sides
+        .iter()
+        .find(|&&(a, b)| sides.binary_search(&(b, a)).is_err())
+    {
+        return Err(format!(
+            "is not closed: its side {}-{} belongs to one face only",
+            nodes[a], nodes[b]
+        ));
     }
     Ok(())
 }

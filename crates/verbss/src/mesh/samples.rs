@@ -199,6 +199,32 @@ pub fn solid_airfoil() -> Mesh {
     Mesh::new(2, coords, volume, groups).expect("a valid solid zone")
 }
 
+/// `mesh` with every cell of a fixed kind written as the general kind of
+/// its dimension: a 2D cell as the polygon of its nodes, a 3D cell as the
+/// polyhedron of its facets (the same nodes, edges and faces).
+pub fn as_general(mesh: &Mesh) -> Mesh {
+    let mut cells = Cells::new();
+    for (c, (kind, nodes)) in mesh.cells.iter().enumerate() {
+        if kind.dim() == 2 {
+            cells.push(CellKind::Polygon, nodes);
+        } else {
+            let faces: Vec<Vec<usize>> = kind
+                .table()
+                .facets
+                .iter()
+                .map(|f| f.iter().map(|&l| nodes[l]).collect())
+                .collect();
+            cells
+                .push_polyhedron_on(nodes, faces.iter().map(Vec::as_slice))
+                .expect("a facet's nodes are the cell's");
+        }
+        debug_assert_eq!(cells.cell(c), nodes);
+    }
+    let mut general = mesh.clone();
+    general.cells = cells;
+    general
+}
+
 /// A structured mesh of `[0, 1]^dim` with `n` nodes a side, cells of the kind
 /// chosen by `kind` (2D: triangles, quads, both; 3D: hexahedra, prisms,
 /// tetrahedra, pyramids, hexahedra and pyramids), every cell positively
@@ -334,7 +360,7 @@ fn orient_positive(dim: usize, coords: &[f64], cells: &mut Cells) {
                 CellKind::Quad | CellKind::Pyramid => &[[1, 3]],
                 CellKind::Hexahedron => &[[1, 3], [5, 7]],
                 CellKind::Wedge => &[[1, 2], [4, 5]],
-                CellKind::Vertex | CellKind::Line => &[],
+                CellKind::Vertex | CellKind::Line | CellKind::Polygon | CellKind::Polyhedron => &[],
             };
             let start = cells.offsets[c];
             for [a, b] in swaps {

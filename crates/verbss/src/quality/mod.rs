@@ -72,6 +72,20 @@
 //! Vertices and lines are never volume cells of a valid mesh; they have no
 //! corner, hence zero volume: orientation 0, quality 0, inverted.
 //!
+//! Polygons and polyhedra are measured on their decomposition into
+//! simplices on centres that follow the nodes (`general`, docs/method.md,
+//! "Quality").
+//!
+//! # Validity
+//!
+//! A cell that passes the corner test must also pass what OpenFOAM's
+//! checkMesh checks for it — volume and face pyramids from its face
+//! decomposition, closedness, and on OpenFOAM cases the aspect ratio
+//! (`valid`, docs/method.md, "Validity"): [`inversions`] and
+//! [`qualities_and_inversions`] list every cell that fails either, with the
+//! test it fails ([`Failure`]); [`verdicts`] gives checkMesh's numbers of
+//! every cell.
+//!
 //! # Histogram
 //!
 //! [`Summary`] holds the minimum, the mean and the paper's five bins
@@ -81,15 +95,18 @@
 //! state, `mesh.dim` numbers per node), run in parallel over the cells and
 //! give the same result for any number of threads.
 
+mod general;
 mod histogram;
 mod measures;
+mod valid;
 
 pub use histogram::{bin_index, Bin, Report, Summary, BIN_EDGES};
+pub use valid::{Failure, Verdict, ASPECT, CLOSED};
 
 use rayon::prelude::*;
 
 use crate::geometry::{det, norm, point, sub};
-use crate::mesh::{CellKind, KindTable, Mesh};
+use crate::mesh::{CellKind, KindTable, Local, Mesh};
 
 /// Rounding tolerance ε on scaled corner Jacobians: a corner with
 /// `|σ_c| ≤ ε` counts as zero (flat).
@@ -122,7 +139,8 @@ impl Corner {
     }
 }
 
-/// An inverted cell, for the message that reports it.
+/// An inverted cell, or one the flow solver would refuse ([`Failure`]),
+/// for the message that reports it.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct Inversion {
@@ -131,8 +149,12 @@ pub struct Inversion {
     /// The mean of its nodes (`dim` numbers).
     pub centroid: Vec<f64>,
     /// The signed area/volume of its worst corner relative to the reference
-    /// orientation (≤ 0), see [`Corner::volume`].
+    /// orientation (≤ 0), see [`Corner::volume`]; for a cell that fails
+    /// the flow solver's tests, its volume from the face decomposition, or
+    /// the failing face pyramid's.
     pub volume: f64,
+    /// The test it fails.
+    pub failure: Failure,
 }
 
 /// The cell's points, in node order.
@@ -154,8 +176,25 @@ const fn factorial(d: usize) -> f64 {
 }
 
 /// Orientation of one cell: the sign of `Σ_c J_c`, 0 when
-/// `|Σ_c J_c| ≤ ε Σ_c Π_k |e_ck|` (see the module docs).
+/// `|Σ_c J_c| ≤ ε Σ_c Π_k |e_ck|` (see the module docs); a polygon's from
+/// its decomposition (`general`).
+///
+/// # Panics
+/// For a polyhedron, whose faces are not given here: see [`orientation_at`].
 pub fn cell_orientation<const D: usize>(kind: CellKind, nodes: &[usize], coords: &[f64]) -> i8 {
+    orientation_of::<D>(kind, nodes, Local::of(kind, nodes.len(), None), coords)
+}
+
+/// [`cell_orientation`] of a cell of any kind, with its topology `local`.
+fn orientation_of<const D: usize>(
+    kind: CellKind,
+    nodes: &[usize],
+    local: Local,
+    coords: &[f64],
+) -> i8 {
+    if kind.is_general() {
+        return general::orientation::<D>(nodes, local, coords);
+    }
     let p = gather::<D>(coords, nodes);
     let (mut sum, mut scale) = (0.0, 0.0);
     for c in kind.table().corners {
@@ -228,12 +267,35 @@ fn worst<const D: usize>(table: &KindTable, p: &[[f64; D]], s: f64) -> Corner {
 
 /// Quality in `[0, 1]` of one cell relative to reference orientation `sign`
 /// (the measures of the module docs; 0 when inverted).
+///
+/// # Panics
+/// For a polyhedron, whose faces are not given here: see [`qualities`].
 pub fn cell_quality<const D: usize>(
     kind: CellKind,
     nodes: &[usize],
     coords: &[f64],
     sign: i8,
 ) -> f64 {
+    quality_of::<D>(
+        kind,
+        nodes,
+        Local::of(kind, nodes.len(), None),
+        coords,
+        sign,
+    )
+}
+
+/// [`cell_quality`] of a cell of any kind, with its topology `local`.
+fn quality_of<const D: usize>(
+    kind: CellKind,
+    nodes: &[usize],
+    local: Local,
+    coords: &[f64],
+    sign: i8,
+) -> f64 {
+    if kind.is_general() {
+        return general::quality::<D>(nodes, local, coords, f64::from(sign)).0;
+    }
     let p = gather::<D>(coords, nodes);
     measure(
         kind,
@@ -255,7 +317,7 @@ fn measure<const D: usize>(kind: CellKind, p: &[[f64; D]], s: f64, worst: &Corne
         CellKind::Hexahedron => worst.scaled.min(measures::hexahedron_centre(p, s)),
         CellKind::Wedge => measures::wedge(worst.scaled),
         CellKind::Pyramid => measures::pyramid(p, kind.table().corners, s),
-        CellKind::Vertex | CellKind::Line => 0.0,
+        CellKind::Vertex | CellKind::Line | CellKind::Polygon | CellKind::Polyhedron => 0.0,
     };
     q.clamp(0.0, 1.0)
 }
@@ -277,11 +339,21 @@ macro_rules! by_dim {
     };
 }
 
-/// `f(cell, kind, nodes)` for every cell, in parallel, in cell order.
-fn per_cell<T: Send>(mesh: &Mesh, f: impl Fn(usize, CellKind, &[usize]) -> T + Sync) -> Vec<T> {
+/// `f(cell, kind, nodes, local)` for every cell, in parallel, in cell order.
+fn per_cell<T: Send>(
+    mesh: &Mesh,
+    f: impl Fn(usize, CellKind, &[usize], Local) -> T + Sync,
+) -> Vec<T> {
     (0..mesh.cells.len())
         .into_par_iter()
-        .map(|c| f(c, mesh.cells.kinds[c], mesh.cells.cell(c)))
+        .map(|c| {
+            f(
+                c,
+                mesh.cells.kinds[c],
+                mesh.cells.cell(c),
+                mesh.cells.local(c),
+            )
+        })
         .collect()
 }
 
@@ -306,7 +378,14 @@ fn check(mesh: &Mesh, coords: &[f64], reference: Option<&[i8]>) {
 
 /// Orientation (+1, −1, or 0 when flat) of every cell on the mesh's own
 /// coordinates: the reference for measuring it or any deformed state of it.
+/// A mesh whose file fixes the orientation by convention
+/// ([`crate::mesh::FileOrigin::oriented`]: OpenFOAM's faces point out of
+/// their owners) is +1 everywhere, whatever its shape: a cell tangled in
+/// the file reads as inverted, never as a valid mirrored one.
 pub fn orientation(mesh: &Mesh) -> Vec<i8> {
+    if mesh.origin.oriented {
+        return vec![1; mesh.cells.len()];
+    }
     orientation_at(mesh, &mesh.coords)
 }
 
@@ -316,7 +395,9 @@ pub fn orientation(mesh: &Mesh) -> Vec<i8> {
 /// If `coords` does not have `mesh.coords.len()` numbers or `mesh.dim` is not 2 or 3.
 pub fn orientation_at(mesh: &Mesh, coords: &[f64]) -> Vec<i8> {
     check(mesh, coords, None);
-    by_dim!(mesh.dim, D => per_cell(mesh, |_, kind, nodes| cell_orientation::<D>(kind, nodes, coords)))
+    by_dim!(mesh.dim, D => per_cell(mesh, |_, kind, nodes, local| {
+        orientation_of::<D>(kind, nodes, local, coords)
+    }))
 }
 
 /// Quality of every cell on `coords` relative to `reference` (one orientation
@@ -326,8 +407,8 @@ pub fn orientation_at(mesh: &Mesh, coords: &[f64]) -> Vec<i8> {
 /// If `coords` or `reference` do not match the mesh, or `mesh.dim` is not 2 or 3.
 pub fn qualities(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<f64> {
     check(mesh, coords, Some(reference));
-    by_dim!(mesh.dim, D => per_cell(mesh, |c, kind, nodes| {
-        cell_quality::<D>(kind, nodes, coords, reference[c])
+    by_dim!(mesh.dim, D => per_cell(mesh, |c, kind, nodes, local| {
+        quality_of::<D>(kind, nodes, local, coords, reference[c])
     }))
 }
 
@@ -343,32 +424,82 @@ pub fn inverted_cells(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<usiz
         .collect()
 }
 
-/// Every cell inverted on `coords` relative to `reference`, with its centroid
-/// and the signed volume of its worst corner, in increasing cell order.
+/// Every cell inverted on `coords` relative to `reference`, or failing the
+/// flow solver's tests (`valid`), with its centroid and signed volume, in
+/// increasing cell order.
 ///
 /// # Panics
 /// As [`qualities`].
 pub fn inversions(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<Inversion> {
-    check(mesh, coords, Some(reference));
-    let worst = by_dim!(mesh.dim, D => per_cell(mesh, |c, kind, nodes| {
-        worst_corner::<D>(kind, nodes, coords, reference[c])
-    }));
-    inverted_of(mesh, coords, &worst)
+    qualities_and_inversions(mesh, coords, reference).1
 }
 
-/// The inverted cells among those whose worst corners are `worst` (one per
-/// cell, in cell order), with their centroids on `coords`.
-fn inverted_of(mesh: &Mesh, coords: &[f64], worst: &[Corner]) -> Vec<Inversion> {
-    worst
-        .iter()
-        .enumerate()
-        .filter(|(_, w)| w.inverted())
-        .map(|(cell, w)| Inversion {
-            cell,
-            centroid: centroid(mesh, coords, cell),
-            volume: w.volume,
-        })
-        .collect()
+/// The quality of cell `c` on `coords` relative to `s`, and the test it
+/// fails with its signed volume: the corner test first (for the kinds with
+/// corners), then the flow solver's; on an OpenFOAM case (oriented by its
+/// file's convention), an aspect ratio above [`ASPECT`] where the cell's is
+/// not above it on the mesh's own coordinates (the input of a run). On a mesh oriented by its file's convention (an
+/// OpenFOAM case) a cell that fails the corner test on the mesh's own
+/// coordinates (a concave quadrilateral snappyHexMesh left at a trailing
+/// edge) is judged by the flow solver's tests alone, as its solver judges
+/// it; every other cell passes the corner test too.
+fn assess<const D: usize>(
+    mesh: &Mesh,
+    coords: &[f64],
+    c: usize,
+    s: f64,
+) -> (f64, Option<(Failure, f64)>) {
+    let kind = mesh.cells.kinds[c];
+    let nodes = mesh.cells.cell(c);
+    let local = mesh.cells.local(c);
+    let q = if kind.is_general() {
+        general::quality::<D>(nodes, local, coords, s).0
+    } else {
+        let p = gather::<D>(coords, nodes);
+        let w = worst(kind.table(), &p, s);
+        let q = measure(kind, &p, s, &w);
+        let judged_by_corners = !mesh.origin.oriented
+            || !worst(kind.table(), &gather::<D>(&mesh.coords, nodes), s).inverted();
+        if w.inverted() && judged_by_corners {
+            return (q, Some((Failure::Corner, w.volume)));
+        }
+        q
+    };
+    let v = verdict::<D>(nodes, local, coords, s);
+    if let Some(failed) = v.failure() {
+        return (q, Some(failed));
+    }
+    let stretched = mesh.origin.oriented
+        && v.aspect_ratio > ASPECT
+        && verdict::<D>(nodes, local, &mesh.coords, s).aspect_ratio <= ASPECT;
+    let failed = stretched.then_some((
+        Failure::Stretched {
+            aspect_ratio: v.aspect_ratio,
+        },
+        v.volume,
+    ));
+    (q, failed)
+}
+
+/// The flow solver's tests (`valid`) on one cell relative to `s`.
+fn verdict<const D: usize>(nodes: &[usize], local: Local, coords: &[f64], s: f64) -> Verdict {
+    if D == 2 {
+        valid::check_2d(nodes, coords, s)
+    } else {
+        valid::check_3d(nodes, local, coords, s)
+    }
+}
+
+/// The flow solver's tests on every cell at `coords` relative to
+/// `reference` (`valid`; docs/method.md, "Validity"), in cell order.
+///
+/// # Panics
+/// As [`qualities`].
+pub fn verdicts(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<Verdict> {
+    check(mesh, coords, Some(reference));
+    by_dim!(mesh.dim, D => per_cell(mesh, |c, _, nodes, local| {
+        verdict::<D>(nodes, local, coords, f64::from(reference[c]))
+    }))
 }
 
 /// [`qualities`] and [`inversions`] together, in one pass over the cells.
@@ -382,19 +513,16 @@ pub fn qualities_and_inversions(
 ) -> (Vec<f64>, Vec<Inversion>) {
     check(mesh, coords, Some(reference));
     let mut quality = vec![0.0; mesh.cells.len()];
-    let inverted: Vec<(usize, f64)> = by_dim!(mesh.dim, D => quality
+    let inverted: Vec<(usize, Failure, f64)> = by_dim!(mesh.dim, D => quality
         .par_chunks_mut(CELLS)
         .enumerate()
         .flat_map_iter(|(k, chunk)| {
             let mut inverted = Vec::new();
             for (q, c) in chunk.iter_mut().zip(k * CELLS..) {
-                let kind = mesh.cells.kinds[c];
-                let p = gather::<D>(coords, mesh.cells.cell(c));
-                let s = f64::from(reference[c]);
-                let w = worst(kind.table(), &p, s);
-                *q = measure(kind, &p, s, &w);
-                if w.inverted() {
-                    inverted.push((c, w.volume));
+                let (value, failed) = assess::<D>(mesh, coords, c, f64::from(reference[c]));
+                *q = value;
+                if let Some((failure, volume)) = failed {
+                    inverted.push((c, failure, volume));
                 }
             }
             inverted
@@ -402,10 +530,11 @@ pub fn qualities_and_inversions(
         .collect());
     let inversions = inverted
         .into_iter()
-        .map(|(cell, volume)| Inversion {
+        .map(|(cell, failure, volume)| Inversion {
             cell,
             centroid: centroid(mesh, coords, cell),
             volume,
+            failure,
         })
         .collect();
     (quality, inversions)
@@ -434,9 +563,13 @@ pub fn report(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Report {
 
 /// The mesh summary that `verbss quality --json` prints, as JSON: dimension,
 /// node and element counts, element counts per kind (meshio names), distinct
-/// nodes per group, quality (min, mean, the paper's five bins) and the
-/// inverted count. The mesh is measured against its own orientation
-/// ([`orientation`]), so `inverted` counts tangled or degenerate elements.
+/// nodes per group, quality (min, mean, the paper's five bins), the
+/// inverted count and, under `checkmesh`, what OpenFOAM's checkMesh would
+/// count (`valid`): cells of zero or negative volume, incorrectly oriented
+/// faces (face pyramids below zero, counted per cell side as checkMesh
+/// does), open cells and cells of aspect ratio above [`ASPECT`]. The mesh is measured against its own orientation
+/// ([`orientation`]), so `inverted` counts tangled or degenerate elements
+/// and, on an OpenFOAM case, every cell whose faces' convention it breaks.
 pub fn summary_json(mesh: &Mesh) -> serde_json::Value {
     use serde_json::{json, Map};
     let mut kinds = Map::new();
@@ -452,6 +585,11 @@ pub fn summary_json(mesh: &Mesh) -> serde_json::Value {
     }
     let reference = orientation(mesh);
     let report = report(mesh, &mesh.coords, &reference);
+    let verdicts = verdicts(mesh, &mesh.coords, &reference);
+    let negative = verdicts.iter().filter(|v| v.negative_volume()).count();
+    let pyramids: usize = verdicts.iter().map(|v| v.bad_pyramids).sum();
+    let open = verdicts.iter().filter(|v| v.openness > CLOSED).count();
+    let stretched = verdicts.iter().filter(|v| v.aspect_ratio > ASPECT).count();
     json!({
         "dimension": mesh.dim,
         "nodes": mesh.node_count(),
@@ -460,6 +598,12 @@ pub fn summary_json(mesh: &Mesh) -> serde_json::Value {
         "groups": groups,
         "quality": report.quality,
         "inverted": report.inverted,
+        "checkmesh": {
+            "negative_volume_cells": negative,
+            "incorrectly_oriented_faces": pyramids,
+            "open_cells": open,
+            "high_aspect_ratio_cells": stretched,
+        },
     })
 }
 

@@ -3,7 +3,7 @@
 
 use super::*;
 use crate::geometry::corner_jacobian;
-use crate::mesh::Cells;
+use crate::mesh::{samples, Cells};
 
 const SQRT3: f64 = 1.732_050_807_568_877_2;
 
@@ -501,4 +501,41 @@ fn the_one_pass_check_equals_the_separate_measures_for_any_threads() {
         one.1.len(),
         "report counts the same cells"
     );
+}
+
+/// checkMesh's tests see the faces, not the kind: a grid's cells written as
+/// polygons and polyhedra of the same faces get the same verdicts, number
+/// for number; a cube grid's polyhedra and a square grid's polygons have
+/// quality 1, and a tangled cell fails both ways.
+#[test]
+fn general_cells_get_the_verdicts_of_the_paper_s_kinds() {
+    for (dim, kind) in [(2, 1), (2, 0), (3, 0), (3, 1), (3, 2), (3, 3)] {
+        let mesh = samples::jittered_grid(dim, 4, kind, || 0.0).unwrap();
+        let general = samples::as_general(&mesh);
+        let reference = orientation(&general);
+        assert!(reference.iter().all(|&s| s == 1), "{dim}D kind {kind}");
+        let q = qualities(&general, &general.coords, &reference);
+        if kind == if dim == 2 { 1 } else { 0 } {
+            assert!(q.iter().all(|&v| (v - 1.0).abs() < 1e-12), "{q:?}");
+        }
+        let mut seed = 3u64;
+        let mut coords = mesh.coords.clone();
+        for x in &mut coords {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            *x += 0.6 * ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) / 3.0;
+        }
+        let fixed = verdicts(&mesh, &coords, &orientation(&mesh));
+        let same = verdicts(&general, &coords, &reference);
+        assert_eq!(fixed, same, "{dim}D kind {kind}");
+        let bad: Vec<usize> = (0..same.len())
+            .filter(|&c| same[c].failure().is_some())
+            .collect();
+        let found: Vec<usize> = inversions(&general, &coords, &reference)
+            .iter()
+            .map(|i| i.cell)
+            .collect();
+        assert_eq!(found, bad, "{dim}D kind {kind}");
+    }
 }

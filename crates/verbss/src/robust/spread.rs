@@ -292,10 +292,10 @@ fn aspect_ratio(cells: &Cells, coords: &[f64], dim: usize, c: usize) -> f64 {
     let nodes = cells.cell(c);
     let point = |k: usize| &coords[dim * nodes[k]..dim * (nodes[k] + 1)];
     let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
-    for &[a, b] in cells.kinds[c].table().edges {
+    cells.local(c).edges(|a, b| {
         let l = distance(point(a), point(b));
         lo = lo.min(l);
         hi = hi.max(l);
-    }
+    });
     hi / lo
 }

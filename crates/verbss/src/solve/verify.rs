@@ -15,8 +15,8 @@
 use rayon::prelude::*;
 
 use super::{relax, Frame, CHUNK};
-use crate::geometry::{cross, det, ldlt_mul, norm, point, sub};
-use crate::mesh::CellKind;
+use crate::geometry::{cross, det, ldlt_mul, lifted, mean_of, norm, point, sub};
+use crate::mesh::{CellKind, Local};
 use crate::springs::Connectivity;
 
 /// The result of [`check`].
@@ -35,7 +35,18 @@ pub struct Check {
 /// `|det(e₁, e₂)| / max |e_k|` in 2D and `|det(e₁, e₂, e₃)| / max |e_k × e_l|`
 /// in 3D, with `e_k` the corner's edges. For a rectangle (box) this is its
 /// shortest side; for a simplex, a height over one of its largest facets.
-pub fn cell_height<const D: usize>(kind: CellKind, nodes: &[usize], coords: &[f64]) -> f64 {
+/// A polygon or polyhedron (no corners) measures twice the smallest
+/// distance from the mean of its nodes to the line or plane of one of its
+/// facets ([`general_height`]).
+pub fn cell_height<const D: usize>(
+    kind: CellKind,
+    nodes: &[usize],
+    local: Local,
+    coords: &[f64],
+) -> f64 {
+    if kind.is_general() {
+        return general_height::<D>(nodes, local, coords);
+    }
     let mut height = f64::INFINITY;
     for corner in kind.table().corners {
         let x0 = point::<D>(coords, nodes[corner[0]]);
@@ -55,12 +66,49 @@ pub fn cell_height<const D: usize>(kind: CellKind, nodes: &[usize], coords: &[f6
     height
 }
 
+/// `2 min_F |n_F · (x_F − c)|`: twice the smallest distance from the mean
+/// `c` of the cell's nodes to the line (plane) of a facet `F`, with `x_F`
+/// the mean of its nodes and `n_F` its unit normal (the sum of the normals
+/// of its triangles about `x_F`).
+fn general_height<const D: usize>(nodes: &[usize], local: Local, coords: &[f64]) -> f64 {
+    let at = |l: usize| lifted::<D>(coords, nodes[l]);
+    let c = mean_of::<D>(coords, nodes.iter().copied());
+    let mut height = f64::INFINITY;
+    local.facets(|facet| {
+        let xf = mean_of::<D>(coords, facet.iter().map(|&l| nodes[l]));
+        let normal = if D == 2 {
+            let d = sub(&at(facet[1]), &at(facet[0]));
+            [-d[1], d[0], 0.0]
+        } else {
+            let mut n = [0.0; 3];
+            for k in 0..facet.len() {
+                let (a, b) = (at(facet[k]), at(facet[(k + 1) % facet.len()]));
+                let t = cross(&sub(&a, &xf), &sub(&b, &xf));
+                (0..3).for_each(|j| n[j] += t[j]);
+            }
+            n
+        };
+        let len = norm(&normal);
+        let d = sub(&xf, &c);
+        let distance = if len > 0.0 {
+            (normal[0] * d[0] + normal[1] * d[1] + normal[2] * d[2]).abs() / len
+        } else {
+            0.0
+        };
+        height = height.min(2.0 * distance);
+    });
+    height
+}
+
 /// The local size `h_i` of each node of `order` (an unknown position's
 /// node): the smallest [`cell_height`] of the node's cells at `coords`.
 pub fn heights<const D: usize>(conn: &Connectivity, coords: &[f64], order: &[usize]) -> Vec<f64> {
     let cells: Vec<f64> = (0..conn.cells.len())
         .into_par_iter()
-        .map(|c| cell_height::<D>(conn.cells.kinds[c], &conn.cells.cell(c), coords))
+        .map(|c| {
+            let nodes = conn.cells.cell(c);
+            cell_height::<D>(conn.cells.kinds[c], &nodes, conn.cells.local(c), coords)
+        })
         .collect();
     order
         .par_iter()

@@ -252,3 +252,111 @@ fn assembly_does_not_depend_on_the_number_of_threads() {
         assert!(one == three, "mesh {seed}");
     }
 }
+
+/// A mesh's cells written as polygons and polyhedra of the same nodes and
+/// facets get the same springs as the paper's kinds: their edges are the
+/// same, and their facets not containing a node are the same segments,
+/// triangles and quadrilaterals (a face of five or more nodes is the only
+/// new case, [`polygon_face_weights_lie_in_the_unit_interval_and_sum_to_one`]).
+#[test]
+fn general_cells_of_the_paper_s_shapes_get_the_paper_s_springs() {
+    let mut seed = 7u64;
+    let mut jitter = move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        0.2 * ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5)
+    };
+    for (dim, kind) in [(2, 2), (3, 0), (3, 1), (3, 2), (3, 4)] {
+        let mesh = samples::jittered_grid(dim, 4, kind, &mut jitter).unwrap();
+        let general = samples::as_general(&mesh);
+        let n = mesh.node_count();
+        let order: Vec<usize> = (0..n).collect();
+        let position: Vec<u32> = (0..n as u32).collect();
+        let a = assemble(
+            &Connectivity::new(&mesh),
+            &mesh.coords,
+            &order,
+            &position,
+            Springs::BallVertex,
+        )
+        .unwrap();
+        let b = assemble(
+            &Connectivity::new(&general),
+            &general.coords,
+            &order,
+            &position,
+            Springs::BallVertex,
+        )
+        .unwrap();
+        assert_eq!(a.offsets, b.offsets, "{dim}D kind {kind}");
+        assert_eq!(a.neighbours, b.neighbours, "{dim}D kind {kind}");
+        let close = |x: &[f64], y: &[f64]| {
+            x.iter()
+                .zip(y)
+                .all(|(p, q)| (p - q).abs() <= 1e-12 * (1.0 + p.abs()))
+        };
+        assert!(close(&a.diag, &b.diag), "{dim}D kind {kind}");
+        assert!(close(&a.blocks, &b.blocks), "{dim}D kind {kind}");
+    }
+}
+
+/// A hexagon's node pulled by its far sides: each ball-vertex spring's
+/// weights (on a polyhedron's pentagonal face, through the face centre) lie
+/// in `[0, 1]` and sum to 1, so every row's blocks sum to its diagonal.
+#[test]
+fn polygon_face_weights_lie_in_the_unit_interval_and_sum_to_one() {
+    // A pentagonal prism: two pentagons and five quadrilaterals.
+    let ring: Vec<[f64; 2]> = (0..5)
+        .map(|k| {
+            let a = 2.0 * std::f64::consts::PI * k as f64 / 5.0;
+            [a.cos(), a.sin()]
+        })
+        .collect();
+    let mut coords = Vec::new();
+    for z in [0.0, 0.8] {
+        for p in &ring {
+            coords.extend_from_slice(&[p[0], p[1], z]);
+        }
+    }
+    coords.extend_from_slice(&[0.1, 0.05, 1.5]);
+    let bottom: Vec<usize> = (0..5).rev().collect();
+    let top: Vec<usize> = (5..10).collect();
+    let mut faces = vec![bottom, top];
+    for k in 0..5 {
+        faces.push(vec![k, (k + 1) % 5, 5 + (k + 1) % 5, 5 + k]);
+    }
+    let mut cells = Cells::new();
+    cells.push_polyhedron(faces.iter().map(Vec::as_slice));
+    // A pentagonal pyramid on top: node 10 sees the top pentagon.
+    let mut faces = vec![(5..10).rev().collect::<Vec<_>>()];
+    for k in 0..5 {
+        faces.push(vec![5 + k, 5 + (k + 1) % 5, 10]);
+    }
+    cells.push_polyhedron(faces.iter().map(Vec::as_slice));
+    let mesh = Mesh::new(3, coords.clone(), cells, vec![]).unwrap();
+    let conn = Connectivity::new(&mesh);
+    let order: Vec<usize> = (0..11).collect();
+    let position: Vec<u32> = (0..11).collect();
+    let b = assemble(&conn, &coords, &order, &position, Springs::BallVertex).unwrap();
+    for r in 0..11 {
+        let mut sum = [0.0; 6];
+        for e in b.offsets[r]..b.offsets[r + 1] {
+            for (s, v) in sum.iter_mut().zip(&b.blocks[6 * e..6 * e + 6]) {
+                *s += v;
+            }
+        }
+        for (s, d) in sum.iter().zip(&b.diag[6 * r..6 * r + 6]) {
+            assert!((s - d).abs() < 1e-12, "row {r}");
+        }
+    }
+    let mut w = Vec::new();
+    let pentagon: Vec<[f64; 3]> = (5..10)
+        .map(|i| crate::geometry::point::<3>(&coords, i))
+        .collect();
+    for x in [[0.1, 0.05, 1.5], [3.0, 0.0, 0.8], [0.0, -2.0, 0.0]] {
+        crate::geometry::nearest_on_polygon(&x, &pentagon, &mut w);
+        assert!(w.iter().all(|&v| (0.0..=1.0).contains(&v)), "{w:?}");
+        assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-14, "{w:?}");
+    }
+}

@@ -179,7 +179,7 @@ impl Blocks {
             }
             let count = file.sections(1, 1).map_err(fail)?;
             let sections = (1..=count)
-                .map(|s| zone::section(&file, &head.at, s))
+                .map(|s| zone::section(&file, &head.at, s, false))
                 .collect::<std::result::Result<Vec<_>, _>>()
                 .map_err(fail)?;
             let conditions = zone::conditions(&file, &head).map_err(fail)?;

@@ -5,15 +5,17 @@ use std::path::Path;
 
 use super::blocks::{validate, Condition, SectionHead};
 use super::zone::{self, Head};
-use super::{error, Source};
+use super::{error, ffi, Source};
 use crate::error::Result;
 use crate::io::MAX_GROUPS;
 use crate::mesh::{CellKind, Cells, FileOrigin, Group, Mesh};
 
-/// An element section: its header and its elements.
+/// An element section: its header and its elements (an `NFACE_n`
+/// section's as signed face numbers).
 struct Section {
     head: SectionHead,
     cells: Cells,
+    nface: Vec<Vec<i64>>,
 }
 
 /// Reads zone 1 of base 1 of the CGNS file `path`.
@@ -29,11 +31,22 @@ pub fn read(path: &Path) -> Result<Mesh> {
     let mut cells = Cells::new();
     let mut cell_tags = Vec::new();
     for s in &sections {
-        for (i, (kind, nodes)) in s.cells.iter().enumerate() {
+        for (i, (kind, _)) in s.cells.iter().enumerate() {
             if kind.dim() == dim {
-                cells.push(kind, nodes);
+                cells.push_from(&s.cells, i, |v| v);
                 cell_tags.push((s.head.first + i as i64) as u64);
             }
+        }
+        for (i, faces) in s.nface.iter().enumerate() {
+            let number = s.head.first + i as i64;
+            polytope(&sections, dim, faces, &mut cells).map_err(|m| {
+                fail(format!(
+                    "{at}: section '{}': cell {number} {m}",
+                    s.head.name,
+                    at = head.at
+                ))
+            })?;
+            cell_tags.push(number as u64);
         }
     }
     let Head {
@@ -64,25 +77,95 @@ pub fn read(path: &Path) -> Result<Mesh> {
     Ok(mesh)
 }
 
-/// The zone's element sections, in file order.
+/// The zone's element sections, in file order. An `NGON_n` section's faces
+/// are facets that conditions may name but never a group of their own
+/// (they are the mesh's faces, inside ones included).
 fn sections(file: &super::ffi::File, head: &Head) -> std::result::Result<Vec<Section>, String> {
     let count = file.sections(1, 1)?;
     (1..=count)
         .map(|s| {
-            let info = zone::section(file, &head.at, s)?;
-            let cells = zone::elements(file, head, (s, &info), (info.start, info.end))?;
+            let info = zone::section(file, &head.at, s, true)?;
+            let place = format!("section '{}' of {}", info.name, head.at);
+            let first = i64::from(info.start);
+            let (mut cells, mut nface) = (Cells::new(), Vec::new());
+            if matches!(info.kind, ffi::NGON_N | ffi::NFACE_N) {
+                let (data, offsets) =
+                    file.elements_and_offsets((1, 1, s), info.kind, (info.start, info.end))?;
+                if info.kind == ffi::NGON_N {
+                    cells =
+                        zone::ngon(&data, &offsets, (head.vertices, head.dim), (first, &place))?;
+                } else {
+                    nface = zone::nface(&data, &offsets, (first, &place))?;
+                }
+            } else {
+                cells = zone::elements(file, head, (s, &info), (info.start, info.end))?;
+            }
             Ok(Section {
                 head: SectionHead {
                     name: info.name,
-                    first: i64::from(info.start),
-                    count: cells.len() as u64,
+                    first,
+                    count: (cells.len() + nface.len()) as u64,
                     cells: true,
-                    facets: cells.kinds.iter().any(|k| k.dim() + 1 == head.dim),
+                    facets: info.kind != ffi::NGON_N
+                        && cells.kinds.iter().any(|k| k.dim() + 1 == head.dim),
                 },
                 cells,
+                nface,
             })
         })
         .collect()
+}
+
+/// The nodes of face element `number` of an `NGON_n` section.
+fn face(sections: &[Section], number: i64) -> Option<&[usize]> {
+    sections.iter().find_map(|s| {
+        let e = usize::try_from(number - s.head.first).ok()?;
+        (e < s.cells.len()).then(|| s.cells.cell(e))
+    })
+}
+
+/// Appends the cell of the `NFACE_n` faces `faces` (signed element
+/// numbers): in 3D the polyhedron of those faces, each reversed where its
+/// number is negative (its normal points in); in 2D the polygon their
+/// edges chain into.
+fn polytope(
+    sections: &[Section],
+    dim: usize,
+    faces: &[i64],
+    cells: &mut Cells,
+) -> std::result::Result<(), String> {
+    let mut list = Vec::with_capacity(faces.len());
+    for &f in faces {
+        let nodes = face(sections, f.abs())
+            .ok_or_else(|| format!("names face {f}, which no NGON_n section holds"))?;
+        let mut nodes = nodes.to_vec();
+        if f < 0 {
+            nodes.reverse();
+        }
+        list.push(nodes);
+    }
+    if dim == 3 {
+        cells.push_polyhedron(list.iter().map(Vec::as_slice));
+        return Ok(());
+    }
+    let start = list
+        .first()
+        .filter(|e| e.len() == 2)
+        .ok_or("has no edges")?;
+    let mut ring = start.clone();
+    let mut used = vec![false; list.len()];
+    used[0] = true;
+    while ring.len() < list.len() {
+        let last = *ring.last().expect("started");
+        let next = (0..list.len())
+            .find(|&k| !used[k] && list[k].len() == 2 && list[k].contains(&last))
+            .ok_or("has edges that do not close a polygon")?;
+        used[next] = true;
+        let e = &list[next];
+        ring.push(if e[0] == last { e[1] } else { e[0] });
+    }
+    cells.push(CellKind::Polygon, &ring);
+    Ok(())
 }
 
 /// The boundary groups: one per family (or boundary condition without

@@ -287,18 +287,20 @@ mod hand_written {
     }
 
     #[test]
-    fn polyhedral_sections_are_refused_with_the_zone_and_section() {
+    fn polyhedral_sections_are_refused_in_blocks_with_the_zone_and_section() {
         let dir = tempfile::tempdir().unwrap();
         let path = square(&dir.path().join("ngon.cgns"), |f, b, z| {
             f.write_section(b, z, "Faces", ffi::NGON_N, (6, 6), &[2, 1, 2], &[0, 3])
                 .unwrap();
         });
+        let e = Blocks::open(&path).err().unwrap().to_string();
         assert_eq!(
-            read_error(&path),
+            e,
             format!(
                 "{}: section 'Faces' of zone 'Zone' (zone 1 of base 'Base') is NGON_n: polyhedral \
-                 sections are not supported (verbss reads BAR_2, TRI_3, QUAD_4, TETRA_4, PYRA_5, \
-                 PENTA_6, HEXA_8 and MIXED of those)",
+                 sections are not supported here (verbss reads them from a whole file, not in \
+                 blocks; here it reads BAR_2, TRI_3, QUAD_4, TETRA_4, PYRA_5, PENTA_6, HEXA_8 and \
+                 MIXED of those)",
                 path.display()
             )
         );
@@ -416,3 +418,6 @@ mod hand_written {
         );
     }
 }
+
+#[cfg(with_cgns)]
+mod polyhedra;

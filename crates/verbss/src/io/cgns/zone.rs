@@ -165,15 +165,23 @@ pub(super) fn coordinates(
     Ok((0..count * dim).map(|k| axes[k % dim][k / dim]).collect())
 }
 
-/// Section `s`'s header, its element type checked (no polyhedra, only the
-/// kinds verbss reads) and its numbering `1 ≤ start ≤ end`.
-pub(super) fn section(file: &File, at: &str, s: c_int) -> std::result::Result<SectionInfo, String> {
+/// Section `s`'s header, its element type checked (only the kinds verbss
+/// reads; `NGON_n` and `NFACE_n` where `polyhedra`) and its numbering
+/// `1 ≤ start ≤ end`.
+pub(super) fn section(
+    file: &File,
+    at: &str,
+    s: c_int,
+    polyhedra: bool,
+) -> std::result::Result<SectionInfo, String> {
     let info = file.section(1, 1, s)?;
     let place = format!("section '{}' of {at}", info.name);
     match info.kind {
+        ffi::NGON_N | ffi::NFACE_N if polyhedra => {}
         ffi::NGON_N | ffi::NFACE_N => {
             return Err(format!(
-                "{place} is {}: polyhedral sections are not supported (verbss reads {READ})",
+                "{place} is {}: polyhedral sections are not supported here (verbss reads \
+                 them from a whole file, not in blocks; here it reads {READ})",
                 type_name(info.kind)
             ))
         }
@@ -218,6 +226,82 @@ pub(super) fn elements(
     Ok(cells)
 }
 
+/// The 1-based node numbers `stored` as 0-based indices in `nodes`
+/// (cleared first); the first number outside `1..=n`, if any.
+fn zero_based(stored: &[CgSize], n: usize, nodes: &mut Vec<usize>) -> std::result::Result<(), i64> {
+    nodes.clear();
+    for &v in stored {
+        let v = i64::from(v);
+        if v < 1 || v > n as i64 {
+            return Err(v);
+        }
+        nodes.push(v as usize - 1);
+    }
+    Ok(())
+}
+
+/// The faces of an `NGON_n` section (elements `first..`, connectivity
+/// `data` cut by `offsets`) of a zone of cell dimension `dim`, each as the
+/// facet of its node count (in 2D a line, in 3D a triangle, quadrilateral
+/// or polygon), 1-based node numbers checked against `n`.
+pub(super) fn ngon(
+    data: &[CgSize],
+    offsets: &[CgSize],
+    (n, dim): (usize, usize),
+    (first, place): (i64, &str),
+) -> std::result::Result<Cells, String> {
+    let mut cells = Cells::new();
+    let mut nodes = Vec::new();
+    for (k, w) in offsets.windows(2).enumerate() {
+        let number = first + k as i64;
+        let range = usize::try_from(w[0]).ok().zip(usize::try_from(w[1]).ok());
+        let stored = range
+            .and_then(|(a, b)| data.get(a..b))
+            .ok_or_else(|| format!("{place}: face {number} has no valid node range"))?;
+        let fits = if dim == 2 {
+            stored.len() == 2
+        } else {
+            stored.len() >= 3
+        };
+        if !fits {
+            return Err(format!(
+                "{place}: face {number} has {} nodes (expected {} in a base of cell dimension \
+                 {dim})",
+                stored.len(),
+                if dim == 2 { "2" } else { "3 or more" }
+            ));
+        }
+        zero_based(stored, n, &mut nodes).map_err(|v| {
+            format!("{place}: face {number} has node {v}, outside the zone's 1..={n}")
+        })?;
+        cells.push(CellKind::facet_kind(nodes.len()), &nodes);
+    }
+    Ok(cells)
+}
+
+/// The cells of an `NFACE_n` section: each a list of signed face element
+/// numbers (negative: the face's normal points into the cell), cut by
+/// `offsets`.
+pub(super) fn nface(
+    data: &[CgSize],
+    offsets: &[CgSize],
+    (first, place): (i64, &str),
+) -> std::result::Result<Vec<Vec<i64>>, String> {
+    offsets
+        .windows(2)
+        .enumerate()
+        .map(|(k, w)| {
+            let range = usize::try_from(w[0]).ok().zip(usize::try_from(w[1]).ok());
+            range
+                .and_then(|(a, b)| data.get(a..b))
+                .map(|f| f.iter().map(|&v| i64::from(v)).collect())
+                .ok_or_else(|| {
+                    format!("{place}: cell {} has no valid face range", first + k as i64)
+                })
+        })
+        .collect()
+}
+
 /// The elements `numbers` of type `kind` from their connectivity
 /// (`MIXED`: each element's type before its nodes), 1-based node numbers
 /// checked against `n`.
@@ -248,16 +332,9 @@ fn decode(
         let stored = data
             .get(pos..end)
             .ok_or_else(|| format!("{place}: the connectivity ends inside element {number}"))?;
-        nodes.clear();
-        for &v in stored {
-            let v = i64::from(v);
-            if v < 1 || v > n as i64 {
-                return Err(format!(
-                    "{place}: element {number} has node {v}, outside the zone's 1..={n}"
-                ));
-            }
-            nodes.push(v as usize - 1);
-        }
+        zero_based(stored, n, &mut nodes).map_err(|v| {
+            format!("{place}: element {number} has node {v}, outside the zone's 1..={n}")
+        })?;
         cells.push(element, &nodes);
         pos = end;
     }

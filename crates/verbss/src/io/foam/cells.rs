@@ -1,7 +1,9 @@
 //! Cells from faces: each cell's faces, oriented outward (a face's normal
 //! points out of its owner and into its neighbour), are recognised as one
-//! of the four kinds verbss solves on and numbered as that kind's table
-//! wants (see [`crate::mesh::kinds`]):
+//! of the four kinds of the VerBSS paper and numbered as that kind's table
+//! wants (see [`crate::mesh::kinds`]); any other cell (a snappyHexMesh
+//! refinement transition, a cell cut by a baffle) is a polyhedron of its
+//! outward faces:
 //!
 //! | faces | kind |
 //! |---|---|
@@ -14,7 +16,9 @@
 //! hexahedron and pyramid, `0-2-1` for the prism and tetrahedron), so the
 //! cell is positively oriented when its faces point outward; each base
 //! node's one edge leaving the base gives the node above it. The result's
-//! facets must be the cell's faces exactly, else the cell is refused.
+//! facets must be the cell's faces exactly, else the cell is a polyhedron.
+//! Either way the orientation is the faces' convention, never the cell's
+//! shape: a cell the case holds tangled reads as inverted.
 
 use super::read::PolyMesh;
 use crate::error::{Error, Result};
@@ -60,8 +64,18 @@ pub(super) fn cells(mesh: &PolyMesh) -> Result<Cells> {
                 p
             })
             .collect();
-        let (kind, nodes) = shape(&oriented).map_err(|why| refuse(mesh, c, faces, &why))?;
-        cells.push(kind, &nodes);
+        if oriented.is_empty() {
+            return Err(refuse(
+                mesh,
+                c,
+                faces,
+                "has no faces (cell labels must run from 0 without gaps)",
+            ));
+        }
+        match shape(&oriented) {
+            Some((kind, nodes)) => cells.push(kind, &nodes),
+            None => cells.push_polyhedron(oriented.iter().map(Vec::as_slice)),
+        }
     }
     Ok(cells)
 }
@@ -84,8 +98,9 @@ fn refuse(mesh: &PolyMesh, c: usize, faces: &[(usize, bool)], why: &str) -> Erro
     }
 }
 
-/// The kind and nodes of a cell from its outward faces, or why not.
-fn shape(faces: &[Vec<usize>]) -> std::result::Result<(CellKind, Vec<usize>), String> {
+/// The kind and nodes of a cell from its outward faces, if it is one of the
+/// four kinds.
+fn shape(faces: &[Vec<usize>]) -> Option<(CellKind, Vec<usize>)> {
     let tris = faces.iter().filter(|f| f.len() == 3).count();
     let quads = faces.iter().filter(|f| f.len() == 4).count();
     let kind = match (faces.len(), tris, quads) {
@@ -93,14 +108,7 @@ fn shape(faces: &[Vec<usize>]) -> std::result::Result<(CellKind, Vec<usize>), St
         (5, 4, 1) => CellKind::Pyramid,
         (5, 2, 3) => CellKind::Wedge,
         (6, 0, 6) => CellKind::Hexahedron,
-        (0, ..) => return Err("has no faces (cell labels must run from 0 without gaps)".into()),
-        (n, t, q) => {
-            return Err(format!(
-                "has {n} faces ({t} triangles, {q} quadrilaterals, {} larger): a general \
-                 polyhedron (expected a tetrahedron, pyramid, prism or hexahedron)",
-                n - t - q
-            ))
-        }
+        _ => return None,
     };
     // The base: the kind's first facet, outward.
     let base_face = match kind {
@@ -122,11 +130,7 @@ fn shape(faces: &[Vec<usize>]) -> std::result::Result<(CellKind, Vec<usize>), St
     let base = first.len();
     match kind {
         CellKind::Tetra | CellKind::Pyramid => {
-            let apex = edges
-                .iter()
-                .flatten()
-                .find(|p| !base_face.contains(p))
-                .ok_or("has no node off its base face")?;
+            let apex = edges.iter().flatten().find(|p| !base_face.contains(p))?;
             nodes[base] = *apex;
         }
         _ => {
@@ -137,24 +141,15 @@ fn shape(faces: &[Vec<usize>]) -> std::result::Result<(CellKind, Vec<usize>), St
                     [y, x] if *x == b && !base_face.contains(y) => Some(*y),
                     _ => None,
                 });
-                let above = up
-                    .next()
-                    .ok_or("has a base node with no edge leaving the base")?;
+                let above = up.next()?;
                 if up.any(|y| y != above) {
-                    return Err("has a base node with two edges leaving the base".into());
+                    return None;
                 }
                 nodes[i + base] = above;
             }
         }
     }
-    if same_faces(kind, &nodes, faces) {
-        Ok((kind, nodes))
-    } else {
-        Err(format!(
-            "has the face counts of a {} but its faces do not close one",
-            kind.name()
-        ))
-    }
+    same_faces(kind, &nodes, faces).then_some((kind, nodes))
 }
 
 /// Whether the facets of `kind` on `nodes` are `faces` (as sets of points).

@@ -17,9 +17,11 @@
 //! the mesh bounds N), and `faceCompactList` faces. Binary (`format
 //! binary;`) and compressed (`.gz`) files are refused with a message.
 //!
-//! Each cell must be a tetrahedron, pyramid, prism or hexahedron
-//! ([`cells`](self) recognises them from their faces); each patch becomes a
-//! group of its faces (triangles and quadrilaterals). A case with patches of
+//! Each cell is a tetrahedron, pyramid, prism or hexahedron when its faces
+//! make one ([`cells`](self) recognises them), else a polyhedron of its
+//! faces; its orientation is the faces' convention (a cell the case holds
+//! inverted reads as inverted). Each patch becomes a group of its faces
+//! (triangles, quadrilaterals and polygons). A case with patches of
 //! type `empty` is a 2D case: it is read as the 2D mesh of its back plane
 //! (see [`Plane`]), and its `empty` patches are not groups.
 //!
@@ -99,7 +101,7 @@ pub fn same_polymesh(a: &Path, b: &Path) -> bool {
 /// Every list is checked against the others, with the file and line of a
 /// failure: point labels below the number of points, cell labels below the
 /// number of faces, one owner per face, patches on the boundary faces, and
-/// each cell one of the four kinds.
+/// each cell closed by its faces.
 pub fn read(path: &Path) -> Result<Mesh> {
     let dir = polymesh_dir(path);
     if !dir.is_dir() {
@@ -147,6 +149,7 @@ pub fn read(path: &Path) -> Result<Mesh> {
                 n_points,
                 plane,
             })),
+            oriented: true,
             ..FileOrigin::default()
         },
     };

@@ -1,9 +1,12 @@
 //! A one-cell-thick 2D case (patches of type `empty` on its front and
 //! back) read as the 2D mesh of its back plane: the points on the plane of
 //! smallest z are the 2D nodes, each point of the other plane follows the
-//! node its extrusion edge joins it to, each prism or hexahedron becomes
-//! its triangle or quadrilateral (counter-clockwise), and each face of the
-//! other patches becomes the line of its two back points.
+//! node its extrusion edge joins it to, each prism, hexahedron or
+//! polygonal prism becomes its triangle, quadrilateral or polygon (its back
+//! face reversed: counter-clockwise when the cell is valid, clockwise when
+//! the case holds it inverted, whose orientation comes from the faces'
+//! convention, never from the shape), and each face of the other patches
+//! becomes the line of its two back points.
 
 use super::read::PolyMesh;
 use super::Plane;
@@ -16,7 +19,7 @@ pub(super) struct Flat {
     pub coords: Vec<f64>,
     /// The foam point label of each 2D node.
     pub points: Vec<usize>,
-    /// Triangles and quadrilaterals, one per cell.
+    /// Triangles, quadrilaterals and polygons, one per cell.
     pub cells: Cells,
     /// The patches that are not `empty`, as lines.
     pub groups: Vec<Group>,
@@ -100,50 +103,51 @@ pub(super) fn flatten(mesh: &PolyMesh, cells: &Cells) -> Result<Flat> {
                 format!("cell {c} ({}) {why}", kind.name()),
             )
         };
-        if !matches!(kind, CellKind::Wedge | CellKind::Hexahedron) {
+        if !matches!(
+            kind,
+            CellKind::Wedge | CellKind::Hexahedron | CellKind::Polyhedron
+        ) {
             return Err(refuse(
-                "in a 2D case (expected prisms and hexahedra one cell thick)",
+                "in a 2D case (expected prisms, hexahedra and polygonal prisms one cell thick)",
             ));
         }
-        let table = kind.table();
-        for &[a, b] in table.edges {
+        let local = cells.local(c);
+        let mut bad_edge: Option<(usize, usize)> = None;
+        local.edges(|a, b| {
             let (a, b) = (nodes[a], nodes[b]);
             let (lower, upper) = match (back(a), back(b)) {
                 (true, false) => (a, b),
                 (false, true) => (b, a),
-                _ => continue,
+                _ => return,
             };
             let moved = (0..2)
                 .any(|d| (mesh.points[3 * lower + d] - mesh.points[3 * upper + d]).abs() > tol);
             if moved || (below[upper] != usize::MAX && below[upper] != lower) {
-                let at = |p: usize| crate::error::format_point(&mesh.points[3 * p..3 * p + 3]);
-                return Err(refuse(&format!(
-                    "has an edge between the planes that is not along z: point {lower} at {} to \
-                     point {upper} at {}",
-                    at(lower),
-                    at(upper)
-                )));
+                bad_edge.get_or_insert((lower, upper));
             }
             below[upper] = lower;
+        });
+        if let Some((lower, upper)) = bad_edge {
+            let at = |p: usize| crate::error::format_point(&mesh.points[3 * p..3 * p + 3]);
+            return Err(refuse(&format!(
+                "has an edge between the planes that is not along z: point {lower} at {} to \
+                 point {upper} at {}",
+                at(lower),
+                at(upper)
+            )));
         }
-        let Some(facet) = table
-            .facets
-            .iter()
-            .find(|f| f.iter().all(|&l| back(nodes[l])))
-        else {
+        let mut corners: Vec<usize> = Vec::new();
+        local.facets(|f| {
+            if corners.is_empty() && f.iter().all(|&l| back(nodes[l])) {
+                corners.extend(f.iter().map(|&l| nodes[l]));
+            }
+        });
+        if corners.is_empty() {
             return Err(refuse("has no face on the back plane"));
-        };
-        let mut corners: Vec<usize> = facet.iter().map(|&l| nodes[l]).collect();
-        let area2: f64 = (0..corners.len())
-            .map(|i| {
-                let (p, q) = (corners[i], corners[(i + 1) % corners.len()]);
-                mesh.points[3 * p] * mesh.points[3 * q + 1]
-                    - mesh.points[3 * q] * mesh.points[3 * p + 1]
-            })
-            .sum();
-        if area2 < 0.0 {
-            corners.reverse();
         }
+        // The back face points out of the cell (towards −z): reversed, it
+        // runs counter-clockwise seen from +z when the cell is valid.
+        corners.reverse();
         flat_cells.push(CellKind::facet_kind(corners.len()), &corners);
     }
     // 2D nodes: the back points, in label order.

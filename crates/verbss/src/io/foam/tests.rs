@@ -304,7 +304,7 @@ fn a_3d_mesh_writes_back_the_same_points_and_topology() {
 }
 
 #[test]
-fn a_general_polyhedron_is_refused_naming_the_cell() {
+fn a_general_polyhedron_is_read_with_its_faces() {
     // A unit cube whose bottom is two triangles: 7 faces.
     let cube = &hex_wedge_pyramid_tet().coords[..24];
     let points: Vec<String> = cube
@@ -324,12 +324,36 @@ fn a_general_polyhedron_is_refused_naming_the_cell() {
     ];
     let dir = tempfile::tempdir().unwrap();
     write_files(dir.path(), &files);
+    let mesh = read(dir.path()).unwrap();
+    assert_eq!(mesh.cells.kinds, [CellKind::Polyhedron]);
+    assert_eq!(mesh.cells.cell(0), [0, 3, 2, 1, 4, 5, 6, 7]);
+    let faces: Vec<Vec<usize>> = mesh
+        .cells
+        .faces
+        .of(0)
+        .unwrap()
+        .iter()
+        .map(<[usize]>::to_vec)
+        .collect();
+    assert_eq!(faces[0], [0, 1, 2]);
+    assert_eq!(faces[1], [0, 2, 3]);
+    assert_eq!(faces.len(), 7);
+    // The unit cube: valid, of quality 1 (the cube's decomposition).
+    let summary = crate::quality::summary_json(&mesh);
+    assert_eq!(summary["inverted"], 0);
+    assert!(
+        (summary["quality"]["min"].as_f64().unwrap() - 1.0).abs() < 1e-12,
+        "{summary}"
+    );
+    // One face missing: the cell is open, named with the file and the side.
+    let mut open = files.clone();
+    open[1].1 = "6(3(0 3 2) 3(0 2 1) 4(4 5 6 7) 4(0 1 5 4) 4(1 2 6 5) 4(2 3 7 6))".into();
+    open[2].1 = "6{0}".into();
+    open[4].1 = "1(all { type wall; nFaces 6; startFace 0; })".into();
+    write_files(dir.path(), &open);
     let e = read(dir.path()).unwrap_err().to_string();
     assert!(
-        e.ends_with(
-            "owner:1: cell 0 (faces 0 1 2 3 4 5 6) has 7 faces (2 triangles, 5 quadrilaterals, \
-             0 larger): a general polyhedron (expected a tetrahedron, pyramid, prism or hexahedron)"
-        ),
+        e.ends_with("owner:1: invalid mesh: cell 0 (polyhedron) is not closed: its side 0-3 belongs to one face only"),
         "{e}"
     );
     // The same cube with its bottom whole reads.

@@ -110,7 +110,7 @@ pub(super) fn assemble(
         for (c, (kind, nodes)) in all.iter().enumerate() {
             if kind.dim() == dim {
                 volume.push(c);
-                cells.push(kind, nodes);
+                cells.push_from(&all, c, |v| v);
                 continue;
             }
             let named = by_id.get(&group_ids.map_or(0, |g| g[c])).copied();

@@ -272,6 +272,12 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         let coords = self.points(points, n)?;
 
         let cells_el = section("Cells")?;
+        let has = |name: &str| {
+            cells_el
+                .children_named("DataArray")
+                .any(|d| d.attr("Name") == Some(name))
+        };
+        let general = has("faces");
         let cell_array = |name: &str| {
             let el = cells_el
                 .children_named("DataArray")
@@ -283,9 +289,20 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                     )
                 })?;
             let (tuples, why) = match name {
+                "connectivity" if general => (
+                    ncells.saturating_mul(MAX_GENERAL),
+                    format!("NumberOfCells={ncells} (at most {MAX_GENERAL} points each)"),
+                ),
                 "connectivity" => (
                     ncells.saturating_mul(8),
                     format!("NumberOfCells={ncells} (at most 8 points each)"),
+                ),
+                "faces" => (
+                    ncells.saturating_mul(MAX_GENERAL * MAX_GENERAL),
+                    format!(
+                        "NumberOfCells={ncells} (at most {MAX_GENERAL} faces of {MAX_GENERAL} \
+                         points each)"
+                    ),
                 ),
                 _ => (ncells, format!("NumberOfCells={ncells}")),
             };
@@ -296,8 +313,14 @@ impl<'a, 'c> VtkFile<'a, 'c> {
             cell_array("offsets")?,
             cell_array("types")?,
         ];
-        let all = self.cells(&arrays, n, ncells)?;
+        let faces = if general {
+            Some([cell_array("faces")?, cell_array("faceoffsets")?])
+        } else {
+            None
+        };
+        let all = self.cells(&arrays, faces.as_ref(), n, ncells)?;
         drop(arrays);
+        drop(faces);
 
         let point_data = self.data(piece.child("PointData"), "NumberOfPoints", n)?;
         let cell_data = self.data(piece.child("CellData"), "NumberOfCells", ncells)?;
@@ -363,8 +386,16 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         }
     }
 
-    /// All cells of the file, checked: kinds known, node counts right, nodes in range.
-    fn cells(&self, [conn, offsets, types]: &[Array; 3], n: usize, ncells: usize) -> Result<Cells> {
+    /// All cells of the file, checked: kinds known, node counts right, nodes
+    /// in range; a polyhedron's faces from `faces` (the `faces` and
+    /// `faceoffsets` arrays).
+    fn cells(
+        &self,
+        [conn, offsets, types]: &[Array; 3],
+        faces: Option<&[Array; 2]>,
+        n: usize,
+        ncells: usize,
+    ) -> Result<Cells> {
         let at = |a: &Array, m: String| {
             self.ctx
                 .at(a.el.pos, format!("DataArray '{}': {m}", a.name))
@@ -372,18 +403,25 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         let nodes = self.ints(conn, None)?;
         let ends = self.ints(offsets, Some(ncells))?;
         let kinds = self.ints(types, Some(ncells))?;
+        let streams = match faces {
+            Some([f, o]) => Some((f, self.ints(f, None)?, o, self.ints(o, Some(ncells))?)),
+            None => None,
+        };
         let mut cells = Cells::new();
         cells.kinds.reserve_exact(ncells);
         cells.offsets.reserve_exact(ncells);
         cells.nodes.reserve_exact(nodes.len());
         let mut start = 0;
+        let mut face_start = 0;
+        let mut local = Vec::with_capacity(8);
         for (c, (&end, &t)) in ends.iter().zip(kinds).enumerate() {
             let kind = CellKind::from_vtk_id(t).ok_or_else(|| {
                 at(
                     types,
                     format!(
                         "cell {c} has unknown VTK type {t} (supported: 1 vertex, 3 line, \
-                         5 triangle, 9 quad, 10 tetra, 12 hexahedron, 13 wedge, 14 pyramid)"
+                         5 triangle, 7 polygon, 9 quad, 10 tetra, 12 hexahedron, 13 wedge, \
+                         14 pyramid, 42 polyhedron)"
                     ),
                 )
             })?;
@@ -396,7 +434,7 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                     ))
                 }
             };
-            if end - start != kind.node_count() {
+            if !kind.is_general() && end - start != kind.node_count() {
                 return Err(at(
                     offsets,
                     format!(
@@ -407,7 +445,8 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                     ),
                 ));
             }
-            let mut local = [0usize; 8];
+            local.clear();
+            local.resize(end - start, 0);
             for (k, &i) in nodes[start..end].iter().enumerate() {
                 local[kind.vtk_local(k)] = match usize::try_from(i) {
                     Ok(i) if i < n => i,
@@ -419,7 +458,40 @@ impl<'a, 'c> VtkFile<'a, 'c> {
                     }
                 };
             }
-            cells.push(kind, &local[..end - start]);
+            if kind == CellKind::Polyhedron {
+                let Some((f, stream, o, face_ends)) = &streams else {
+                    return Err(at(
+                        types,
+                        format!("cell {c} is a polyhedron (42) but <Cells> has no 'faces' array"),
+                    ));
+                };
+                let stop = match usize::try_from(face_ends[c]) {
+                    Ok(e) if e >= face_start && e <= stream.len() => e,
+                    _ => {
+                        return Err(at(
+                            o,
+                            format!(
+                                "cell {c} ends its faces at {}, outside {face_start}..={}",
+                                face_ends[c],
+                                stream.len()
+                            ),
+                        ))
+                    }
+                };
+                let list = face_stream(&stream[face_start..stop], n)
+                    .map_err(|m| at(f, format!("cell {c}: {m}")))?;
+                cells
+                    .push_polyhedron_on(&local, list.iter().map(Vec::as_slice))
+                    .map_err(|p| {
+                        at(
+                            f,
+                            format!("cell {c}: a face uses point {p}, not among the cell's points"),
+                        )
+                    })?;
+                face_start = stop;
+            } else {
+                cells.push(kind, &local);
+            }
             start = end;
         }
         if start != nodes.len() {
@@ -500,4 +572,39 @@ impl<'a, 'c> VtkFile<'a, 'c> {
         names.sort_by_key(|g| g.0);
         Ok(names)
     }
+}
+
+/// The most points and faces of a polyhedron (and points of a polygon) a
+/// file's counts may claim, to bound what is decoded.
+const MAX_GENERAL: usize = 256;
+
+/// The faces of one polyhedron from its VTK face stream `nFaces, (nPoints,
+/// point …) …` (points below `n`).
+fn face_stream(stream: &[i64], n: usize) -> std::result::Result<Vec<Vec<usize>>, String> {
+    let count = |v: Option<&i64>, what: &str| match v.map(|&v| usize::try_from(v)) {
+        Some(Ok(v)) if v <= MAX_GENERAL => Ok(v),
+        _ => Err(format!(
+            "its face stream has no valid {what} count (at most {MAX_GENERAL})"
+        )),
+    };
+    let mut it = stream.iter();
+    let faces = count(it.next(), "face")?;
+    let mut out = Vec::with_capacity(faces);
+    for _ in 0..faces {
+        let m = count(it.next(), "point")?;
+        let face: Vec<usize> = it
+            .by_ref()
+            .take(m)
+            .map(|&p| usize::try_from(p).ok().filter(|&p| p < n))
+            .collect::<Option<_>>()
+            .ok_or_else(|| format!("a face uses a point outside 0..{n}"))?;
+        if face.len() != m {
+            return Err("its face stream ends inside a face".into());
+        }
+        out.push(face);
+    }
+    if it.next().is_some() {
+        return Err("its face stream is longer than its faces".into());
+    }
+    Ok(out)
 }

@@ -503,7 +503,8 @@ fn error_unknown_cell_type() {
     assert_eq!(
         broken(">5</DataArray>", ">22</DataArray>"),
         "x.vtu:11: DataArray 'types': cell 0 has unknown VTK type 22 (supported: 1 vertex, \
-         3 line, 5 triangle, 9 quad, 10 tetra, 12 hexahedron, 13 wedge, 14 pyramid)"
+         3 line, 5 triangle, 7 polygon, 9 quad, 10 tetra, 12 hexahedron, 13 wedge, 14 pyramid, \
+         42 polyhedron)"
     );
 }
 

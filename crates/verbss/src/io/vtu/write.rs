@@ -85,6 +85,9 @@ pub fn write_moved_to(
     });
     data_array(w, "offsets", 1, total, ends)?;
     data_array(w, "types", 1, total, all_cells().map(|(k, _)| k.vtk_id()))?;
+    if !mesh.cells.faces.is_empty() {
+        write_faces(w, mesh, total)?;
+    }
     writeln!(w, "      </Cells>")?;
 
     writeln!(w, "      <PointData>")?;
@@ -110,6 +113,26 @@ pub fn write_moved_to(
     writeln!(w, "    </Piece>")?;
     writeln!(w, "  </UnstructuredGrid>")?;
     writeln!(w, "</VTKFile>")
+}
+
+/// The polyhedra's faces as VTK writes them: `faces`, each polyhedron's
+/// stream `nFaces, (nPoints, point …) …` (point numbers), and
+/// `faceoffsets`, the end of each cell's stream in `faces` (−1 for a cell
+/// that is not a polyhedron), `total` cells in all.
+fn write_faces(w: &mut dyn Write, mesh: &Mesh, total: usize) -> std::io::Result<()> {
+    let mut stream: Vec<i64> = Vec::new();
+    let mut ends = vec![-1i64; total];
+    for (c, faces) in mesh.cells.faces.iter() {
+        let nodes = mesh.cells.cell(c);
+        stream.push(faces.len() as i64);
+        for face in faces.iter() {
+            stream.push(face.len() as i64);
+            stream.extend(face.iter().map(|&l| nodes[l] as i64));
+        }
+        ends[c] = stream.len() as i64;
+    }
+    data_array(w, "faces", 1, stream.len(), stream.into_iter())?;
+    data_array(w, "faceoffsets", 1, total, ends.into_iter())
 }
 
 /// Rejects fields that do not fit the mesh (see [`write_to`]).

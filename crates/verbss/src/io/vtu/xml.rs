@@ -98,7 +98,8 @@ enum Fate {
 
 /// Decides whether a child named `name` joins `parent` (the first of each
 /// section, the arrays of the sections, the first `DataArray` of `Points`
-/// and the first `connectivity`, `offsets` and `types` of `Cells`), fails
+/// and the first `connectivity`, `offsets`, `types`, `faces` and
+/// `faceoffsets` of `Cells`), fails
 /// on a second `<Piece>` or too many arrays.
 fn fate(ctx: &Ctx, parent: &Element, e: &BytesStart, pos: usize) -> Result<Fate> {
     const SECTIONS: [&str; 8] = [
@@ -141,12 +142,14 @@ fn fate(ctx: &Ctx, parent: &Element, e: &BytesStart, pos: usize) -> Result<Fate>
                 Ok(None) => None,
                 Err(e) => return Err(malformed(e.to_string())),
             };
-            ["connectivity", "offsets", "types"].iter().any(|&n| {
-                array.as_deref() == Some(n)
-                    && parent
-                        .children_named(child)
-                        .all(|c| c.attr("Name") != Some(n))
-            })
+            ["connectivity", "offsets", "types", "faces", "faceoffsets"]
+                .iter()
+                .any(|&n| {
+                    array.as_deref() == Some(n)
+                        && parent
+                            .children_named(child)
+                            .all(|c| c.attr("Name") != Some(n))
+                })
         }
         "FieldData" | "PointData" | "CellData" if parent.children.len() == MAX_ARRAYS => {
             return Err(ctx.at(

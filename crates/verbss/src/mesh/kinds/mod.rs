@@ -1,5 +1,6 @@
 //! One file per element kind: its node numbering and reference tables.
 
+pub mod general;
 pub mod hexahedron;
 pub mod line;
 pub mod pyramid;

@@ -368,10 +368,22 @@ impl File {
     /// before its nodes): the whole section or a block of it.
     pub fn elements(
         &self,
+        at: (c_int, c_int, c_int),
+        kind: c_int,
+        range: (CgSize, CgSize),
+    ) -> Result<Vec<CgSize>, String> {
+        Ok(self.elements_and_offsets(at, kind, range)?.0)
+    }
+
+    /// [`File::elements`] and, for `MIXED`, `NGON_n` and `NFACE_n`, where each
+    /// element starts in the connectivity (`end − start + 2` offsets from
+    /// 0; empty for the other types).
+    pub fn elements_and_offsets(
+        &self,
         (b, z, index): (c_int, c_int, c_int),
         kind: c_int,
         (start, end): (CgSize, CgSize),
-    ) -> Result<Vec<CgSize>, String> {
+    ) -> Result<(Vec<CgSize>, Vec<CgSize>), String> {
         let count = usize::try_from(end - start + 1)
             .map_err(|_| format!("the element range {start}..{end} is empty"))?;
         let mut size: CgSize = 0;
@@ -379,9 +391,10 @@ impl File {
         check(unsafe { cg_ElementPartialSize(self.id, b, z, index, start, end, &mut size) })?;
         let mut nodes: Vec<CgSize> =
             vec![0; usize::try_from(size).map_err(|_| format!("{size} connectivity entries"))?];
+        let mut offsets: Vec<CgSize> = Vec::new();
         // No parent data asked for (a null pointer).
-        let code = if kind == MIXED {
-            let mut offsets: Vec<CgSize> = vec![0; count + 1];
+        let code = if matches!(kind, MIXED | NGON_N | NFACE_N) {
+            offsets.resize(count + 1, 0);
             // SAFETY: buffers of the data size and count + 1 offsets; the
             // tree's check made sure every element type the library steps
             // through is one it knows and that the offsets agree.
@@ -414,7 +427,7 @@ impl File {
             }
         };
         check(code)?;
-        Ok(nodes)
+        Ok((nodes, offsets))
     }
 
     /// Writes an element section of one `kind` numbered `start..=end`; for

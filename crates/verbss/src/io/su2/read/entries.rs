@@ -108,7 +108,7 @@ impl Parser<'_> {
                 ),
             ));
         };
-        match CellKind::from_vtk_id(id.into()) {
+        match CellKind::from_vtk_id(id.into()).filter(|k| !k.is_general()) {
             Some(kind) if allowed(kind) => Ok(kind),
             Some(kind) => Err(self.err(
                 self.line,

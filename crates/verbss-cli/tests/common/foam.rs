@@ -1,0 +1,162 @@
+//! What the OpenFOAM tests share: running OpenFOAM's utilities, the
+//! `system` files they read, copies of OpenFOAM's own tutorials and what
+//! `checkMesh` reports.
+
+use std::path::Path;
+use std::process::Command;
+
+use super::stderr;
+use verbss_testkit::{needs, program};
+
+/// The OpenFOAM installation the Debian package `openfoam` makes.
+pub const FOAM_DIR: &str = "/usr/share/openfoam";
+
+/// Whether `blockMesh` and `checkMesh` run.
+pub fn have_openfoam() -> bool {
+    needs(
+        "OpenFOAM's blockMesh and checkMesh (Debian openfoam)",
+        program(
+            "sh",
+            &[
+                "-c",
+                &format!(
+                    "export WM_PROJECT_DIR=${{WM_PROJECT_DIR:-{FOAM_DIR}}}; \
+                     blockMesh -help >/dev/null && checkMesh -help >/dev/null"
+                ),
+            ],
+        ),
+    )
+}
+
+/// Runs an OpenFOAM utility on `case` with `args`, in `case` (as a
+/// tutorial's Allrun runs it: some dictionaries name paths relative to
+/// it); its standard output.
+pub fn foam(utility: &str, case: &Path, args: &[&str]) -> String {
+    let out = Command::new(utility)
+        .arg("-case")
+        .arg(case)
+        .args(args)
+        .current_dir(case)
+        .env(
+            "WM_PROJECT_DIR",
+            std::env::var("WM_PROJECT_DIR").unwrap_or(FOAM_DIR.into()),
+        )
+        .output()
+        .expect("run an OpenFOAM utility");
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{utility} failed:\n{text}{}",
+        stderr(&out)
+    );
+    text
+}
+
+/// The `system` files `blockMesh` and `checkMesh` read (OpenFOAM writes
+/// ASCII files).
+pub fn write_system(case: &Path) {
+    write_system_as(case, "ascii");
+}
+
+/// The `system` files, with `writeFormat` `format`.
+pub fn write_system_as(case: &Path, format: &str) {
+    let head = |object: &str| {
+        format!("FoamFile {{ version 2.0; format ascii; class dictionary; object {object}; }}\n")
+    };
+    let system = case.join("system");
+    std::fs::create_dir_all(&system).unwrap();
+    let files = [
+        (
+            "controlDict",
+            "application none; startFrom latestTime; startTime 0; stopAt endTime; \
+             endTime 1; deltaT 1; writeControl timeStep; writeInterval 1; writeFormat FORMAT;\n",
+        ),
+        (
+            "fvSchemes",
+            "ddtSchemes {} gradSchemes {} divSchemes {} laplacianSchemes {} \
+             interpolationSchemes {} snGradSchemes {}\n",
+        ),
+        ("fvSolution", ""),
+    ];
+    for (name, body) in files {
+        let body = body.replace("FORMAT", format);
+        std::fs::write(system.join(name), head(name) + &body).unwrap();
+    }
+}
+
+/// Whether `checkMesh` passes the mesh of `case` at its latest time.
+pub fn assert_mesh_ok(case: &Path) {
+    let log = foam("checkMesh", case, &["-latestTime"]);
+    assert!(log.contains("Mesh OK."), "checkMesh:\n{log}");
+}
+
+/// Whether OpenFOAM's `utilities` run (each with `-help`), for a test that
+/// needs them beyond blockMesh and checkMesh.
+pub fn have_utilities(utilities: &[&str]) -> bool {
+    let probe = utilities
+        .iter()
+        .map(|u| format!("{u} -help >/dev/null"))
+        .collect::<Vec<_>>()
+        .join(" && ");
+    have_openfoam()
+        && needs(
+            &format!("OpenFOAM's {} (Debian openfoam)", utilities.join(", ")),
+            program(
+                "sh",
+                &[
+                    "-c",
+                    &format!("export WM_PROJECT_DIR=${{WM_PROJECT_DIR:-{FOAM_DIR}}}; {probe}"),
+                ],
+            ),
+        )
+}
+
+/// The directory of OpenFOAM's tutorials (Debian `openfoam-examples`).
+pub const TUTORIALS: &str = "/usr/share/doc/openfoam-examples/examples";
+
+/// Whether the tutorial `name` (a path under [`TUTORIALS`]) is installed.
+pub fn have_tutorial(name: &str) -> bool {
+    let dir = Path::new(TUTORIALS).join(name);
+    needs(
+        &format!("OpenFOAM's tutorial {name} (Debian openfoam-examples)"),
+        if dir.is_dir() {
+            Ok(())
+        } else {
+            Err(format!("{} is missing", dir.display()))
+        },
+    )
+}
+
+/// A copy of tutorial `name` in `to`, its gzipped files unpacked (Debian
+/// compresses the larger ones).
+pub fn copy_tutorial(name: &str, to: &Path) {
+    let from = Path::new(TUTORIALS).join(name);
+    let status = Command::new("cp")
+        .arg("-r")
+        .arg(&from)
+        .arg(to)
+        .status()
+        .expect("run cp");
+    assert!(status.success(), "cp -r {}", from.display());
+    let status = Command::new("find")
+        .arg(to)
+        .args(["-name", "*.gz", "-exec", "gunzip", "{}", ";"])
+        .status()
+        .expect("run find");
+    assert!(status.success(), "gunzip in {}", to.display());
+}
+
+/// The lines of a checkMesh log that report a failed check (`***`).
+pub fn failures(log: &str) -> Vec<&str> {
+    log.lines().filter(|l| l.contains("***")).collect()
+}
+
+/// The number after `key` on the first line of `log` that holds it.
+pub fn count_after(log: &str, key: &str) -> Option<usize> {
+    let at = log.find(key)? + key.len();
+    log[at..]
+        .split(|c: char| !c.is_ascii_digit())
+        .find(|t| !t.is_empty())?
+        .parse()
+        .ok()
+}
