@@ -337,7 +337,11 @@ def run_verbss(case, method, verbss, work):
     text = re.sub(r"^mesh = .*$", f'mesh = "{(ROOT / case["mesh"]).as_posix()}"',
                   (ROOT / case["toml"]).read_text(), flags=re.M)
     toml = work / f"{Path(case['toml']).stem}-{method or 'default'}.toml"
-    toml.write_text(text + (f'\n[solver]\nmethod = "{method}"\n' if method else ""))
+    if method and re.search(r"^\[solver\]$", text, flags=re.M):
+        text = re.sub(r"^\[solver\]$", f'[solver]\nmethod = "{method}"', text, count=1, flags=re.M)
+    elif method:
+        text += f'\n[solver]\nmethod = "{method}"\n'
+    toml.write_text(text)
     out = work / f"verbss-{method or 'default'}"
     c0 = child_cpu()
     r = run([verbss, "run", str(toml), "--out", str(out), "--quiet"], check=False)

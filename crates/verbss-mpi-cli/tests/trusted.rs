@@ -1,5 +1,5 @@
 //! The distributed sweeps of a partitioned run are watched as one process's
-//! are (docs/distributed.md, "Escalation without the whole mesh"): a
+//! are (docs/distributed.md, "Escalation"): a
 //! solve stopped by the eq.-8 test is accepted only when every node's
 //! estimated error is within 1% of its cell height, sweeps that diverge go
 //! on with ω = 1 from the initial guess, and a step no stage solves stops

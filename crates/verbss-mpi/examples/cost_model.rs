@@ -9,7 +9,7 @@
 //! ```
 //!
 //! `T`: seconds per node update measured on one rank (default 3.1e-7, the
-//! 3D tetrahedral sweep measured in docs/distributed.md); `A`: seconds per
+//! 3D tetrahedral sweep of a million-node sphere, BENCHMARKS.md); `A`: seconds per
 //! message (default 2e-6); `B`: bytes per second per rank (default 1e10).
 //!
 //! It needs METIS: built without (see `build.rs`), it says so and exits with 2.

@@ -13,7 +13,7 @@
 //! loud red ([`colour::INVERTED`]); the element edges are drawn over them.
 //!
 //! [`png`](fn@png) rasterises the polygons itself (a scanline fill with a depth
-//! buffer, [`raster`]; its speed is in BENCHMARKS.md) and lets
+//! buffer, [`raster`]; its speed is in CHANGELOG.md) and lets
 //! plotters draw the header, the axes and the colour bar onto the same pixels,
 //! with an embedded font (DejaVu Sans, this crate's `fonts/`), so no system
 //! font is needed. [`svg`] writes the same picture as SVG (cells with their

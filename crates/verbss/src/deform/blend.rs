@@ -48,7 +48,7 @@ pub const ROUND_OFF: f64 = 1e-12;
 /// The angle's weight falls off over `ρ =` this many times the body's
 /// radius about the centre it turns about: the best minimum quality of 0.5,
 /// 1, 2, 3 and 5 on two airfoils of the test set of docs/robustness.md
-/// (BENCHMARKS.md, "Recorded in the code's comments").
+/// (CHANGELOG.md, 2026-11-23).
 const ANGLE_SCALE: f64 = 2.0;
 
 /// A body: the moving nodes its rigid motion is fitted to (indices into the

@@ -49,7 +49,7 @@ pub const GMRES_RESTART: usize = 4;
 /// before the multigrid, whose hierarchy would take 3–5 KB a node (more
 /// than 0.6 GB here) where the sweep-preconditioned GMRES takes 0.15 KB.
 /// Below it the multigrid goes first: it solves a stalled step in fewer
-/// seconds (BENCHMARKS.md, "A step that escalates, within 2 KB a node").
+/// seconds (CHANGELOG.md, 2026-11-24).
 pub const GMRES_FIRST_NODES_3D: usize = 150_000;
 /// The multigrid stage's stop, as a fraction of the error it must reach:
 /// [`ERROR_FRACTION`] of the smallest local size.

@@ -113,8 +113,7 @@ use crate::topology;
 /// changes on its own and the chunks are added in order, whatever the threads.
 /// Small enough that the colours of a small mesh still split evenly over the
 /// threads: with 256, a colour of 1,200 nodes made 5 chunks, 3 for one
-/// thread and 2 for the other (BENCHMARKS.md, "The coupling loop and the
-/// chunks").
+/// thread and 2 for the other (CHANGELOG.md, 2026-11-22).
 pub(crate) const CHUNK: usize = 64;
 
 /// [`chunked_sum`] and [`chunked_dot`] add up fixed pieces of this many numbers.
@@ -212,7 +211,7 @@ impl Layout {
 /// (`constant` and `work` hold `D` numbers per position).
 // The counter `e` beside the zip: zipping `a..` in as clippy suggests
 // compiles to a loop that keeps its state in memory, with slower sweeps
-// (BENCHMARKS.md, "The coupling loop and the chunks").
+// (CHANGELOG.md, 2026-11-22, "Tried and not adopted").
 #[allow(clippy::explicit_counter_loop)]
 #[inline(always)]
 pub fn coupled<const D: usize>(

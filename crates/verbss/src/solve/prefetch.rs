@@ -18,7 +18,7 @@
 
 /// How many couplings ahead of the one being added (in the sweep's order,
 /// about three nodes) the neighbour's displacement is asked for: the fastest
-/// of 20, 40, 64 and 100 (BENCHMARKS.md, "Software prefetch").
+/// of 20, 40, 64 and 100 (CHANGELOG.md, 2026-11-22).
 const AHEAD: usize = 40;
 
 /// Asks for the displacement (`D` numbers per position in `work`) of the
@@ -33,7 +33,7 @@ pub(crate) fn ahead<const D: usize>(work: &[f64], neighbours: &[u32], e: usize) 
 /// Asks for the coupling blocks 1.5 KB (192 numbers: 32 couplings in 3D, 64
 /// in 2D) after the start of `block`, the one being added. The blocks are
 /// read in order, but the processor's own look-ahead comes too late for the
-/// sweep (BENCHMARKS.md, "Software prefetch").
+/// sweep (CHANGELOG.md, 2026-11-22).
 #[inline(always)]
 pub(crate) fn block(block: &[f64]) {
     prefetch(block, 192);
