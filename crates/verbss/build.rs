@@ -30,7 +30,8 @@ mod cgns {
     fn compiles(include: Option<&PathBuf>, name: &str, source: &str) -> Result<(), String> {
         let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
         let file = out.join(format!("{name}.c"));
-        std::fs::write(&file, source).map_err(|e| format!("cannot write {}: {e}", file.display()))?;
+        std::fs::write(&file, source)
+            .map_err(|e| format!("cannot write {}: {e}", file.display()))?;
         let compiler = cc::Build::new()
             .cargo_metadata(false)
             .try_get_compiler()
@@ -68,7 +69,10 @@ mod cgns {
         match compiles(include.as_ref(), "verbss_cgns_probe", calls) {
             Ok(()) => {
                 if let Some(dir) = &dir {
-                    println!("cargo::rustc-link-search=native={}", dir.join("lib").display());
+                    println!(
+                        "cargo::rustc-link-search=native={}",
+                        dir.join("lib").display()
+                    );
                 }
                 println!("cargo::rustc-link-lib=cgns");
                 let wide = "#include <cgnslib.h>\n\

@@ -8,7 +8,7 @@ use std::ptr;
 
 use verbss::deform::Deformer;
 use verbss::motion::{Attachment, Motion};
-use verbss::robust::Robust;
+use verbss::near_wall::Robust;
 use verbss::settings::Settings;
 use verbss::{CellKind, Cells, Group, Mesh};
 use verbss_capi::*;
@@ -426,10 +426,16 @@ fn the_kind_constants_are_the_vtk_ids() {
 #[test]
 fn every_setting_of_the_table_is_a_c_name() {
     for setting in verbss::settings::TABLE {
-        let values = std::iter::once(setting.default).chain(setting.presets.iter().map(|(_, v)| *v));
+        let values =
+            std::iter::once(setting.default).chain(setting.presets.iter().map(|(_, v)| *v));
         for value in values {
             let s = settings(&[]);
-            assert_eq!(set(s, setting.name, value).0, VERBSS_OK, "{} = {value}", setting.name);
+            assert_eq!(
+                set(s, setting.name, value).0,
+                VERBSS_OK,
+                "{} = {value}",
+                setting.name
+            );
             assert_eq!(unsafe { verbss_settings_free(s) }, VERBSS_OK);
         }
     }

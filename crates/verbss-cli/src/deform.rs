@@ -156,14 +156,12 @@ impl DeformArgs {
         let motion = match self.field_motion(dim)? {
             Some(motion) => motion,
             None => match &self.positions {
-                Some(path) => {
-                    Motion::Positions(PositionSource::for_groups(
-                        path,
-                        &mesh,
-                        &self.moving,
-                        numbering,
-                    )?)
-                }
+                Some(path) => Motion::Positions(PositionSource::for_groups(
+                    path,
+                    &mesh,
+                    &self.moving,
+                    numbering,
+                )?),
                 None => unreachable!("clap requires one motion"),
             },
         };

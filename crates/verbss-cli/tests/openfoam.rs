@@ -3,6 +3,7 @@
 //! wrote (a new time directory of the input case, or a whole new case).
 
 use std::path::Path;
+use std::process::Command;
 
 mod common;
 

@@ -21,9 +21,17 @@ fn every_setting_is_an_option_with_the_tables_help() {
     for setting in verbss::settings::TABLE {
         let flag = format!("--{}", setting.flag());
         assert!(help.contains(&flag), "{flag} missing from --help:\n{help}");
-        let first_words: String = setting.help.split_whitespace().take(4).collect::<Vec<_>>().join(" ");
+        let first_words: String = setting
+            .help
+            .split_whitespace()
+            .take(4)
+            .collect::<Vec<_>>()
+            .join(" ");
         let flat: String = help.split_whitespace().collect::<Vec<_>>().join(" ");
-        assert!(flat.contains(&first_words), "{flag}: '{first_words}' not in --help");
+        assert!(
+            flat.contains(&first_words),
+            "{flag}: '{first_words}' not in --help"
+        );
         assert!(
             flat.contains(&format!("[default: {}]", setting.defaults())),
             "{flag}: its defaults are not in --help"
@@ -105,7 +113,10 @@ fn a_reports_settings_pasted_as_a_case_file_run_the_same_steps() {
     ]);
     assert!(o.status.success(), "{case}\n{}", stderr(&o));
     let pasted = std::fs::read(out.join("mesh_NACA0012_inv.su2")).unwrap();
-    assert!(pasted == std::fs::read(&direct).unwrap(), "the meshes differ");
+    assert!(
+        pasted == std::fs::read(&direct).unwrap(),
+        "the meshes differ"
+    );
     let again: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     assert_eq!(again["settings"], r["settings"]);

@@ -21,9 +21,7 @@ use verbss::io::WriteOptions;
 use verbss_cli::deform::DeformArgs;
 use verbss_cli::run::execute;
 use verbss_mpi::domain::PartDomain;
-use verbss_mpi::share::{
-    agree, global_numbers, partitions_of, read_rank_share, read_rank_split,
-};
+use verbss_mpi::share::{agree, global_numbers, partitions_of, read_rank_share, read_rank_split};
 use verbss_mpi::Comm;
 
 use crate::cgns;
@@ -128,8 +126,12 @@ pub fn run_parts(
     ))?;
     let mut prepared = told(agree(
         &world,
-        args.prepare_on(part.mesh.clone(), &part.numbering(), WriteOptions::default())
-            .map_err(|e| verbss::Error::InvalidSetting(e.to_string())),
+        args.prepare_on(
+            part.mesh.clone(),
+            &part.numbering(),
+            WriteOptions::default(),
+        )
+        .map_err(|e| verbss::Error::InvalidSetting(e.to_string())),
         "could not prepare the job",
     ))?;
     let job = &prepared.job;

@@ -13,7 +13,7 @@ mod common;
 use verbss::deform::Deformer;
 use verbss::io::{self, WriteOptions};
 use verbss::motion::{Attachment, Motion};
-use verbss::robust::Robust;
+use verbss::near_wall::Robust;
 use verbss::settings::{Predictor, Reference, Settings};
 use verbss::Mesh;
 use verbss_testkit::{needs, python};

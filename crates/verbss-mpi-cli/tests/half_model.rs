@@ -5,7 +5,7 @@
 //! report and the gathered mesh are those of one process to 1e-10 of the
 //! motion, with the paper's method and with the default one.
 
-use verbss::robust::Robust;
+use verbss::near_wall::Robust;
 use verbss::settings::Reference;
 
 mod common;

@@ -13,7 +13,7 @@ use std::path::Path;
 use verbss::deform::Deformer;
 use verbss::io::gmsh::partitioned::read_share;
 use verbss::motion::Attachment;
-use verbss::robust::{Layer, Robust};
+use verbss::near_wall::{Layer, Robust};
 use verbss::settings::{Preset, Reference};
 use verbss::Error;
 use verbss_mpi::share::partitions_of;

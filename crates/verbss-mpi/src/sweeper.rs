@@ -545,7 +545,10 @@ impl<'c> Sweeper<'c> {
         let sums = self
             .comm
             .sums(&[local.true_residual * local.true_residual * m, m]);
-        (self.comm.max(local.error_ratio), (sums[0] / sums[1].max(1.0)).sqrt())
+        (
+            self.comm.max(local.error_ratio),
+            (sums[0] / sums[1].max(1.0)).sqrt(),
+        )
     }
 
     /// The owned prescribed nodes.

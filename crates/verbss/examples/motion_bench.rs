@@ -54,7 +54,7 @@ use std::sync::Arc;
 use verbss::deform::Deformer;
 use verbss::mesh::Mesh;
 use verbss::motion::{Attachment, Motion};
-use verbss::robust::Robust;
+use verbss::near_wall::Robust;
 use verbss::settings::{Predictor, Reference, Settings};
 use verbss::solve::{Accel, Engine, Method, NodeRole, SolveParams, Solver};
 

@@ -32,7 +32,7 @@ use verbss::case::Case;
 use verbss::deform::Deformer;
 use verbss::error::Error;
 use verbss::motion::Motion;
-use verbss::robust::{Layer, Robust};
+use verbss::near_wall::{Layer, Robust};
 use verbss::settings::Reference;
 use verbss::solve::{Method, SolveParams, Solver, Stage};
 

@@ -12,7 +12,7 @@ use serde::Deserialize;
 use crate::error::{Error, Result};
 use crate::io::{MshVersion, WriteOptions};
 use crate::mesh::Mesh;
-use crate::motion::{Numbering, Attachment, Motion, PositionSource};
+use crate::motion::{Attachment, Motion, Numbering, PositionSource};
 use crate::settings::Settings;
 
 /// The largest case file [`Case::read`] reads (1 MiB: it holds settings;

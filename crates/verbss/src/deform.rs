@@ -42,16 +42,13 @@ use crate::collective::{agree, Collective, Whole};
 use crate::error::{format_point, Error, Result};
 use crate::mesh::Mesh;
 use crate::motion::{Attachment, Motion};
-use crate::robust::{self, Bounds, Follows};
+use crate::near_wall::{self, Bounds, Follows};
 use crate::settings::{Reference, Settings};
 use crate::solve::{Engine, NodeRole, SolverSetup, SpringSolver};
 use crate::topology;
 
-pub mod accept;
+mod accept;
 mod attempt;
-pub mod blend;
-mod distances;
-mod harmonic;
 mod report;
 mod roles;
 mod step;
@@ -59,9 +56,9 @@ mod targets;
 #[cfg(test)]
 mod tests;
 
-use self::blend::Blend;
 pub use self::report::{Snapshot, StepReport};
 use self::roles::{duplicate_nodes, plan_roles};
+use crate::near_wall::blend::{self, Blend};
 
 /// What one process holds of the mesh a deformer moves ([`Deformer::on`]):
 /// a whole mesh, or one rank's part — its nodes, owned and ghosts, every
@@ -122,7 +119,7 @@ pub struct Deformer<S = Engine, C = Whole> {
     layer_thickness: Vec<f64>,
     /// The number of rigid-layer nodes of every process.
     layer_nodes: usize,
-    /// The blended rigid motion, when [`crate::robust::Robust::blend`] is on.
+    /// The blended rigid motion, when [`crate::near_wall::Robust::blend`] is on.
     blend: Option<Blend>,
     /// The input mesh's minimum quality.
     input_quality: f64,
@@ -217,7 +214,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
         let blending = settings.robust.blend && !plan.bodies.is_empty();
         let edge_graph = (settings.robust.treats() || blending)
             .then(|| Arc::new(topology::edge_graph(&mesh.cells, mesh.node_count())));
-        let rigid = robust::prepare(
+        let rigid = near_wall::prepare(
             mesh,
             edge_graph.as_deref(),
             &plan.roles,

@@ -21,7 +21,7 @@
 //! | [`solve`] | the [`solve::Engine`]: VerBSS block SOR, scalar SOR, sparse LU, Laplacian; the multigrid; the escalation |
 //! | [`motion`] | boundary motions: translation, rotation, pitch–plunge, undulation, bending, positions |
 //! | [`settings`] | the one table of settings and the presets |
-//! | [`robust`] | the near-wall treatments: rigid layer, wall-distance stiffening |
+//! | [`near_wall`] | the near-wall treatments: the blended rigid motion, the rigid layer, wall-distance stiffening, sub-steps |
 //! | [`deform`] | the stepper: motion → system → solve → update → check, on a whole mesh or a rank's part |
 //! | [`collective`] | sums, maxima and ghost values over the processes sharing a mesh |
 //! | [`case`], [`report`] | the TOML case file and `report.json` |
@@ -71,10 +71,10 @@ pub mod io;
 pub mod mesh;
 pub mod motion;
 mod names;
+pub mod near_wall;
 pub mod prelude;
 pub mod quality;
 pub mod report;
-pub mod robust;
 pub mod settings;
 pub mod solve;
 pub mod springs;

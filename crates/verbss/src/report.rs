@@ -85,7 +85,7 @@ impl Report {
 mod tests {
     use super::*;
     use crate::mesh::samples::one_triangle;
-    use crate::robust::Layer;
+    use crate::near_wall::Layer;
 
     #[test]
     fn writes_the_step_keys_and_the_header() {

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use verbss::deform::{Deformer, StepReport};
 use verbss::motion::{Attachment, Motion};
-use verbss::robust::Robust;
+use verbss::near_wall::Robust;
 use verbss::settings::{Preset, Reference};
 use verbss::Mesh;
 

@@ -1,5 +1,5 @@
 use super::*;
-use crate::robust::{Layer, Robust};
+use crate::near_wall::{Layer, Robust};
 use crate::settings::Reference;
 use crate::solve::{Accel, Method, Solver};
 

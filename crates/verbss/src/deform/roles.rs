@@ -13,7 +13,7 @@ use crate::error::{Error, Result};
 use crate::geometry::{cross, dot, norm};
 use crate::mesh::{CellKind, Mesh};
 use crate::motion::{Attachment, Motion};
-use crate::robust::Bounds;
+use crate::near_wall::Bounds;
 use crate::solve::NodeRole;
 use crate::topology;
 

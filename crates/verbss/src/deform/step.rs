@@ -17,7 +17,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
     /// Moves the boundary to its position at step `n` and the interior with
     /// it, from the last accepted configuration (collective). On success
     /// the new configuration is accepted and its report returned. When a
-    /// cell is invalid — in the smallest increment [`crate::robust::Robust`]
+    /// cell is invalid — in the smallest increment [`crate::near_wall::Robust`]
     /// allows — the configuration is rejected (kept in
     /// [`Deformer::failed`], the current one stays) and [`Error::Inverted`]
     /// names the worst cell of any process.

@@ -15,8 +15,8 @@ use super::Deformer;
 use crate::collective::{agree, Collective};
 use crate::error::Result;
 use crate::mesh::Mesh;
-use crate::robust::Follows;
 use crate::motion::Clock;
+use crate::near_wall::Follows;
 use crate::solve::{NodeRole, SpringSolver};
 
 /// The body nodes that layer nodes follow by their displacement, when some

@@ -6,7 +6,7 @@ use std::path::Path;
 use super::*;
 use crate::mesh::samples::square_of_triangles as square;
 use crate::motion::PositionSource;
-use crate::robust::Robust;
+use crate::near_wall::Robust;
 use crate::settings::Predictor;
 
 const NACA: &str = concat!(

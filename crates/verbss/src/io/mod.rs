@@ -2,8 +2,12 @@
 //! CGNS (`.cgns`, with the CGNS library).
 //! OpenFOAM polyMesh.
 //!
-//! [`read`] and [`write()`] choose the format by extension; a directory or
-//! a path without an extension is an OpenFOAM case.
+//! Every format implements one interface, [`MeshFormat`] (read a file's
+//! zones, write a moved mesh); [`read`] and [`write()`] choose the format by
+//! extension ([`Format::from_path`]: a directory or a path without an
+//! extension is an OpenFOAM case). One rank's part of a partitioned file is
+//! read by the `verbss-mpi` crate (a partitioned Gmsh MSH 4.1 file through
+//! [`gmsh::partitioned`], SU2 and CGNS through their streams).
 
 use std::fs::File;
 use std::io::{BufWriter, Read, Write};
@@ -14,11 +18,14 @@ use crate::mesh::Mesh;
 
 pub mod cgns;
 pub mod foam;
+mod format;
 pub mod gmsh;
 pub mod positions;
 pub mod pvd;
 pub mod su2;
 pub mod vtu;
+
+pub use format::{read, read_zone, read_zones, write, write_moved, Format, MeshFormat};
 
 /// The most groups (SU2 markers, Gmsh physical groups, VTU group names) a
 /// reader accepts: real meshes have tens to thousands, and each group costs
@@ -106,98 +113,6 @@ impl WriteOptions {
     }
 }
 
-/// A mesh file format.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Format {
-    /// Gmsh `.msh`.
-    Msh,
-    /// SU2 `.su2`.
-    Su2,
-    /// VTK XML unstructured grid `.vtu`.
-    Vtu,
-    /// CGNS `.cgns` (unstructured zones).
-    Cgns,
-    /// An OpenFOAM case directory (its `constant/polyMesh`).
-    Foam,
-}
-
-impl Format {
-    /// The format's file extension, without the dot (none for OpenFOAM).
-    pub fn extension(self) -> &'static str {
-        match self {
-            Format::Msh => "msh",
-            Format::Su2 => "su2",
-            Format::Vtu => "vtu",
-            Format::Cgns => "cgns",
-            Format::Foam => "",
-        }
-    }
-
-    /// The format named by a path's extension; a directory or a path
-    /// without an extension is an OpenFOAM case ([`foam::is_case`]).
-    pub fn from_path(path: &Path) -> Result<Format> {
-        if foam::is_case(path) {
-            return Ok(Format::Foam);
-        }
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        [Format::Msh, Format::Su2, Format::Vtu, Format::Cgns]
-            .into_iter()
-            .find(|f| ext.as_deref() == Some(f.extension()))
-            .ok_or_else(|| Error::UnknownFormat {
-                path: path.to_path_buf(),
-            })
-    }
-}
-
-/// Reads a mesh, choosing the format by extension; of a multi-zone SU2
-/// file, zone 1 ([`read_zone`] reads another).
-pub fn read(path: &Path) -> Result<Mesh> {
-    read_zone(path, 1).map(|(mesh, _)| mesh)
-}
-
-/// Reads zone `zone` (1-based, SU2's `IZONE=`) of a mesh file and gives its
-/// number of zones. Only SU2 files have several; every other file is zone 1
-/// of 1. The other zones of an SU2 file are kept for an SU2 output
-/// ([`su2::parse_zone`]).
-pub fn read_zone(path: &Path, zone: usize) -> Result<(Mesh, usize)> {
-    let format = Format::from_path(path)?;
-    if format == Format::Su2 {
-        return su2::parse_zone(&read_bytes(path)?, path, zone);
-    }
-    let mesh = read_one(format, path)?;
-    if zone != 1 {
-        return Err(Error::InvalidSetting(format!(
-            "{}: zone {zone} asked for, but verbss reads several zones from SU2 files only",
-            path.display()
-        )));
-    }
-    Ok((mesh, 1))
-}
-
-/// Reads every zone of a mesh file, in order: one mesh for every file but a
-/// multi-zone SU2 file.
-pub fn read_zones(path: &Path) -> Result<Vec<Mesh>> {
-    match Format::from_path(path)? {
-        Format::Su2 => su2::parse_zones(&read_bytes(path)?, path),
-        format => Ok(vec![read_one(format, path)?]),
-    }
-}
-
-/// Reads the mesh of a file in `format` (an SU2 file: zone 1; a CGNS file:
-/// its first zone).
-fn read_one(format: Format, path: &Path) -> Result<Mesh> {
-    match format {
-        Format::Msh => gmsh::parse(&read_bytes(path)?, path),
-        Format::Su2 => su2::parse(&read_bytes(path)?, path),
-        Format::Vtu => vtu::parse(&read_bytes(path)?, path).map(|v| v.mesh),
-        Format::Cgns => cgns::read(path),
-        Format::Foam => foam::read(path),
-    }
-}
-
 /// A file's bytes (see [`open_input`]).
 pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
     let mut bytes = Vec::new();
@@ -244,73 +159,6 @@ pub(crate) fn regular_input(path: &Path) -> Result<()> {
             std::io::ErrorKind::InvalidInput,
             format!("{what}, not a regular file (verbss reads its inputs from regular files only)"),
         ),
-    })
-}
-
-/// Writes a mesh, choosing the format by extension (atomically, see
-/// [`write_atomic`]; a CGNS mesh read from a CGNS file is a copy of that
-/// file with new coordinates, see [`cgns::write`]).
-pub fn write(path: &Path, mesh: &Mesh, options: &WriteOptions) -> Result<()> {
-    write_moved(path, mesh, &mesh.coords, options)
-}
-
-/// [`write()`] with the nodes at `coords` (`dim` numbers per node) instead of
-/// the mesh's own: a moved mesh written without a copy of its cells.
-pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], options: &WriteOptions) -> Result<()> {
-    if coords.len() != mesh.coords.len() {
-        return Err(Error::InvalidSetting(format!(
-            "{} coordinates for the {} nodes of a {}D mesh",
-            coords.len(),
-            mesh.node_count(),
-            mesh.dim
-        )));
-    }
-    let format = Format::from_path(path)?;
-    let fixed_only = match format {
-        Format::Msh => Some("Gmsh MSH"),
-        Format::Su2 => Some("SU2"),
-        Format::Cgns if mesh.origin.cgns.is_none() => Some("CGNS (for a mesh not read from one)"),
-        _ => None,
-    };
-    if let (Some(name), Some(what)) = (fixed_only, general_cell(mesh)) {
-        return Err(Error::Unrepresentable {
-            path: path.to_path_buf(),
-            format: name,
-            what,
-        });
-    }
-    match format {
-        Format::Msh => write_atomic(path, |w| {
-            gmsh::write_moved_to(w, mesh, coords, options.msh_version, options.binary)
-        }),
-        Format::Su2 => write_atomic(path, |w| su2::write_moved_to(w, mesh, coords)),
-        Format::Vtu => write_atomic(path, |w| {
-            vtu::write_moved_to(w, mesh, coords, &vtu::Fields::default())
-        }),
-        Format::Cgns => cgns::write_moved(path, mesh, coords),
-        Format::Foam => foam::write_moved(path, mesh, coords, options.foam_time.as_deref()),
-    }
-}
-
-/// The first polygon or polyhedron of `mesh`, among its cells or its
-/// groups' facets, named for a message (`element 17, a polyhedron`).
-fn general_cell(mesh: &Mesh) -> Option<String> {
-    if let Some(c) = mesh.cells.first_general() {
-        return Some(format!(
-            "element {}, a {}",
-            mesh.cell_tags[c],
-            mesh.cells.kinds[c].name()
-        ));
-    }
-    mesh.groups.iter().find_map(|g| {
-        g.facets.first_general().map(|f| {
-            format!(
-                "facet {f} of group '{}', a {} of {} nodes",
-                g.name,
-                g.facets.kinds[f].name(),
-                g.facets.cell(f).len()
-            )
-        })
     })
 }
 

@@ -65,6 +65,34 @@ use crate::mesh::Mesh;
 
 mod assemble;
 mod binary;
+
+/// VTK XML unstructured grid (`.vtu`).
+pub struct Vtu;
+
+impl super::MeshFormat for Vtu {
+    fn name(&self) -> &'static str {
+        "VTK XML"
+    }
+
+    fn read_zone(&self, path: &Path, zone: usize) -> Result<(Mesh, usize)> {
+        super::format::one_zone(path, zone, || read(path).map(|v| v.mesh))
+    }
+
+    fn write_moved(
+        &self,
+        path: &Path,
+        mesh: &Mesh,
+        coords: &[f64],
+        _: &super::WriteOptions,
+    ) -> Result<()> {
+        write_moved(path, mesh, coords, &Fields::default())
+    }
+
+    fn stores_general_cells(&self, _: &Mesh) -> bool {
+        true
+    }
+}
+
 #[cfg(test)]
 mod general_tests;
 #[cfg(test)]

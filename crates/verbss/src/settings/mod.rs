@@ -6,7 +6,7 @@
 use crate::error::{Error, Result};
 use crate::motion::{Attachment, Motion};
 use crate::names::named;
-use crate::robust::Robust;
+use crate::near_wall::Robust;
 use crate::solve::SolveParams;
 
 mod table;

@@ -8,7 +8,7 @@
 use super::{Predictor, Preset, Reference, Settings};
 use crate::error::{format_number, Error, Result};
 use crate::names::one_of;
-use crate::robust::Layer;
+use crate::near_wall::Layer;
 use crate::solve::{Accel, Method, Solver};
 
 /// One setting (see the module documentation).

@@ -1,5 +1,5 @@
 use super::*;
-use crate::robust::Layer;
+use crate::near_wall::Layer;
 use crate::solve::{Accel, Method, Solver};
 
 #[test]

@@ -70,6 +70,14 @@
 //! after [`SolveParams::max_iterations`] sweeps. The eq.-8 value measures the
 //! last sweep's change, not the error: with ω close to 2 or a slowly
 //! converging mesh the error can be many times larger.
+//!
+//! # Pieces for a distributed sweeper
+//!
+//! [`gmres`] (restarted GMRES over any operator: the escalation's Krylov
+//! stage) and [`verify`] (the true residual, the per-node error estimate
+//! and the cell heights that decide whether a solve can be trusted) are
+//! public for `verbss-mpi`'s sweeper, which runs them on one rank's part
+//! with its sums over the ranks, rather than keeping a copy.
 
 mod accel;
 mod amg;

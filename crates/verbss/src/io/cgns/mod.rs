@@ -124,6 +124,36 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64]) -> Result<()> {
     }
 }
 
+/// CGNS, unstructured zones (with the CGNS library).
+pub struct Cgns;
+
+impl super::MeshFormat for Cgns {
+    fn name(&self) -> &'static str {
+        "CGNS"
+    }
+
+    fn read_zone(&self, path: &Path, zone: usize) -> Result<(Mesh, usize)> {
+        super::format::one_zone(path, zone, || read(path))
+    }
+
+    fn write_moved(
+        &self,
+        path: &Path,
+        mesh: &Mesh,
+        coords: &[f64],
+        _: &super::WriteOptions,
+    ) -> Result<()> {
+        write_moved(path, mesh, coords)
+    }
+
+    /// A file written from a CGNS input is that file with new coordinates,
+    /// its `NGON_n`/`NFACE_n` sections kept; a new file holds the paper's
+    /// kinds only.
+    fn stores_general_cells(&self, mesh: &Mesh) -> bool {
+        mesh.origin.cgns.is_some()
+    }
+}
+
 #[cfg(test)]
 mod tests;
 

@@ -182,6 +182,33 @@ fn patches(poly: &read::PolyMesh) -> Vec<Group> {
         .collect()
 }
 
+/// An OpenFOAM case's `constant/polyMesh`, ASCII or binary.
+pub struct Foam;
+
+impl super::MeshFormat for Foam {
+    fn name(&self) -> &'static str {
+        "OpenFOAM polyMesh"
+    }
+
+    fn read_zone(&self, path: &Path, zone: usize) -> Result<(Mesh, usize)> {
+        super::format::one_zone(path, zone, || read(path))
+    }
+
+    fn write_moved(
+        &self,
+        path: &Path,
+        mesh: &Mesh,
+        coords: &[f64],
+        options: &super::WriteOptions,
+    ) -> Result<()> {
+        write_moved(path, mesh, coords, options.foam_time.as_deref())
+    }
+
+    fn stores_general_cells(&self, _: &Mesh) -> bool {
+        true
+    }
+}
+
 #[cfg(test)]
 mod tests;
 

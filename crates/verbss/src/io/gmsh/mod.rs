@@ -71,6 +71,35 @@ mod v22;
 mod v41;
 mod write;
 
+/// Gmsh MSH 2.2 and 4.1, ASCII and binary.
+pub struct Msh;
+
+impl super::MeshFormat for Msh {
+    fn name(&self) -> &'static str {
+        "Gmsh MSH"
+    }
+
+    fn read_zone(&self, path: &Path, zone: usize) -> Result<(Mesh, usize)> {
+        super::format::one_zone(path, zone, || parse(&super::read_bytes(path)?, path))
+    }
+
+    fn write_moved(
+        &self,
+        path: &Path,
+        mesh: &Mesh,
+        coords: &[f64],
+        options: &super::WriteOptions,
+    ) -> Result<()> {
+        super::write_atomic(path, |w| {
+            write_moved_to(w, mesh, coords, options.msh_version, options.binary)
+        })
+    }
+
+    fn stores_general_cells(&self, _: &Mesh) -> bool {
+        false
+    }
+}
+
 #[cfg(test)]
 mod hostile_tests;
 #[cfg(test)]

@@ -154,6 +154,37 @@ fn kind_name(kind: CellKind) -> &'static str {
         .expect("every kind has an SU2 name")
 }
 
+/// SU2, one zone or several.
+pub struct Su2;
+
+impl super::MeshFormat for Su2 {
+    fn name(&self) -> &'static str {
+        "SU2"
+    }
+
+    fn read_zone(&self, path: &Path, zone: usize) -> Result<(Mesh, usize)> {
+        parse_zone(&super::read_bytes(path)?, path, zone)
+    }
+
+    fn read_zones(&self, path: &Path) -> Result<Vec<Mesh>> {
+        parse_zones(&super::read_bytes(path)?, path)
+    }
+
+    fn write_moved(
+        &self,
+        path: &Path,
+        mesh: &Mesh,
+        coords: &[f64],
+        _: &super::WriteOptions,
+    ) -> Result<()> {
+        super::write_atomic(path, |w| write_moved_to(w, mesh, coords))
+    }
+
+    fn stores_general_cells(&self, _: &Mesh) -> bool {
+        false
+    }
+}
+
 #[cfg(test)]
 mod hostile_tests;
 #[cfg(test)]

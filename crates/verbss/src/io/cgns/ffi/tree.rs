@@ -163,12 +163,28 @@ impl Tree {
         unsafe { cgio_release_id(self.cgio, id) };
     }
 
-    /// Values `first..first + count` (from 0) of a node of one dimension,
-    /// converted to `I8`.
+    /// Values `first..first + count` (from 0) of an integer node of one
+    /// dimension, as `i64`. They are read in the node's own type, `I4` or
+    /// `I8`, and widened here: the ADF layer converts no types.
     pub fn read_i64(&self, id: NodeId, (first, count): (usize, usize)) -> Result<Vec<i64>, String> {
-        let mut data = vec![0i64; count];
-        self.read_range(id, "I8", (first, count), data.as_mut_ptr().cast())?;
-        Ok(data)
+        let mut kind: NameBuf = [0; 33];
+        // SAFETY: a 33-byte buffer (at most 32 characters and the zero).
+        check(unsafe { cgio_get_data_type(self.cgio, id, kind.as_mut_ptr()) })?;
+        match name_of(&kind).as_str() {
+            "I4" => {
+                let mut data = vec![0i32; count];
+                self.read_range(id, "I4", (first, count), data.as_mut_ptr().cast())?;
+                Ok(data.into_iter().map(i64::from).collect())
+            }
+            "I8" => {
+                let mut data = vec![0i64; count];
+                self.read_range(id, "I8", (first, count), data.as_mut_ptr().cast())?;
+                Ok(data)
+            }
+            other => Err(format!(
+                "{other} data where integers (I4 or I8) were expected"
+            )),
+        }
     }
 
     /// The characters of a `C1` node of one dimension of `count` values.

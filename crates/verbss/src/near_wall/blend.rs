@@ -37,7 +37,7 @@ use super::distances::Nearest;
 use super::harmonic::Laplace;
 use crate::collective::{exact_sums, Collective};
 use crate::geometry::{cross, dot, norm};
-use crate::robust::{Bounds, Follows};
+use crate::near_wall::{Bounds, Follows};
 use crate::solve::{Frame, NodeRole};
 use crate::topology::Csr;
 

@@ -1,7 +1,7 @@
 //! The distances of the blend's angle weight (docs/method.md, "Blended
 //! rigid motion"): each node's nearest seed in straight line (the nearest
 //! of a body's held nodes, or of the other prescribed nodes) is found once,
-//! exactly, on the input mesh ([`crate::robust::spread::nearest_seeds`],
+//! exactly, on the input mesh ([`crate::near_wall::spread::nearest_seeds`],
 //! ties to the smaller node number); every increment then starts each node
 //! from its last seed, measured where both are now, and lets it take a
 //! neighbour's seed while that is nearer, in rounds that each read the
@@ -13,8 +13,8 @@
 //! last bits, so those must be the same: docs/distributed.md).
 
 use crate::collective::{mark_sync, Collective};
-use crate::robust::spread::nearest_connected;
-use crate::robust::Seeds;
+use crate::near_wall::spread::nearest_connected;
+use crate::near_wall::Seeds;
 use crate::topology::Csr;
 
 /// No seed is connected to the node.

@@ -35,7 +35,10 @@ use crate::mesh::Mesh;
 use crate::solve::NodeRole;
 use crate::topology::{self, Csr};
 
-pub mod spread;
+pub(crate) mod blend;
+mod distances;
+mod harmonic;
+pub(crate) mod spread;
 
 pub use self::spread::Seeds;
 
@@ -103,7 +106,7 @@ pub struct Robust {
     pub stiffening: f64,
     /// The blended rigid motion: each body's best rigid motion carried into
     /// the mesh with a harmonic weight before the springs solve what is left
-    /// (`deform/blend.rs`).
+    /// (`near_wall/blend.rs`).
     pub blend: bool,
 }
 
