@@ -230,7 +230,7 @@ fn sub_steps_lift_the_channel_hole_as_on_one_process() {
         match d.step(1) {
             Err(Error::Inverted { element, count, .. }) => (
                 format!("error: step 1: element {element} inverted at "),
-                format!("({count} inverted element(s)); the last valid mesh (step 0)"),
+                format!("({count} inverted element(s))\nthe last valid mesh (step 0) is in "),
             ),
             other => panic!("one process: {other:?}"),
         }

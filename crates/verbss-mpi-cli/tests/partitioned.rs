@@ -423,8 +423,6 @@ fn deform_refuses_a_partitioned_input_it_cannot_run() {
         &["--method", "laplacian"],
         "which runs --method robust, verbss or spring",
     );
-    let slide = ["--method", "verbss", "--slide", "sides"];
-    refused(2, &fixture(name), &slide, "where --slide is not available");
     let gather = ["--method", "verbss", "--gather", "all.msh"];
     refused(
         2,
@@ -555,7 +553,8 @@ fn deform_stops_at_an_inverted_cell_and_at_unconverged_sweeps() {
                 "1e-30",
             ],
             4,
-            "the stages sweeps, gmres, safe-sweeps did not converge (404 iterations",
+            "error: step 1: the solve did not converge (stages tried: sweeps, gmres, safe-sweeps; \
+             true residual ",
         ),
     ] {
         let dir = tempfile::tempdir().unwrap();
@@ -588,9 +587,13 @@ fn deform_stops_at_an_inverted_cell_and_at_unconverged_sweeps() {
         assert_eq!(failed["converged"], code == 3);
         let inverted = failed["inverted"].as_u64().unwrap();
         if code == 3 {
-            let count = format!("({inverted} inverted element(s)); the last valid mesh (step 0)");
-            assert!(outcome.contains(&count), "{outcome}");
+            let count = format!("({inverted} inverted element(s))");
+            assert!(outcome.ends_with(&count), "{outcome}");
         }
+        assert!(
+            stderr.contains("\nthe last valid mesh (step 0) is in "),
+            "{stderr}"
+        );
         for r in 0..2 {
             let piece = verbss::io::read(&dir.path().join(format!("moved_{r}.vtu"))).unwrap();
             for (i, t) in piece.node_tags.iter().enumerate() {

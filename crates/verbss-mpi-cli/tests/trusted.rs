@@ -167,7 +167,7 @@ fn diverging_sweeps_go_on_safely_and_an_unsolved_step_is_exit_4() {
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(
         stderr
-            .matches("the stages sweeps, gmres, safe-sweeps did not converge")
+            .matches("did not converge (stages tried: sweeps, gmres, safe-sweeps; true residual ")
             .count(),
         1,
         "{stderr}"

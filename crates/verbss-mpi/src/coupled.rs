@@ -175,14 +175,18 @@ impl<'c> LocalSolver<'c> {
             u[dim * p..dim * (p + 1)].copy_from_slice(&displacement[dim * i..dim * (i + 1)]);
         }
         self.sweeper.exchange(&mut x, dim);
-        let info = if exact {
+        let mut info = if exact {
             self.sweeper
                 .solve_exact(&x, &self.colours, &mut u, params)?
         } else {
             self.sweeper.solve(&x, &self.colours, &mut u, params)?
         };
+        let worst = std::mem::replace(&mut info.worst_node, usize::MAX);
         for (i, &p) in self.local.iter().enumerate() {
             displacement[dim * i..dim * (i + 1)].copy_from_slice(&u[dim * p..dim * (p + 1)]);
+            if p == worst {
+                info.worst_node = i;
+            }
         }
         Ok(info)
     }

@@ -156,9 +156,12 @@ impl<'c> Distributed<'c> {
         let local_coords = pick(coords, dim);
         let mut local_u = pick(u, dim);
         let local_colours: Vec<u32> = part.global.iter().map(|&g| colours[g as usize]).collect();
-        let info = self
+        let mut info = self
             .sweeper
             .solve(&local_coords, &local_colours, &mut local_u, params)?;
+        if let Some(&g) = self.sweeper.part().global.get(info.worst_node) {
+            info.worst_node = g as usize;
+        }
         self.gather(&local_u, u);
         Ok(info)
     }

@@ -281,8 +281,8 @@ impl<'c> Sweeper<'c> {
         if !matches!(params.method, Method::Verbss | Method::Spring) || params.accel != Accel::None
         {
             return Err(Error::InvalidSetting(format!(
-                "over MPI only the sweeps of the methods robust, verbss and spring are \
-                 distributed, with accel none (method {}, accel {})",
+                "verbss-mpi distributes the solve of its sweeper, which runs --method robust, \
+                 verbss or spring with --accel none (got method {}, accel {})",
                 params.method, params.accel
             )));
         }
@@ -410,7 +410,7 @@ impl<'c> Sweeper<'c> {
             info.iterations = outcome.iterations;
             info.residual = outcome.estimate;
             if outcome.converged && !outcome.diverged {
-                (info.error_ratio, info.true_residual) = self.error_ratio::<D>(b, &constant, &work);
+                self.verify::<D>(b, &constant, &work, &mut info);
                 info.converged = info.error_ratio <= ERROR_FRACTION;
             }
             self.scatter::<D>(b, &work, displacement);
@@ -442,6 +442,7 @@ impl<'c> Sweeper<'c> {
                         info.iterations, params.omega
                     )));
                 }
+                info.diverged = true;
                 work.copy_from_slice(&initial);
             }
         }
@@ -451,9 +452,10 @@ impl<'c> Sweeper<'c> {
             info.iterations += outcome.iterations;
             info.residual = outcome.estimate;
             if outcome.diverged {
+                info.diverged = true;
                 work.copy_from_slice(&initial);
             } else if outcome.converged {
-                (info.error_ratio, info.true_residual) = self.error_ratio::<D>(b, &constant, &work);
+                self.verify::<D>(b, &constant, &work, &mut info);
                 info.converged = info.error_ratio <= ERROR_FRACTION;
             }
         }
@@ -462,8 +464,15 @@ impl<'c> Sweeper<'c> {
             match self.sweeps::<D>(b, &constant, &mut work, 1.0, threshold, params, &mut info) {
                 Swept::Accepted => info.converged = true,
                 Swept::Exhausted => {}
-                Swept::Diverged { .. } => work.copy_from_slice(&initial),
+                Swept::Diverged { .. } => {
+                    info.diverged = true;
+                    work.copy_from_slice(&initial);
+                }
             }
+        }
+        if !info.converged {
+            // What the failed solve left, for the message that names it.
+            self.verify::<D>(b, &constant, &work, &mut info);
         }
         self.scatter::<D>(b, &work, displacement);
         Ok(info)
@@ -519,7 +528,7 @@ impl<'c> Sweeper<'c> {
                 if !params.escalate {
                     return Swept::Accepted;
                 }
-                (info.error_ratio, info.true_residual) = self.error_ratio::<D>(b, constant, work);
+                self.verify::<D>(b, constant, work, info);
                 if info.error_ratio <= ERROR_FRACTION {
                     return Swept::Accepted;
                 }
@@ -529,12 +538,20 @@ impl<'c> Sweeper<'c> {
         Swept::Exhausted
     }
 
-    /// `max_p |e_p| / h_p` over every rank's owned unknowns (collective):
-    /// the single process's [`check`] with its [`block_estimate`], the
-    /// Jacobi step that puts position `p` where its springs hold it given
-    /// its neighbours, over `h_p` its local size; and the root-mean-square
-    /// true residual over them.
-    fn error_ratio<const D: usize>(&self, b: &Built, constant: &[f64], work: &[f64]) -> (f64, f64) {
+    /// Fills `info`'s error ratio `max_p |e_p| / h_p` over every rank's owned
+    /// unknowns (collective): the single process's [`check`] with its
+    /// [`block_estimate`], the Jacobi step that puts position `p` where its
+    /// springs hold it given its neighbours, over `h_p` its local size; the
+    /// root-mean-square true residual over them; and the worst node, a
+    /// local node on the lowest rank holding the largest ratio
+    /// (`usize::MAX` on the others).
+    fn verify<const D: usize>(
+        &self,
+        b: &Built,
+        constant: &[f64],
+        work: &[f64],
+        info: &mut SolveInfo,
+    ) {
         let local = check::<D, _>(work, &b.heights, |p, w| {
             let rhs = coupled::<D>(&b.blocks, constant, p, w);
             let factor = &b.blocks.diag[packed_len(D) * p..packed_len(D) * (p + 1)];
@@ -545,10 +562,19 @@ impl<'c> Sweeper<'c> {
         let sums = self
             .comm
             .sums(&[local.true_residual * local.true_residual * m, m]);
-        (
-            self.comm.max(local.error_ratio),
-            (sums[0] / sums[1].max(1.0)).sqrt(),
-        )
+        info.true_residual = (sums[0] / sums[1].max(1.0)).sqrt();
+        info.error_ratio = self.comm.max(local.error_ratio);
+        let holder = if m > 0.0 && local.error_ratio == info.error_ratio {
+            f64::from(self.comm.rank())
+        } else {
+            f64::INFINITY
+        };
+        let lowest = -self.comm.max(-holder);
+        info.worst_node = if holder == lowest {
+            b.order[local.worst]
+        } else {
+            usize::MAX
+        };
     }
 
     /// The owned prescribed nodes.

@@ -140,11 +140,20 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
                     stages: Stage::names(&info.stages),
                     true_residual: info.true_residual,
                     error_ratio: info.error_ratio,
-                    node: self.mesh.node_tags[info.worst_node],
+                    node: self.worst_node_tag(info.worst_node),
                     diverged: info.diverged,
                 }),
             },
         }
+    }
+
+    /// The input tag of the solve's worst node `node` ([`SolveInfo::worst_node`]:
+    /// on one process's part, the process holding it names it, the others
+    /// give `usize::MAX`), the same on every process (collective).
+    fn worst_node_tag(&self, node: usize) -> u64 {
+        let mut tag = [self.mesh.node_tags.get(node).map_or(-1.0, |&t| t as f64)];
+        self.on.max(&mut tag);
+        tag[0].max(0.0) as u64
     }
 
     /// The configuration `coords` with its `check`, for the step of `report`.

@@ -122,10 +122,21 @@ impl Blend {
         let extent = size(&(0..n).collect::<Vec<_>>());
         let bodies = bodies
             .into_iter()
-            .map(|(fitted, held)| {
+            .map(|(fitted, mut held)| {
                 let mut is_held = vec![false; n];
                 for &i in &held {
                     is_held[i] = true;
+                }
+                // A ghost is held where its owner holds it (a ghost on a
+                // moving wall may lack the facet that makes it one here).
+                let mut owners: Vec<f64> =
+                    is_held.iter().map(|&h| f64::from(u8::from(h))).collect();
+                on.refresh(&mut owners, 1);
+                for i in 0..n {
+                    if owners[i] == 1.0 && !is_held[i] {
+                        is_held[i] = true;
+                        held.push(i);
+                    }
                 }
                 let others: Vec<usize> = (0..n)
                     .filter(|&i| roles[i] == NodeRole::Fixed && !is_held[i])

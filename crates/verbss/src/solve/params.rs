@@ -301,6 +301,8 @@ pub struct SolveInfo {
     /// height, `max_i |K_ii⁻¹ r_i| / h_i`.
     pub error_ratio: f64,
     /// The node (mesh index) where [`SolveInfo::error_ratio`] is largest.
+    /// A solver over several processes' parts sets it on the one process
+    /// holding that node and to `usize::MAX` on the others.
     pub worst_node: usize,
 }
 

@@ -245,13 +245,12 @@ extern "C" {
     pub fn cgio_get_data_type(cgio: c_int, id: f64, kind: *mut c_char) -> c_int;
     pub fn cgio_get_dimensions(cgio: c_int, id: f64, n: *mut c_int, dims: *mut CgSize) -> c_int;
     #[allow(clippy::too_many_arguments)]
-    pub fn cgio_read_data_type(
+    pub fn cgio_read_data(
         cgio: c_int,
         id: f64,
         s_start: *const CgSize,
         s_end: *const CgSize,
         s_stride: *const CgSize,
-        m_kind: *const c_char,
         m_dims: c_int,
         m_size: *const CgSize,
         m_start: *const CgSize,

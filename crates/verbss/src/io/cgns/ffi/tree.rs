@@ -164,26 +164,20 @@ impl Tree {
     }
 
     /// Values `first..first + count` (from 0) of an integer node of one
-    /// dimension, as `i64`. They are read in the node's own type, `I4` or
-    /// `I8`, and widened here: the ADF layer converts no types.
+    /// dimension, as `i64`, read in the node's own type (`I4` or `I8`) and
+    /// widened here.
     pub fn read_i64(&self, id: NodeId, (first, count): (usize, usize)) -> Result<Vec<i64>, String> {
-        let mut kind: NameBuf = [0; 33];
-        // SAFETY: a 33-byte buffer (at most 32 characters and the zero).
-        check(unsafe { cgio_get_data_type(self.cgio, id, kind.as_mut_ptr()) })?;
-        match name_of(&kind).as_str() {
+        match self.data_type(id)?.as_str() {
             "I4" => {
                 let mut data = vec![0i32; count];
                 self.read_range(id, "I4", (first, count), data.as_mut_ptr().cast())?;
                 Ok(data.into_iter().map(i64::from).collect())
             }
-            "I8" => {
+            _ => {
                 let mut data = vec![0i64; count];
                 self.read_range(id, "I8", (first, count), data.as_mut_ptr().cast())?;
                 Ok(data)
             }
-            other => Err(format!(
-                "{other} data where integers (I4 or I8) were expected"
-            )),
         }
     }
 
@@ -194,8 +188,18 @@ impl Tree {
         Ok(String::from_utf8_lossy(&data).into_owned())
     }
 
+    /// The node's data type (`I4`, `C1`, …).
+    fn data_type(&self, id: NodeId) -> Result<String, String> {
+        let mut kind: NameBuf = [0; 33];
+        // SAFETY: a 33-byte buffer (at most 32 characters and the zero).
+        check(unsafe { cgio_get_data_type(self.cgio, id, kind.as_mut_ptr()) })?;
+        Ok(name_of(&kind))
+    }
+
     /// Reads a hyperslab of one dimension into `data`, which holds `count`
-    /// values of type `kind`.
+    /// values of type `kind`, the node's own type: the values are read as
+    /// stored (the library converts types in HDF5 files only, not in ADF
+    /// ones), so any other type is refused before the read.
     fn read_range(
         &self,
         id: NodeId,
@@ -206,25 +210,18 @@ impl Tree {
         if count == 0 {
             return Ok(());
         }
+        let stored = self.data_type(id)?;
+        if stored != kind {
+            return Err(format!("{stored} data where {kind} data was expected"));
+        }
         let size = |n: usize| CgSize::try_from(n).map_err(|_| format!("{n} values"));
         let (start, end, one, all) = (size(first + 1)?, size(first + count)?, 1, size(count)?);
-        let kind = c_name(kind)?;
         // SAFETY: `data` holds the `count` values of the memory hyperslab
-        // 1..=count of type `kind`; the file hyperslab has as many.
+        // 1..=count of the node's own type `kind`; the file hyperslab has
+        // as many.
         check(unsafe {
-            cgio_read_data_type(
-                self.cgio,
-                id,
-                &start,
-                &end,
-                &one,
-                kind.as_ptr(),
-                1,
-                &all,
-                &one,
-                &all,
-                &one,
-                data,
+            cgio_read_data(
+                self.cgio, id, &start, &end, &one, 1, &all, &one, &all, &one, data,
             )
         })
     }
