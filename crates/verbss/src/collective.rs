@@ -91,7 +91,7 @@ impl Collective for Whole {
 }
 
 /// The `sync` of a walk that only ever marks more nodes
-/// ([`crate::near_wall::spread::connect`]): the ghosts' marks set to their
+/// (the near-wall treatments' walks): the ghosts' marks set to their
 /// owners', saying whether the processes' owned marks grew since the last
 /// call (at the first, whether there is any). On one process the walk is
 /// whole after its first pass.

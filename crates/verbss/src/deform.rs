@@ -28,11 +28,12 @@
 //!
 //! ([`Reference::Auto`] is one of them, chosen by the motions when the
 //! deformer is made.) Either way the previous step's solution is the next
-//! step's initial guess ([`Predictor::Previous`]; [`Predictor::Linear`]
+//! step's initial guess ([`Predictor::Previous`](crate::settings::Predictor::Previous);
+//! [`Predictor::Linear`](crate::settings::Predictor::Linear)
 //! extrapolates from the two previous steps instead), and prescribed nodes
 //! are set exactly to their motion's positions.
 //!
-//! [`Settings::robust`] adds the near-wall treatments of [`crate::robust`]:
+//! [`Settings::robust`] adds the near-wall treatments of [`crate::near_wall`]:
 //! a rigid layer of nodes that move with their wall, and adaptive sub-steps.
 
 use std::sync::Arc;

@@ -349,7 +349,7 @@ pub fn layer_body(dist: &[f64], to_fixed: f64, thickness: &[f64]) -> Option<usiz
 /// Per node `i` of `n`, given the bodies' distance fields `fields` (distance, seed),
 /// the squared distance to the other fixed boundary that can still change
 /// [`layer_body`]'s answer, none (−1) where `free(i)` is false (a node that
-/// joins no layer) ([`fixed_limit`]). So the distance to the outer
+/// joins no layer) (`fixed_limit`). So the distance to the outer
 /// boundary, often equally far from every node near a body, is sought only
 /// where it counts.
 pub fn fixed_limits(

@@ -25,7 +25,7 @@ const LEAF: usize = 8;
 
 /// Seed points, each with its number, in a tree of boxes: each box holds
 /// the seeds `[lo, hi)` (in the tree's order) and is their bounding box;
-/// a box of more than [`LEAF`] seeds is split in two halves at the median
+/// a box of more than `LEAF` seeds is split in two halves at the median
 /// of its longest side.
 #[derive(Debug, Clone)]
 pub struct Seeds {

@@ -22,7 +22,7 @@ pub use self::table::{markdown_table, Setting, Value, Values, TABLE};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Reference {
     /// Chosen by the motions when the deformer is made
-    /// ([`Reference::for_motions`]): anchored when every moving motion is
+    /// ([`Reference::resolved`]): anchored when every moving motion is
     /// periodic, updated otherwise (the robust method's default).
     Auto,
     /// Option 1: springs on the current coordinates, solve for the increment.

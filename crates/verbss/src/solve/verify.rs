@@ -37,7 +37,7 @@ pub struct Check {
 /// shortest side; for a simplex, a height over one of its largest facets.
 /// A polygon or polyhedron (no corners) measures twice the smallest
 /// distance from the mean of its nodes to the line or plane of one of its
-/// facets ([`general_height`]).
+/// facets (`general_height`).
 pub fn cell_height<const D: usize>(
     kind: CellKind,
     nodes: &[usize],

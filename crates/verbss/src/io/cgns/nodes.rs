@@ -1,6 +1,6 @@
 //! CGNS files written node by node, whatever the nodes say: how the tests
 //! and the fuzz targets make the hostile files that the reader's check
-//! ([`super::check`]) must refuse, and the valid ones it must pass.
+//! (`io/cgns/check.rs`) must refuse, and the valid ones it must pass.
 
 use std::path::Path;
 
