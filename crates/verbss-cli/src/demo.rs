@@ -39,7 +39,8 @@ pub const DEMO_EVERY: usize = 10;
 /// The window of the demo's pictures: the airfoil and its sweep.
 const AIRFOIL_VIEW: [f64; 4] = [-0.6, 1.6, -1.0, 1.0];
 
-/// The demo's job: mesh, motion and the paper's solver settings; every
+/// The demo's job: mesh, motion and the product's default settings
+/// ([`Settings::robust`], as `verbss deform` without options); every
 /// `every`-th step written to the series.
 pub fn job(out: PathBuf, every: usize) -> anyhow::Result<Job> {
     let mesh = naca0012(&AirfoilGrid::default())?;
@@ -50,14 +51,7 @@ pub fn job(out: PathBuf, every: usize) -> anyhow::Result<Job> {
         plunge: [0.0, 0.2, 0.0],
         period: None,
     };
-    // ε = 10⁻⁵ relative to the step's largest boundary displacement. The
-    // paper's absolute ε = 10⁻⁵ on the eq.-8 mean stops after a few sweeps
-    // here (most of the 4,500 nodes barely move, so the mean is small long
-    // before the nodes next to the trailing edge have followed it) and the
-    // trailing-edge cells invert within a few steps; the exact solution of
-    // every step stays valid.
-    let mut settings = Settings::new(160);
-    settings.solve.tolerance = 1e-5;
+    let settings = Settings::robust(160);
     Ok(Job {
         name: "naca0012".into(),
         source: "built-in NACA0012 O-grid".into(),

@@ -245,9 +245,9 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// Prints the summary (or the failure) when `printer` and gives the
-    /// exit code: 0, 3 when a step inverted an element, 4 when no solver
-    /// converged.
+    /// Prints the summary line (unless the job is quiet) and the failure
+    /// when `printer`, and gives the exit code: 0, 3 when a step inverted
+    /// an element, 4 when no solver converged.
     pub fn print(&self, job: &Job, printer: bool) -> ExitCode {
         let code = match &self.failure {
             None => ExitCode::SUCCESS,
@@ -262,16 +262,18 @@ impl Summary {
             Some(n) => format!("; {:.2} s solving on {n} ranks", self.solve_seconds),
             None => String::new(),
         };
-        println!(
-            "{} steps in {:.2} s ({:.1} ms per step, {:.1} sweeps per step{ranks}); min quality {:.4} (step {}); outputs in {}",
-            self.steps,
-            self.seconds,
-            1e3 * per_step,
-            self.iterations as f64 / self.steps.max(1) as f64,
-            self.min_quality.0,
-            self.min_quality.1,
-            job.dir.display()
-        );
+        if !job.quiet {
+            println!(
+                "{} in {:.2} s ({:.1} ms per step, {:.1} sweeps per step{ranks}); min quality {:.4} (step {}); outputs in {}",
+                counted(self.steps, "step"),
+                self.seconds,
+                1e3 * per_step,
+                self.iterations as f64 / self.steps.max(1) as f64,
+                self.min_quality.0,
+                self.min_quality.1,
+                job.dir.display()
+            );
+        }
         if let Some((e, last, failed)) = &self.failure {
             eprintln!("error: {e}");
             let k = self.substeps;
@@ -481,4 +483,13 @@ pub fn fields(mesh: &Mesh, s: &Snapshot) -> vtu::Fields {
         s.inverted.iter().map(|&b| f64::from(u8::from(b))).collect(),
     ));
     f
+}
+
+/// `n` things named: `1 step`, `2 steps`.
+pub fn counted(n: usize, thing: &str) -> String {
+    if n == 1 {
+        format!("1 {thing}")
+    } else {
+        format!("{n} {thing}s")
+    }
 }

@@ -208,3 +208,33 @@ fn a_truncated_file_names_the_line() {
     );
     assert_eq!(msg.lines().count(), 1, "{msg}");
 }
+
+/// `-q` prints nothing on success (no progress, no summary line); without
+/// it the summary counts one step as `1 step`.
+#[test]
+fn quiet_prints_nothing_and_one_step_is_singular() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = asset("su2/mesh_NACA0012_inv.su2");
+    let out = dir.path().join("pitched.su2");
+    let args = [
+        "deform",
+        mesh.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--moving",
+        "airfoil",
+        "--rotate",
+        "1",
+        "--center",
+        "0.25,0",
+        "--steps",
+        "1",
+    ];
+    let o = verbss(&[&args[..], &["-q"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(stdout(&o), "");
+    assert_eq!(stderr(&o), "");
+    let o = verbss(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).starts_with("1 step in "), "{}", stdout(&o));
+}

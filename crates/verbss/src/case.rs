@@ -357,7 +357,7 @@ impl Case {
             }
             let dim = mesh.dim;
             let v = |key: &str, x: &[f64]| vector(key, x, dim).map_err(at);
-            let z = [0.0, 0.0, 1.0];
+            let turn = |x: &Option<Vec<f64>>| rotation_axis(x.as_deref(), dim).map_err(at);
             let motion = match spec {
                 MotionSpec::Fixed { .. } => Motion::Fixed,
                 MotionSpec::Slide { normal, .. } => Motion::Slide {
@@ -373,7 +373,7 @@ impl Case {
                     ..
                 } => Motion::Rotation {
                     center: v("center", center)?,
-                    axis: axis.as_ref().map_or(Ok(z), |a| v("axis", a))?,
+                    axis: turn(axis)?,
                     angle: angle_deg.to_radians(),
                 },
                 MotionSpec::PitchPlunge {
@@ -385,7 +385,7 @@ impl Case {
                     ..
                 } => Motion::PitchPlunge {
                     center: v("center", center)?,
-                    axis: axis.as_ref().map_or(Ok(z), |a| v("axis", a))?,
+                    axis: turn(axis)?,
                     pitch: pitch_deg.to_radians(),
                     plunge: v("plunge", plunge)?,
                     period: *period,
@@ -458,6 +458,23 @@ impl Case {
             });
         }
         Ok(out)
+    }
+}
+
+/// The axis of a rotation (`None`: z). A 2D mesh turns in its x–y plane:
+/// its axis is z, or −z for the opposite sense, and any other is refused
+/// rather than ignored.
+fn rotation_axis(axis: Option<&[f64]>, dim: usize) -> std::result::Result<[f64; 3], String> {
+    match (axis, dim) {
+        (None, _) => Ok([0.0, 0.0, 1.0]),
+        (Some(a), 2) if a.len() == 3 && a[0] == 0.0 && a[1] == 0.0 && a[2] != 0.0 => {
+            Ok([0.0, 0.0, a[2].signum()])
+        }
+        (Some(a), 2) => Err(format!(
+            "`axis` {a:?} on a 2D mesh, which turns in its x–y plane (give [0, 0, 1], or \
+             [0, 0, -1] for the opposite sense, or leave it out)"
+        )),
+        (Some(a), _) => vector("axis", a, dim),
     }
 }
 

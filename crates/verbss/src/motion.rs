@@ -175,25 +175,33 @@ pub struct Frame {
     pub positions: HashMap<usize, Vec<f64>>,
 }
 
+/// `v` of length 1. Scaled by its largest component first, so that a
+/// direction of huge (or tiny) finite numbers is still one.
 fn unit(v: &[f64; 3], what: &str) -> Result<[f64; 3]> {
-    let l = norm(v);
-    if !(l > 0.0 && l.is_finite()) {
+    let largest = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if !(largest > 0.0 && largest.is_finite()) {
+        let shown: Vec<String> = v.iter().map(|&x| crate::error::format_number(x)).collect();
         return Err(Error::InvalidSetting(format!(
-            "{what} must be a non-zero vector"
+            "{what} must be a non-zero vector of finite numbers (got {})",
+            shown.join(", ")
         )));
     }
-    Ok([v[0] / l, v[1] / l, v[2] / l])
+    let w = v.map(|x| x / largest);
+    let l = norm(&w);
+    Ok(w.map(|x| x / l))
 }
 
-/// Rotates `p − c` by `angle` about `axis` (Rodrigues; in 2D about z) and adds `c` back.
+/// Rotates `p − c` by `angle` about `axis` (Rodrigues; in 2D about z, or
+/// −z when `axis` points that way) and adds `c` back.
 pub(crate) fn rotate(p: &mut [f64], c: &[f64; 3], axis: &[f64; 3], angle: f64) {
-    let (s, co) = angle.sin_cos();
     if p.len() == 2 {
+        let (s, co) = (if axis[2] < 0.0 { -angle } else { angle }).sin_cos();
         let (x, y) = (p[0] - c[0], p[1] - c[1]);
         p[0] = c[0] + co * x - s * y;
         p[1] = c[1] + s * x + co * y;
         return;
     }
+    let (s, co) = angle.sin_cos();
     let v = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
     let kxv = cross(axis, &v);
     let kv = dot(axis, &v);
@@ -480,7 +488,7 @@ fn missing(node: usize) -> Error {
 
 fn unit_or_z(axis: &[f64; 3], dim: usize) -> [f64; 3] {
     if dim == 2 {
-        return [0.0, 0.0, 1.0];
+        return [0.0, 0.0, if axis[2] < 0.0 { -1.0 } else { 1.0 }];
     }
     unit(axis, "the rotation axis").unwrap_or([0.0, 0.0, 1.0])
 }

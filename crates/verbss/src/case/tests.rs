@@ -208,6 +208,34 @@ fn out_of_range_values() {
     );
 }
 
+/// A 2D mesh turns about z: −z turns it the other way, and an axis in its
+/// plane is refused (it was taken and ignored).
+#[test]
+fn a_rotation_axis_on_a_2d_mesh_is_z_or_refused() {
+    assert_eq!(rotation_axis(None, 2), Ok([0.0, 0.0, 1.0]));
+    assert_eq!(
+        rotation_axis(Some(&[0.0, 0.0, -1.0]), 2),
+        Ok([0.0, 0.0, -1.0])
+    );
+    assert_eq!(
+        rotation_axis(Some(&[0.0, 0.0, 2.0]), 2),
+        Ok([0.0, 0.0, 1.0])
+    );
+    assert_eq!(
+        rotation_axis(Some(&[1.0, 0.0, 0.0]), 2),
+        Err(
+            "`axis` [1.0, 0.0, 0.0] on a 2D mesh, which turns in its x–y plane (give \
+             [0, 0, 1], or [0, 0, -1] for the opposite sense, or leave it out)"
+                .to_string()
+        )
+    );
+    assert!(rotation_axis(Some(&[0.0, 1.0]), 2).is_err());
+    assert_eq!(
+        rotation_axis(Some(&[1.0, 0.0, 0.0]), 3),
+        Ok([1.0, 0.0, 0.0])
+    );
+}
+
 #[test]
 fn vectors_must_match_the_dimension() {
     assert_eq!(vector("center", &[1.0, 2.0], 2), Ok([1.0, 2.0, 0.0]));

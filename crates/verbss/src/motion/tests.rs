@@ -191,6 +191,23 @@ fn invalid_settings_are_named() {
     };
     assert_eq!(
         m.validate(3).unwrap_err().to_string(),
-        "invalid setting: the bending direction (normal to the span axis) must be a non-zero vector"
+        "invalid setting: the bending direction (normal to the span axis) must be a non-zero \
+         vector of finite numbers (got 0, 0, 0)"
+    );
+}
+
+/// A direction of huge finite numbers is a direction (its length
+/// overflowed to infinity and it was called zero); an infinite one is
+/// refused naming it.
+#[test]
+fn a_direction_of_huge_numbers_is_one() {
+    let n = unit(&[1e308, 1e308, 0.0], "n").unwrap();
+    assert!(
+        (n[0] - 0.5f64.sqrt()).abs() < 1e-15 && n[0] == n[1] && n[2] == 0.0,
+        "{n:?}"
+    );
+    assert_eq!(
+        unit(&[f64::INFINITY, 0.0, 0.0], "the plane's normal").unwrap_err().to_string(),
+        "invalid setting: the plane's normal must be a non-zero vector of finite numbers (got inf, 0, 0)"
     );
 }
