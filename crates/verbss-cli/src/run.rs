@@ -242,10 +242,12 @@ pub struct Summary {
     /// The inversion or unconverged solve that stopped the run, with the
     /// paths written for it.
     pub failure: Option<(Error, PathBuf, PathBuf)>,
+    /// No summary line: the run was quiet.
+    pub quiet: bool,
 }
 
 impl Summary {
-    /// Prints the summary line (unless the job is quiet) and the failure
+    /// Prints the summary line (unless the run is quiet) and the failure
     /// when `printer`, and gives the exit code: 0, 3 when a step inverted
     /// an element, 4 when no solver converged.
     pub fn print(&self, job: &Job, printer: bool) -> ExitCode {
@@ -262,7 +264,7 @@ impl Summary {
             Some(n) => format!("; {:.2} s solving on {n} ranks", self.solve_seconds),
             None => String::new(),
         };
-        if !job.quiet {
+        if !self.quiet {
             println!(
                 "{} in {:.2} s ({:.1} ms per step, {:.1} sweeps per step{ranks}); min quality {:.4} (step {}); outputs in {}",
                 counted(self.steps, "step"),
@@ -410,6 +412,7 @@ pub fn execute<S: SpringSolver, C: Collective>(
         iterations: 0,
         substeps,
         failure: None,
+        quiet,
     };
     for n in 1..=steps {
         match deformer.step(n) {
