@@ -74,12 +74,14 @@ pub fn job(out: PathBuf, every: usize) -> anyhow::Result<Job> {
 /// Runs `verbss demo`.
 pub fn run(args: DemoArgs) -> anyhow::Result<ExitCode> {
     let job = job(args.out, args.every)?;
-    println!(
-        "NACA0012 pitching (40°) and plunging (0.2 chord) about the quarter chord, {} steps, {} nodes, {} triangles",
-        job.settings.steps,
-        job.mesh.node_count(),
-        job.mesh.cell_count()
-    );
+    if !args.quiet {
+        println!(
+            "NACA0012 pitching (40°) and plunging (0.2 chord) about the quarter chord, {} steps, {} nodes, {} triangles",
+            job.settings.steps,
+            job.mesh.node_count(),
+            job.mesh.cell_count()
+        );
+    }
     let recorder = Recorder::new(
         &args.pictures,
         &job.mesh,

@@ -248,7 +248,7 @@ fn case_file_errors_name_the_file_line_and_key() {
 fn demo_runs_160_valid_steps() {
     let dir = tempfile::tempdir().unwrap();
     let out_dir = dir.path().join("demo");
-    let out = verbss(&["demo", "--out", out_dir.to_str().unwrap(), "-q"]);
+    let out = verbss(&["demo", "--out", out_dir.to_str().unwrap()]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stdout = text(&out.stdout);
     assert!(stdout.contains("160 steps in "), "{stdout}");

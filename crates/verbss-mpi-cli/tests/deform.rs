@@ -427,8 +427,8 @@ fn methods_that_are_not_distributed_are_refused() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(
         stderr(&o).contains(
-            "error: invalid setting: over MPI only the sweeps of the methods robust, verbss and \
-             spring are distributed, with accel none (method laplacian, accel none)"
+            "error: invalid setting: verbss-mpi distributes the solve of its sweeper, which runs \
+             --method robust, verbss or spring with --accel none (got method laplacian, accel none)"
         ),
         "{}",
         stderr(&o)
