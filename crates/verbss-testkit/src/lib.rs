@@ -98,6 +98,33 @@ fn last_line(bytes: &[u8]) -> Option<&str> {
         .find(|l| !l.is_empty())
 }
 
+/// Whether the MPI tests can run: the MPI crate was built with its MPI
+/// parts (`missing`: why not, `verbss_mpi::missing()`) and `mpirun` runs;
+/// otherwise the test skips with a notice ([`needs`]).
+pub fn mpi_ready(missing: Option<&str>) -> bool {
+    needs(
+        "Open MPI and METIS when verbss-mpi is built (Debian: libopenmpi-dev libmetis-dev, \
+         then cargo clean -p verbss-mpi)",
+        missing.map_or(Ok(()), |why| Err(why.into())),
+    ) && needs(
+        "mpirun (Debian: openmpi-bin)",
+        program("mpirun", &["--version"]),
+    )
+}
+
+/// `mpirun --oversubscribe -np NP` (root allowed, as in containers), with
+/// the session directory `session` of its own: two mpiruns started at once
+/// race for the shared one under /tmp.
+pub fn mpirun(np: usize, session: &std::path::Path) -> Command {
+    let mut command = Command::new("mpirun");
+    command
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .env("OMPI_MCA_orte_tmpdir_base", session)
+        .args(["--oversubscribe", "-np", &np.to_string()]);
+    command
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -138,31 +165,4 @@ mod tests {
         let why = program("sh", &["-c", "echo first >&2; echo last >&2; exit 3"]).unwrap_err();
         assert_eq!(why, "`sh` failed: last");
     }
-}
-
-/// Whether the MPI tests can run: the MPI crate was built with its MPI
-/// parts (`missing`: why not, `verbss_mpi::missing()`) and `mpirun` runs;
-/// otherwise the test skips with a notice ([`needs`]).
-pub fn mpi_ready(missing: Option<&str>) -> bool {
-    needs(
-        "Open MPI and METIS when verbss-mpi is built (Debian: libopenmpi-dev libmetis-dev, \
-         then cargo clean -p verbss-mpi)",
-        missing.map_or(Ok(()), |why| Err(why.into())),
-    ) && needs(
-        "mpirun (Debian: openmpi-bin)",
-        program("mpirun", &["--version"]),
-    )
-}
-
-/// `mpirun --oversubscribe -np NP` (root allowed, as in containers), with
-/// the session directory `session` of its own: two mpiruns started at once
-/// race for the shared one under /tmp.
-pub fn mpirun(np: usize, session: &std::path::Path) -> Command {
-    let mut command = Command::new("mpirun");
-    command
-        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-        .env("OMPI_MCA_orte_tmpdir_base", session)
-        .args(["--oversubscribe", "-np", &np.to_string()]);
-    command
 }
