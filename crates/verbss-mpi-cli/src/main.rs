@@ -31,6 +31,8 @@ mod cgns;
 #[cfg(with_mpi)]
 mod gather;
 #[cfg(with_mpi)]
+mod part_format;
+#[cfg(with_mpi)]
 mod parts;
 #[cfg(with_mpi)]
 mod pieces_out;

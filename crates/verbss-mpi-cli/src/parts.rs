@@ -3,8 +3,8 @@
 //! partitioned MSH 4.1 file ([`verbss_mpi::share::read_rank_share`]; with
 //! `--split`, only its partitions' files of a split set,
 //! [`verbss_mpi::share::read_rank_split`]), its PT-Scotch part of an SU2
-//! file that rank 0 streams ([`crate::su2`]) or of a CGNS file every rank
-//! reads in blocks ([`crate::cgns`]) — adds the ghost layer and runs the
+//! file that rank 0 streams or of a CGNS file every rank reads in blocks
+//! ([`crate::part_format`]) — adds the ghost layer and runs the
 //! one deformer on its part ([`verbss_mpi::domain`]): the same job as
 //! `verbss deform` ([`verbss_cli::deform::DeformArgs::prepare_on`]), the
 //! same step loop and report ([`verbss_cli::run::execute`]), every option
@@ -16,19 +16,18 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::bail;
-use verbss::io::gmsh::partitioned::{partition_count, Share};
-use verbss::io::WriteOptions;
+use verbss::io::gmsh::partitioned::Share;
+use verbss::io::{Format, WriteOptions};
 use verbss_cli::deform::DeformArgs;
 use verbss_cli::run::execute;
 use verbss_mpi::domain::PartDomain;
-use verbss_mpi::share::{agree, global_numbers, partitions_of, read_rank_share, read_rank_split};
+use verbss_mpi::share::{agree, global_numbers, read_rank_split};
 use verbss_mpi::Comm;
 
-use crate::cgns;
 use crate::gather;
+use crate::part_format::{part_format, partitions_read};
 use crate::pieces_out::{has_extension, prepare_output, Pieces};
 use crate::run::told;
-use crate::su2;
 
 /// Whether `verbss-mpi deform` takes this path without `--pieces`: a
 /// `.pvtu` output, which only a partitioned MSH 4.1, an SU2 or a CGNS
@@ -37,47 +36,32 @@ pub fn applies(args: &DeformArgs) -> bool {
     args.output().extension().is_some_and(|e| e == "pvtu")
 }
 
-/// Fails unless `input` is a partitioned MSH 4.1 file.
-fn check_partitioned(input: &Path, output: &Path) -> anyhow::Result<()> {
-    if has_extension(input, "msh") && partition_count(input)? > 0 {
-        return Ok(());
-    }
-    bail!(
-        "{}: a .pvtu output or --pieces is written rank by rank, from a partitioned MSH \
-         4.1 input (`gmsh -part N -format msh41`), an SU2 input or a CGNS input, and {} is \
-         none of them: give another output format, or partition the mesh",
-        output.display(),
-        input.display()
-    )
-}
-
 /// This rank's share of the input, and what it says of where the share
-/// comes from (the start of its line).
+/// comes from (the start of its line): of the first file of a split set
+/// with `split`, else through the input format's
+/// [`PartFormat`](crate::part_format::PartFormat).
 fn read_input(
     world: &Comm,
     input: &Path,
     output: &Path,
     split: bool,
 ) -> anyhow::Result<(Share, String)> {
-    let share = if split {
-        told(read_rank_split(world, input))?
-    } else if has_extension(input, "su2") {
-        return su2::read(world, input);
-    } else if has_extension(input, "cgns") {
-        return cgns::read(world, input);
-    } else {
-        check_partitioned(input, output)?;
-        told(read_rank_share(world, input))?
-    };
-    let size = world.size() as usize;
-    let partitions = partitions_of(share.partitions, size, world.rank() as usize, input)?;
-    let from = format!(
-        "partitions {}-{} of {}",
-        partitions.start(),
-        partitions.end(),
-        share.partitions
-    );
-    Ok((share, from))
+    if split {
+        let share = told(read_rank_split(world, input))?;
+        let from = partitions_read(world, &share, input)?;
+        return Ok((share, from));
+    }
+    let reader = Format::from_path(input).ok().and_then(part_format);
+    match reader {
+        Some(reader) if reader.holds_parts(input)? => reader.read_part(world, input),
+        _ => bail!(
+            "{}: a .pvtu output or --pieces is written rank by rank, from a partitioned MSH \
+             4.1 input (`gmsh -part N -format msh41`), an SU2 input or a CGNS input, and {} is \
+             none of them: give another output format, or partition the mesh",
+            output.display(),
+            input.display()
+        ),
+    }
 }
 
 /// Refuses, with the reason, the options that need the whole mesh in one

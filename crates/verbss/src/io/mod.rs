@@ -5,9 +5,9 @@
 //! Every format implements one interface, [`MeshFormat`] (read a file's
 //! zones, write a moved mesh); [`read`] and [`write()`] choose the format by
 //! extension ([`Format::from_path`]: a directory or a path without an
-//! extension is an OpenFOAM case). One rank's part of a partitioned file is
-//! read by the `verbss-mpi` crate (a partitioned Gmsh MSH 4.1 file through
-//! [`gmsh::partitioned`], SU2 and CGNS through their streams).
+//! extension is an OpenFOAM case). One rank's part of a file is read by
+//! the `verbss-mpi` command's `PartFormat`, which Gmsh (partitioned, through
+//! [`gmsh::partitioned`]), SU2 and CGNS implement.
 
 use std::fs::File;
 use std::io::{BufWriter, Read, Write};
