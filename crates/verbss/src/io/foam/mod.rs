@@ -37,8 +37,10 @@ mod file;
 mod lex;
 mod plane;
 mod read;
+mod times;
 mod write;
 
+pub use times::{time_name, TimeFormat, Times};
 pub use write::{write, write_moved};
 
 use std::path::{Path, PathBuf};
@@ -82,6 +84,16 @@ pub fn polymesh_dir(path: &Path) -> PathBuf {
         path.to_path_buf()
     } else {
         in_case
+    }
+}
+
+/// The case directory of a polyMesh directory: two levels up from
+/// `CASE/constant/polyMesh`, else its parent.
+pub fn case_dir(polymesh: &Path) -> PathBuf {
+    let parent = polymesh.parent().unwrap_or(Path::new("."));
+    match parent.file_name() {
+        Some(n) if n == "constant" => parent.parent().unwrap_or(Path::new(".")).to_path_buf(),
+        _ => parent.to_path_buf(),
     }
 }
 

@@ -1,8 +1,8 @@
 //! Writing the moved points of a mesh read from an OpenFOAM case.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use super::{same_polymesh, Origin};
+use super::{case_dir, same_polymesh, Origin};
 use crate::error::{Error, Result};
 use crate::io::write_atomic;
 use crate::mesh::Mesh;
@@ -55,7 +55,7 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], time: Option<&str>)
     let xyz = points(mesh.dim, coords, origin);
     if same_polymesh(path, &origin.dir) {
         let target = match time {
-            Some(t) => case_root(&origin.dir).join(t).join("polyMesh"),
+            Some(t) => case_dir(&origin.dir).join(t).join("polyMesh"),
             None => origin.dir.clone(),
         };
         return write_points(&target, &xyz, time.unwrap_or("constant"));
@@ -72,16 +72,6 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], time: Option<&str>)
         write_atomic(&target.join(name), |w| w.write_all(&bytes))?;
     }
     Ok(())
-}
-
-/// The case directory of a polyMesh directory: two levels up from
-/// `CASE/constant/polyMesh`, else its parent.
-fn case_root(dir: &Path) -> PathBuf {
-    let parent = dir.parent().unwrap_or(Path::new("."));
-    match parent.file_name() {
-        Some(n) if n == "constant" => parent.parent().unwrap_or(Path::new(".")).to_path_buf(),
-        _ => parent.to_path_buf(),
-    }
 }
 
 /// `x y z` of every point of the case: the mesh's coordinates, or for a 2D
