@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use super::{case_dir, same_polymesh, Origin};
+use super::{case_dir, same_polymesh, Across, Origin};
 use crate::error::{Error, Result};
 use crate::io::write_atomic;
 use crate::mesh::Mesh;
@@ -52,7 +52,13 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], time: Option<&str>)
             origin.dir.display()
         )));
     }
-    let xyz = points(mesh.dim, coords, origin);
+    let xyz = points(mesh, coords, origin).ok_or_else(|| {
+        refuse(
+            "a point of the wedge case's axis was moved off the axis (its points must stay \
+             on it: keep them fixed, or move them along the axis)"
+                .into(),
+        )
+    })?;
     if same_polymesh(path, &origin.dir) {
         let target = match time {
             Some(t) => case_dir(&origin.dir).join(t).join("polyMesh"),
@@ -74,17 +80,37 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], time: Option<&str>)
     Ok(())
 }
 
-/// `x y z` of every point of the case: the mesh's coordinates, or for a 2D
-/// case each point at its node's `x y` and its own `z`.
-fn points(dim: usize, coords: &[f64], origin: &Origin) -> Vec<f64> {
-    match &origin.plane {
-        None => coords.to_vec(),
-        Some(plane) => plane
-            .node_of_point
-            .iter()
-            .zip(&plane.z)
-            .flat_map(|(&i, &z)| [coords[dim * i], coords[dim * i + 1], z])
-            .collect(),
+/// `x y z` of every point of the case at `coords`: the coordinates, or
+/// for a 2D case each point at its node's `x y` and its own `z`, for a
+/// wedge case moved in its plane as its node moved ([`super::Wedge`]);
+/// `None` when an axis point left the axis.
+fn points(mesh: &Mesh, coords: &[f64], origin: &Origin) -> Option<Vec<f64>> {
+    let Some(plane) = &origin.plane else {
+        return Some(coords.to_vec());
+    };
+    let dim = mesh.dim;
+    let node = |i: usize| [coords[dim * i], coords[dim * i + 1]];
+    match &plane.across {
+        Across::Z(z) => Some(
+            plane
+                .node_of_point
+                .iter()
+                .zip(z)
+                .flat_map(|(&i, &z)| [coords[dim * i], coords[dim * i + 1], z])
+                .collect(),
+        ),
+        Across::Wedge(wedge) => {
+            let mut xyz = Vec::with_capacity(3 * plane.node_of_point.len());
+            for (p, &i) in plane.node_of_point.iter().enumerate() {
+                let [a, r] = node(i);
+                let (da, dr) = (a - mesh.coords[dim * i], r - mesh.coords[dim * i + 1]);
+                match wedge.place(p, da, dr) {
+                    Some(x) => xyz.extend(x),
+                    None => return None,
+                }
+            }
+            Some(xyz)
+        }
     }
 }
 
