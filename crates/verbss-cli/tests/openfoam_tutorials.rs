@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 mod common;
 
 use common::foam::{
-    copy_tutorial, count_after, failures, foam, have_tutorial, have_utilities, write_system,
+    copy_tutorial, count_after, failures, foam, have_tutorial, have_utilities, start_from,
+    write_system,
 };
 use common::{stderr, verbss};
 use verbss::io::WriteOptions;
@@ -390,22 +391,7 @@ fn airfoil_2d_pitched_then_simple_foam_runs_on_the_moved_mesh() {
     let moved = case.join("2");
     assert!(moved.join("polyMesh/points").is_file());
     assert!(!case.join("1").exists());
-    for field in std::fs::read_dir(case.join("0")).unwrap() {
-        let field = field.unwrap().path();
-        std::fs::copy(&field, moved.join(field.file_name().unwrap())).unwrap();
-    }
-    let control = case.join("system/controlDict");
-    let control = control.to_str().unwrap();
-    foam(
-        "foamDictionary",
-        &case,
-        &["-entry", "startFrom", "-set", "latestTime", control],
-    );
-    foam(
-        "foamDictionary",
-        &case,
-        &["-entry", "endTime", "-set", "10", control],
-    );
+    start_from(&case, "2", "10");
     let log = foam("simpleFoam", &case, &[]);
     assert!(log.contains("Create mesh for time = 2\n"), "{log}");
     assert!(

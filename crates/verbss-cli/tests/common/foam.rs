@@ -32,7 +32,19 @@ pub fn have_openfoam() -> bool {
 /// tutorial's Allrun runs it: some dictionaries name paths relative to
 /// it); its standard output.
 pub fn foam(utility: &str, case: &Path, args: &[&str]) -> String {
-    let out = Command::new(utility)
+    let out = foam_output(utility, case, args);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{utility} failed:\n{text}{}",
+        stderr(&out)
+    );
+    text
+}
+
+/// Runs an OpenFOAM utility as [`foam`] does; all it did.
+pub fn foam_output(utility: &str, case: &Path, args: &[&str]) -> std::process::Output {
+    Command::new(utility)
         .arg("-case")
         .arg(case)
         .args(args)
@@ -42,14 +54,7 @@ pub fn foam(utility: &str, case: &Path, args: &[&str]) -> String {
             std::env::var("WM_PROJECT_DIR").unwrap_or(FOAM_DIR.into()),
         )
         .output()
-        .expect("run an OpenFOAM utility");
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "{utility} failed:\n{text}{}",
-        stderr(&out)
-    );
-    text
+        .expect("run an OpenFOAM utility")
 }
 
 /// The `system` files `blockMesh` and `checkMesh` read (OpenFOAM writes
@@ -238,4 +243,27 @@ pub fn block_case(case: &Path, n: usize, layers: usize) {
     );
     std::fs::write(case.join("system/blockMeshDict"), dict).unwrap();
     foam("blockMesh", case, &[]);
+}
+
+/// Makes `case` start from its time directory `time` (where verbss wrote a
+/// moved mesh) and run to `end`: the fields of `0` copied there,
+/// `startFrom latestTime` and `endTime` set by foamDictionary.
+pub fn start_from(case: &Path, time: &str, end: &str) {
+    let start = case.join(time);
+    for field in std::fs::read_dir(case.join("0")).unwrap() {
+        let field = field.unwrap().path();
+        std::fs::copy(&field, start.join(field.file_name().unwrap())).unwrap();
+    }
+    let control = case.join("system/controlDict");
+    let control = control.to_str().unwrap();
+    foam(
+        "foamDictionary",
+        case,
+        &["-entry", "startFrom", "-set", "latestTime", control],
+    );
+    foam(
+        "foamDictionary",
+        case,
+        &["-entry", "endTime", "-set", end, control],
+    );
 }

@@ -146,44 +146,42 @@ pub fn read(path: &Path) -> Result<Mesh> {
         .patches
         .iter()
         .any(|p| p.kind == "empty" && p.n_faces > 0);
-    let wedge = wedge::wedge(&poly)?;
-    let (dim, coords, node_tags, cells, groups, plane) = if let Some((wedge, local)) = wedge {
-        // Read as a 2D case in the wedge's (axial, radial) coordinates.
-        let points = std::mem::replace(&mut poly.points, local);
-        let flat = plane::flatten(&poly, &cells, &wedge.on_axis);
-        poly.points = points;
-        let mut flat = flat?;
-        flat.groups.extend(wedge::axis_group(
-            &poly,
-            &flat.cells,
-            &flat.points,
-            &wedge.on_axis,
-        ));
-        flat.plane.across = Across::Wedge(Box::new(wedge));
-        let tags = flat.points.iter().map(|&p| p as u64 + 1).collect();
-        (
-            2,
-            flat.coords,
-            tags,
-            flat.cells,
-            flat.groups,
-            Some(flat.plane),
-        )
-    } else if has_empty {
-        let flat = plane::flatten(&poly, &cells, &[])?;
-        let tags = flat.points.iter().map(|&p| p as u64 + 1).collect();
-        (
-            2,
-            flat.coords,
-            tags,
-            flat.cells,
-            flat.groups,
-            Some(flat.plane),
-        )
-    } else {
-        let groups = patches(&poly);
-        let tags = (1..=n_points as u64).collect();
-        (3, poly.points, tags, cells, groups, None)
+    let flat = match wedge::wedge(&poly)? {
+        Some((wedge, local)) => {
+            // Read as a 2D case in the wedge's (axial, radial) coordinates.
+            let points = std::mem::replace(&mut poly.points, local);
+            let flat = plane::flatten(&poly, &cells, &wedge.on_axis);
+            poly.points = points;
+            let mut flat = flat?;
+            flat.groups.extend(wedge::axis_group(
+                &poly,
+                &flat.cells,
+                &flat.points,
+                &wedge.on_axis,
+            ));
+            flat.plane.across = Across::Wedge(Box::new(wedge));
+            Some(flat)
+        }
+        None if has_empty => Some(plane::flatten(&poly, &cells, &[])?),
+        None => None,
+    };
+    let (dim, coords, node_tags, cells, groups, plane) = match flat {
+        Some(flat) => {
+            let tags = flat.points.iter().map(|&p| p as u64 + 1).collect();
+            (
+                2,
+                flat.coords,
+                tags,
+                flat.cells,
+                flat.groups,
+                Some(flat.plane),
+            )
+        }
+        None => {
+            let groups = patches(&poly);
+            let tags = (1..=n_points as u64).collect();
+            (3, poly.points, tags, cells, groups, None)
+        }
     };
     let mesh = Mesh {
         dim,
