@@ -185,11 +185,35 @@ fn a_wedge_case_moves_in_its_plane_and_stays_on_both_wedge_planes() {
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(
-        stderr(&o).contains("a point of the wedge case's axis was moved off the axis"),
+        stderr(&o).contains("of the wedge case's axis (node ")
+            && stderr(&o).contains("off the axis (its points must stay on it"),
         "{}",
         stderr(&o)
     );
     assert_eq!(std::fs::read_dir(&case).unwrap().count(), before);
+
+    // A point off both wedge planes: refused, naming it and its line (the
+    // ASCII points verbss wrote, one moved in z).
+    let points = case.join("constant/polyMesh/points");
+    let written = std::fs::read_to_string(case.join("2/polyMesh/points")).unwrap();
+    let (line, text) = written
+        .lines()
+        .enumerate()
+        .find(|(_, l)| l.starts_with("(3.0 "))
+        .map(|(k, l)| (k + 1, l.to_string()))
+        .unwrap();
+    let last = text.rsplit(' ').next().unwrap();
+    let off = format!("{} 0.25)", &text[..text.len() - last.len() - 1]);
+    std::fs::write(&points, written.replacen(&text, &off, 1)).unwrap();
+    let o = verbss(&["quality", c]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert!(
+        err.starts_with(&format!("error: {}:{line}: point ", points.display()))
+            && err.contains("lies on neither wedge plane ('back' and 'front'"),
+        "{err}"
+    );
+    std::fs::write(&points, &written).unwrap();
 
     // One wedge patch is no axisymmetric case: refused, naming it.
     let boundary = case.join("constant/polyMesh/boundary");

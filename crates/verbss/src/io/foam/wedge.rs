@@ -231,6 +231,9 @@ pub(super) fn wedge(mesh: &PolyMesh) -> Result<Option<(Wedge, Vec<f64>)>> {
     let mut side = vec![0u8; n_points];
     let mut on_axis = vec![false; n_points];
     let mut local = Vec::with_capacity(3 * n_points);
+    // The point farthest off both planes and the axis, when one is: a
+    // point far off tilts the planes' fit, and the others with it.
+    let mut worst: Option<(usize, f64)> = None;
     for p in 0..n_points {
         let (a, rq) = from_axis(&at(p), &origin, &d);
         let r = norm(&rq);
@@ -242,24 +245,28 @@ pub(super) fn wedge(mesh: &PolyMesh) -> Result<Option<(Wedge, Vec<f64>)>> {
         let (to_back, to_front) = (dot(&rq, &back.0).abs(), dot(&rq, &front.0).abs());
         let s = u8::from(to_front < to_back);
         let inward = dot(&rq, if s == 0 { &back.1 } else { &front.1 }) > 0.0;
-        if to_back.min(to_front) > off || !inward {
-            return Err(Error::Parse {
-                path: mesh.file("points"),
-                line: mesh.point_lines[p] as usize,
-                message: format!(
-                    "point {p} at {} lies on neither wedge plane ('{}' and '{}', planes through \
-                     the axis at {} along {}) nor on the axis (expected a one-cell-thick \
-                     axisymmetric case)",
-                    format_point(&mesh.points[3 * p..3 * p + 3]),
-                    names.0,
-                    names.1,
-                    format_point(&origin),
-                    format_point(&d)
-                ),
-            });
+        let plane_off = if inward { to_back.min(to_front) } else { r };
+        if plane_off > off && worst.is_none_or(|(_, w)| plane_off.min(r) > w) {
+            worst = Some((p, plane_off.min(r)));
         }
         side[p] = s;
         local.extend([a, r, f64::from(s)]);
+    }
+    if let Some((p, _)) = worst {
+        return Err(Error::Parse {
+            path: mesh.file("points"),
+            line: mesh.point_lines[p] as usize,
+            message: format!(
+                "point {p} at {} lies on neither wedge plane ('{}' and '{}', planes through \
+                 the axis at {} along {}) nor on the axis (expected a one-cell-thick \
+                 axisymmetric case)",
+                format_point(&mesh.points[3 * p..3 * p + 3]),
+                names.0,
+                names.1,
+                format_point(&origin),
+                format_point(&d)
+            ),
+        });
     }
     let wedge = Wedge {
         origin,

@@ -52,12 +52,12 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], time: Option<&str>)
             origin.dir.display()
         )));
     }
-    let xyz = points(mesh, coords, origin).ok_or_else(|| {
-        refuse(
-            "a point of the wedge case's axis was moved off the axis (its points must stay \
-             on it: keep them fixed, or move them along the axis)"
-                .into(),
-        )
+    let xyz = points(mesh, coords, origin).map_err(|(p, i, dr)| {
+        refuse(format!(
+            "point {p} of the wedge case's axis (node {}) was moved {dr:e} off the axis (its \
+             points must stay on it: keep them fixed, or move them along it with --slide)",
+            mesh.node_tags[i]
+        ))
     })?;
     if same_polymesh(path, &origin.dir) {
         let target = match time {
@@ -83,22 +83,24 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], time: Option<&str>)
 /// `x y z` of every point of the case at `coords`: the coordinates, or
 /// for a 2D case each point at its node's `x y` and its own `z`, for a
 /// wedge case moved in its plane as its node moved ([`super::Wedge`]);
-/// `None` when an axis point left the axis.
-fn points(mesh: &Mesh, coords: &[f64], origin: &Origin) -> Option<Vec<f64>> {
+/// else the axis point that left the axis, its node and how far it went.
+fn points(
+    mesh: &Mesh,
+    coords: &[f64],
+    origin: &Origin,
+) -> std::result::Result<Vec<f64>, (usize, usize, f64)> {
     let Some(plane) = &origin.plane else {
-        return Some(coords.to_vec());
+        return Ok(coords.to_vec());
     };
     let dim = mesh.dim;
     let node = |i: usize| [coords[dim * i], coords[dim * i + 1]];
     match &plane.across {
-        Across::Z(z) => Some(
-            plane
-                .node_of_point
-                .iter()
-                .zip(z)
-                .flat_map(|(&i, &z)| [coords[dim * i], coords[dim * i + 1], z])
-                .collect(),
-        ),
+        Across::Z(z) => Ok(plane
+            .node_of_point
+            .iter()
+            .zip(z)
+            .flat_map(|(&i, &z)| [coords[dim * i], coords[dim * i + 1], z])
+            .collect()),
         Across::Wedge(wedge) => {
             let mut xyz = Vec::with_capacity(3 * plane.node_of_point.len());
             for (p, &i) in plane.node_of_point.iter().enumerate() {
@@ -106,10 +108,10 @@ fn points(mesh: &Mesh, coords: &[f64], origin: &Origin) -> Option<Vec<f64>> {
                 let (da, dr) = (a - mesh.coords[dim * i], r - mesh.coords[dim * i + 1]);
                 match wedge.place(p, da, dr) {
                     Some(x) => xyz.extend(x),
-                    None => return None,
+                    None => return Err((p, i, dr)),
                 }
             }
-            Some(xyz)
+            Ok(xyz)
         }
     }
 }
