@@ -6,6 +6,13 @@
 //! the run with exit code 3, the last valid mesh in OUT and the failed state
 //! beside it (`OUT-STEM.failed.vtu`). `--every K` also writes the `.vtu`
 //! series of every K-th step beside OUT (`OUT-STEM_NNNN.vtu`, `OUT-STEM.pvd`).
+//!
+//! An OpenFOAM OUT that is the input case gets its steps as the flow solver
+//! reads them: the last step, and with `--every K` every K-th, each in the
+//! time directory of its time (`CASE/TIME/polyMesh/points`; see
+//! [`crate::case_times`]); `constant/polyMesh` stays as it was, and a failed
+//! run writes only the accepted steps and the failed state
+//! `CASE/verbss.failed.vtu`.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -18,6 +25,7 @@ use verbss::io::{Format, WriteOptions};
 use verbss::motion::{Attachment, Motion, Numbering, PositionSource};
 use verbss::Mesh;
 
+use crate::case_times::TimeArgs;
 use crate::msh::MshArgs;
 use crate::overwrite::refuse_input_as_output;
 use crate::render::{PictureArgs, Recorder};
@@ -33,7 +41,8 @@ pub struct DeformArgs {
     mesh: PathBuf,
     /// The output mesh; its extension chooses the format. An OpenFOAM case
     /// (no extension): the input case itself gets the moved points in
-    /// `CASE/STEPS/polyMesh/points`, another a whole `constant/polyMesh`.
+    /// `CASE/TIME/polyMesh/points` (TIME = startTime + step·deltaT, see
+    /// --dt), another a whole `constant/polyMesh`.
     #[arg(short, long)]
     output: PathBuf,
     #[command(flatten)]
@@ -66,8 +75,11 @@ pub struct DeformArgs {
     steps: usize,
     #[command(flatten)]
     settings: SettingArgs,
+    #[command(flatten)]
+    times: TimeArgs,
     /// Also write the .vtu series of every K-th step (step 0 and the last
-    /// step always) beside OUT: OUT-STEM_NNNN.vtu and OUT-STEM.pvd.
+    /// step always) beside OUT: OUT-STEM_NNNN.vtu and OUT-STEM.pvd; into the
+    /// input OpenFOAM case, every K-th step's time directory instead.
     #[arg(long, value_name = "K", value_parser = parse_every, allow_hyphen_values = true)]
     every: Option<usize>,
     /// Write the per-step report (JSON) here.
@@ -165,12 +177,16 @@ impl DeformArgs {
                 None => unreachable!("clap requires one motion"),
             },
         };
-        let settings = self.settings.settings(self.steps)?;
+        let mut settings = self.settings.settings(self.steps)?;
         // `-o .` names its directory by its path only.
         let output = match format {
             Some(Format::Foam) => std::path::absolute(&self.output)?.components().collect(),
             _ => self.output.clone(),
         };
+        let foam_times = self.times.case_times(&self.mesh, &output, self.steps)?;
+        if let Some(dt) = self.times.dt()?.or(foam_times.as_ref().map(|t| t.delta)) {
+            settings.dt = dt;
+        }
         let dir = output_dir(&output);
         let job = Job {
             name: file_stem(&output),
@@ -185,6 +201,7 @@ impl DeformArgs {
                 }])
                 .collect(),
             settings,
+            foam_times,
             every: self.every.unwrap_or(1),
             series: self.every.is_some(),
             final_mesh: true,

@@ -62,6 +62,7 @@ pub fn job(out: PathBuf, every: usize) -> anyhow::Result<Job> {
             motion,
         }],
         settings,
+        foam_times: None,
         every,
         series: true,
         final_mesh: true,

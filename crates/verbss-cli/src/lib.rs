@@ -9,6 +9,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod case_times;
 pub mod convert;
 pub mod deform;
 pub mod demo;

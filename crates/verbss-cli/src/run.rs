@@ -23,6 +23,7 @@ use clap::Args;
 use verbss::case::Case;
 use verbss::collective::Collective;
 use verbss::deform::{Deformer, Snapshot};
+use verbss::io::foam::Times;
 use verbss::io::{self, vtu, WriteOptions};
 use verbss::mesh::Mesh;
 use verbss::motion::Attachment;
@@ -31,6 +32,7 @@ use verbss::settings::{Reference, Settings};
 use verbss::solve::SpringSolver;
 use verbss::Error;
 
+use crate::case_times::TimeArgs;
 use crate::msh::MshArgs;
 use crate::overwrite::{note_lost_su2_blocks, refuse_input_as_output};
 use crate::progress::Progress;
@@ -88,6 +90,12 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         refuse_input_as_output(&case.mesh, &last, args.overwrite, false)?;
     }
     let write_options = args.msh.apply(case.output.write_options(&mesh));
+    let foam_times = match case.output.final_mesh {
+        true => {
+            TimeArgs::default().case_times(&case.mesh, &dir.join(&name), case.settings.steps)?
+        }
+        false => None,
+    };
     let job = Job {
         name,
         source: case.mesh.display().to_string(),
@@ -95,6 +103,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         mesh: Arc::new(mesh),
         attachments,
         settings: case.settings.clone(),
+        foam_times,
         every: args.every.unwrap_or(case.output.every),
         series: case.output.series,
         final_mesh: case.output.final_mesh,
@@ -180,6 +189,9 @@ pub struct Job {
     pub attachments: Vec<Attachment>,
     /// Steps, reference and solver settings.
     pub settings: Settings,
+    /// The times of an OpenFOAM output that is the input case: its steps
+    /// go to time directories `CASE/TIME/polyMesh`, the series too.
+    pub foam_times: Option<Times>,
     /// Write every k-th step of the series.
     pub every: usize,
     /// Write the `.vtu` series and `.pvd`.
@@ -206,12 +218,35 @@ impl Job {
         self.dir.join(format!("{}.{}", self.name, self.extension))
     }
 
-    /// How the final mesh is written after `steps` steps: an OpenFOAM case
-    /// that is the input gets the points in time directory `steps`.
+    /// How the mesh after `steps` steps is written: an OpenFOAM case that
+    /// is the input gets the points in the time directory of that step.
     pub fn write_options_after(&self, steps: usize) -> WriteOptions {
         let mut options = self.write_options.clone();
-        options.foam_time = Some(steps.to_string());
+        options.foam_time = self.foam_times.as_ref().map(|t| t.name(steps));
         options
+    }
+
+    /// The time directory of step `n` in the input OpenFOAM case, when
+    /// the output is that case.
+    pub fn time_dir(&self, n: usize) -> Option<PathBuf> {
+        let times = self.foam_times.as_ref()?;
+        Some(self.case_dir()?.join(times.name(n)))
+    }
+
+    /// The input OpenFOAM case, when the output is that case.
+    pub fn case_dir(&self) -> Option<PathBuf> {
+        self.foam_times.as_ref()?;
+        let origin = self.mesh.origin.foam.as_deref()?;
+        Some(io::foam::case_dir(&origin.dir))
+    }
+
+    /// The steps whose meshes a run that accepted `steps` steps wrote
+    /// (besides the series' step 0): every `every`-th of the series, and
+    /// the last.
+    fn written_steps(&self, steps: usize) -> Vec<usize> {
+        (1..=steps)
+            .filter(|&n| n == steps || (self.series && n % self.every == 0))
+            .collect()
     }
 
     /// The settings the deformer runs with: the job's, with the sweep
@@ -273,7 +308,7 @@ impl Summary {
                 self.iterations as f64 / self.steps.max(1) as f64,
                 self.min_quality.0,
                 self.min_quality.1,
-                job.dir.display()
+                self.written(job)
             );
         }
         if let Some((e, last, failed)) = &self.failure {
@@ -285,14 +320,50 @@ impl Summary {
                     1u64 << k
                 );
             }
+            let last = match job.case_dir() {
+                Some(_) if self.steps == 0 => format!(
+                    "{} (the case is as it was: no step was accepted)",
+                    last.display()
+                ),
+                _ => last.display().to_string(),
+            };
             eprintln!(
-                "the last valid mesh (step {}) is in {}; the failed state in {}",
+                "the last valid mesh (step {}) is in {last}; the failed state in {}",
                 self.steps,
-                last.display(),
                 failed.display()
             );
         }
         code
+    }
+}
+
+impl Summary {
+    /// The folders the run wrote its meshes to: the output folder, or the
+    /// input OpenFOAM case and its time directories (the first, second and
+    /// last of more than four).
+    fn written(&self, job: &Job) -> String {
+        let (Some(case), Some(times)) = (job.case_dir(), &job.foam_times) else {
+            return job.dir.display().to_string();
+        };
+        let steps = job.written_steps(self.steps);
+        let names: Vec<String> = steps.iter().map(|&n| times.name(n)).collect();
+        let listed = match names.len() {
+            0 => {
+                return format!(
+                    "{} (no time directory: no step was accepted)",
+                    case.display()
+                )
+            }
+            1..=4 => names.join(", "),
+            n => format!(
+                "{}, {}, …, {} ({n} of them)",
+                names[0],
+                names[1],
+                names[n - 1]
+            ),
+        };
+        let plural = if names.len() == 1 { "y" } else { "ies" };
+        format!("{} (time director{plural} {listed})", case.display())
     }
 }
 
@@ -329,8 +400,16 @@ impl Files {
 }
 
 impl Outputs for Files {
-    /// `NAME_NNNN.vtu`, and `NAME.pvd` rewritten with it added (time `n·dt`).
+    /// `NAME_NNNN.vtu`, and `NAME.pvd` rewritten with it added (time `n·dt`);
+    /// into the input OpenFOAM case, the step's time directory (none for
+    /// step 0, the case's own `constant/polyMesh`).
     fn step(&mut self, job: &Job, s: &Snapshot) -> anyhow::Result<()> {
+        if job.foam_times.is_some() {
+            if s.report.step > 0 {
+                self.last(job, &s.coords, s.report.step)?;
+            }
+            return Ok(());
+        }
         let file = format!("{}_{:04}.vtu", job.name, s.report.step);
         if self.writer {
             let path = job.dir.join(&file);
@@ -344,16 +423,28 @@ impl Outputs for Files {
         Ok(())
     }
 
+    /// The final mesh; into the input OpenFOAM case, the time directory of
+    /// step `steps`, and nothing after no step (the case is as it was).
     fn last(&mut self, job: &Job, coords: &[f64], steps: usize) -> anyhow::Result<PathBuf> {
         let path = job.final_path();
+        if let (0, Some(origin)) = (steps, job.mesh.origin.foam.as_deref()) {
+            if job.foam_times.is_some() {
+                return Ok(origin.dir.clone());
+            }
+        }
         if self.writer {
             io::write_moved(&path, &job.mesh, coords, &job.write_options_after(steps))?;
         }
-        Ok(path)
+        Ok(job.time_dir(steps).unwrap_or(path))
     }
 
+    /// `NAME.failed.vtu` beside the outputs; into the input OpenFOAM case,
+    /// `CASE/verbss.failed.vtu`.
     fn failed(&mut self, job: &Job, s: &Snapshot) -> anyhow::Result<PathBuf> {
-        let path = job.dir.join(format!("{}.failed.vtu", job.name));
+        let path = match job.case_dir() {
+            Some(case) => case.join("verbss.failed.vtu"),
+            None => job.dir.join(format!("{}.failed.vtu", job.name)),
+        };
         if self.writer {
             vtu::write_moved(&path, &job.mesh, &s.coords, &fields(&job.mesh, s))?;
         }

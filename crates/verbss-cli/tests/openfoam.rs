@@ -7,87 +7,10 @@ use std::process::Command;
 
 mod common;
 
-use common::foam::{assert_mesh_ok, foam, have_openfoam, write_system, write_system_as};
+use common::foam::{
+    assert_mesh_ok, block_case, foam, have_openfoam, write_system, write_system_as,
+};
 use common::{stderr, verbss};
-
-/// A square body (patch `wing`, side 1) in a square box (patch `farfield`,
-/// side 3), 8 blocks of `n × n` cells and `layers` cells in z (0 to 0.2):
-/// with `empty` patches `back` (z = 0) and `front` when `layers` is 1 (a 2D
-/// case), else `wall` ones.
-fn block_case(case: &Path, n: usize, layers: usize) {
-    write_system(case);
-    let x = [-1.5, -0.5, 0.5, 1.5];
-    let v = |i: usize, j: usize, k: usize| k * 16 + j * 4 + i;
-    let mut vertices = String::new();
-    for k in 0..2 {
-        for j in 0..4 {
-            for i in 0..4 {
-                vertices += &format!("({} {} {}) ", x[i], x[j], 0.2 * k as f64);
-            }
-        }
-    }
-    let quad = |a: usize, b: usize, c: usize, d: usize| format!("({a} {b} {c} {d}) ");
-    let (mut blocks, mut wing, mut farfield, mut back, mut front): (
-        String,
-        String,
-        String,
-        String,
-        String,
-    ) = Default::default();
-    for j in 0..3 {
-        for i in 0..3 {
-            if (i, j) == (1, 1) {
-                continue;
-            }
-            let (a, b, c, d) = (
-                v(i, j, 0),
-                v(i + 1, j, 0),
-                v(i + 1, j + 1, 0),
-                v(i, j + 1, 0),
-            );
-            blocks += &format!(
-                "hex ({a} {b} {c} {d} {} {} {} {}) ({n} {n} {layers}) simpleGrading (1 1 1)\n",
-                a + 16,
-                b + 16,
-                c + 16,
-                d + 16
-            );
-            back += &quad(a, d, c, b);
-            front += &quad(a + 16, b + 16, c + 16, d + 16);
-        }
-    }
-    for t in 0..3 {
-        let edges = [
-            (v(t, 0, 0), v(t + 1, 0, 0)),
-            (v(3, t, 0), v(3, t + 1, 0)),
-            (v(t, 3, 0), v(t + 1, 3, 0)),
-            (v(0, t, 0), v(0, t + 1, 0)),
-        ];
-        for (p, q) in edges {
-            farfield += &quad(p, q, q + 16, p + 16);
-        }
-    }
-    for (p, q) in [
-        ((1, 1), (2, 1)),
-        ((2, 1), (2, 2)),
-        ((2, 2), (1, 2)),
-        ((1, 2), (1, 1)),
-    ] {
-        let (p, q) = (v(p.0, p.1, 0), v(q.0, q.1, 0));
-        wing += &quad(p, q, q + 16, p + 16);
-    }
-    let side_type = if layers == 1 { "empty" } else { "wall" };
-    let dict = format!(
-        "FoamFile {{ version 2.0; format ascii; class dictionary; object blockMeshDict; }}\n\
-         convertToMeters 1;\nvertices ( {vertices});\nblocks (\n{blocks});\nboundary (\n\
-         wing {{ type wall; faces ( {wing}); }}\n\
-         farfield {{ type patch; faces ( {farfield}); }}\n\
-         back {{ type {side_type}; faces ( {back}); }}\n\
-         front {{ type {side_type}; faces ( {front}); }}\n);\n"
-    );
-    std::fs::write(case.join("system/blockMeshDict"), dict).unwrap();
-    foam("blockMesh", case, &[]);
-}
 
 #[test]
 fn a_2d_case_gets_its_moved_points_in_a_new_time_directory() {

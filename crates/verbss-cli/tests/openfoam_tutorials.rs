@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 mod common;
 
 use common::foam::{
-    copy_tutorial, count_after, failures, foam, have_tutorial, have_utilities, write_system,
+    copy_tutorial, count_after, failures, foam, have_tutorial, have_utilities, start_from,
+    write_system,
 };
 use common::{stderr, verbss};
 use verbss::io::WriteOptions;
@@ -361,4 +362,48 @@ fn a_snappy_hex_mesh_sphere_moves_and_passes_check_mesh() {
         )
     );
     assert!(!su2.exists());
+}
+
+/// docs/openfoam.md's loop from a tutorial to a flow-solver run on the
+/// moved mesh: airFoil2D's airfoil pitched 2° in 2 steps into its own case
+/// (time directory 2 of `deltaT 1`), the fields copied there, and
+/// simpleFoam started from that time reads the moved mesh. checkMesh finds
+/// on it only what it finds on the tutorial's own mesh (its faces are not
+/// in upper triangular order).
+#[test]
+fn airfoil_2d_pitched_then_simple_foam_runs_on_the_moved_mesh() {
+    let name = "incompressible/simpleFoam/airFoil2D";
+    let tools = ["simpleFoam", "foamDictionary", "checkMesh"];
+    if !have_tutorial(name) || !have_utilities(&tools) {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("airFoil2D");
+    copy_tutorial(name, &case);
+    let o = deform(
+        &case,
+        &case,
+        &[
+            "--moving", "walls", "--rotate", "2", "--center", "0,0", "--steps", "2",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let moved = case.join("2");
+    assert!(moved.join("polyMesh/points").is_file());
+    assert!(!case.join("1").exists());
+    start_from(&case, "2", "10");
+    let log = foam("simpleFoam", &case, &[]);
+    assert!(log.contains("Create mesh for time = 2\n"), "{log}");
+    assert!(
+        log.contains("\nTime = 10\n") && log.contains("\nEnd\n"),
+        "{log}"
+    );
+    assert_eq!(
+        check_mesh_failures(&case, &["-time", "2"]),
+        check_mesh_failures(&case, &["-time", "0"])
+    );
+    assert_eq!(
+        check_mesh_failures(&case, &["-time", "0"]),
+        [" ***Faces not in upper triangular order."]
+    );
 }

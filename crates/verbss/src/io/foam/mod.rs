@@ -23,7 +23,10 @@
 //! inverted reads as inverted). Each patch becomes a group of its faces
 //! (triangles, quadrilaterals and polygons). A case with patches of
 //! type `empty` is a 2D case: it is read as the 2D mesh of its back plane
-//! (see [`Plane`]), and its `empty` patches are not groups.
+//! (see [`Plane`]), and its `empty` patches are not groups. A case with two
+//! patches of type `wedge` is an axisymmetric one: read as the 2D mesh of
+//! its (axial, radial) plane ([`Wedge`]), its `wedge` patches not groups,
+//! the sides on its axis the group `axis`.
 //!
 //! Writing ([`write()`]) needs a mesh read from a case, whose faces, owners,
 //! neighbours and patches it keeps: only the points change. Into the case
@@ -37,8 +40,12 @@ mod file;
 mod lex;
 mod plane;
 mod read;
+mod times;
+mod wedge;
 mod write;
 
+pub use times::{time_name, TimeFormat, Times};
+pub use wedge::Wedge;
 pub use write::{write, write_moved};
 
 use std::path::{Path, PathBuf};
@@ -59,13 +66,22 @@ pub struct Origin {
 }
 
 /// How the points of a 2D case follow the nodes of its 2D mesh: point `p`
-/// is at `(x, y)` of node `node_of_point[p]` and at its own `z[p]`.
+/// follows node `node_of_point[p]`, off the plane as `across` says.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plane {
     /// The 2D node of each point.
     pub node_of_point: Vec<usize>,
-    /// The z of each point (its plane).
-    pub z: Vec<f64>,
+    /// Where each point is off the 2D plane.
+    pub across: Across,
+}
+
+/// Where the points of a 2D case are off its plane.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Across {
+    /// An `empty` case: each point at its node's `(x, y)` and its own z.
+    Z(Vec<f64>),
+    /// A wedge case: its node's `(a, r)` on its wedge plane.
+    Wedge(Box<Wedge>),
 }
 
 /// Whether `path` names an OpenFOAM case: an existing directory, or a path
@@ -82,6 +98,16 @@ pub fn polymesh_dir(path: &Path) -> PathBuf {
         path.to_path_buf()
     } else {
         in_case
+    }
+}
+
+/// The case directory of a polyMesh directory: two levels up from
+/// `CASE/constant/polyMesh`, else its parent.
+pub fn case_dir(polymesh: &Path) -> PathBuf {
+    let parent = polymesh.parent().unwrap_or(Path::new("."));
+    match parent.file_name() {
+        Some(n) if n == "constant" => parent.parent().unwrap_or(Path::new(".")).to_path_buf(),
+        _ => parent.to_path_buf(),
     }
 }
 
@@ -113,28 +139,49 @@ pub fn read(path: &Path) -> Result<Mesh> {
             ),
         });
     }
-    let poly = read::read(&dir)?;
+    let mut poly = read::read(&dir)?;
     let cells = cells::cells(&poly)?;
     let n_points = poly.points.len() / 3;
     let has_empty = poly
         .patches
         .iter()
         .any(|p| p.kind == "empty" && p.n_faces > 0);
-    let (dim, coords, node_tags, cells, groups, plane) = if has_empty {
-        let flat = plane::flatten(&poly, &cells)?;
-        let tags = flat.points.iter().map(|&p| p as u64 + 1).collect();
-        (
-            2,
-            flat.coords,
-            tags,
-            flat.cells,
-            flat.groups,
-            Some(flat.plane),
-        )
-    } else {
-        let groups = patches(&poly);
-        let tags = (1..=n_points as u64).collect();
-        (3, poly.points, tags, cells, groups, None)
+    let flat = match wedge::wedge(&poly)? {
+        Some((wedge, local)) => {
+            // Read as a 2D case in the wedge's (axial, radial) coordinates.
+            let points = std::mem::replace(&mut poly.points, local);
+            let flat = plane::flatten(&poly, &cells, &wedge.on_axis);
+            poly.points = points;
+            let mut flat = flat?;
+            flat.groups.extend(wedge::axis_group(
+                &poly,
+                &flat.cells,
+                &flat.points,
+                &wedge.on_axis,
+            ));
+            flat.plane.across = Across::Wedge(Box::new(wedge));
+            Some(flat)
+        }
+        None if has_empty => Some(plane::flatten(&poly, &cells, &[])?),
+        None => None,
+    };
+    let (dim, coords, node_tags, cells, groups, plane) = match flat {
+        Some(flat) => {
+            let tags = flat.points.iter().map(|&p| p as u64 + 1).collect();
+            (
+                2,
+                flat.coords,
+                tags,
+                flat.cells,
+                flat.groups,
+                Some(flat.plane),
+            )
+        }
+        None => {
+            let groups = patches(&poly);
+            let tags = (1..=n_points as u64).collect();
+            (3, poly.points, tags, cells, groups, None)
+        }
     };
     let mesh = Mesh {
         dim,

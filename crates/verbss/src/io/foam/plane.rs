@@ -7,9 +7,14 @@
 //! the case holds it inverted, whose orientation comes from the faces'
 //! convention, never from the shape), and each face of the other patches
 //! becomes the line of its two back points.
+//!
+//! A wedge case is read the same way from the local coordinates of its
+//! points ([`super::wedge`]): its axis points are on both planes, each its
+//! own front point, so edges from them are not edges between the planes,
+//! and a face of another patch at the axis is a triangle.
 
 use super::read::PolyMesh;
-use super::Plane;
+use super::{Across, Plane};
 use crate::error::{Error, Result};
 use crate::mesh::{CellKind, Cells, Group};
 
@@ -67,8 +72,10 @@ fn along_z(mesh: &PolyMesh) -> f64 {
     1e-9 * extent
 }
 
-/// The 2D mesh of `mesh`, whose 3D cells are `cells`.
-pub(super) fn flatten(mesh: &PolyMesh, cells: &Cells) -> Result<Flat> {
+/// The 2D mesh of `mesh`, whose 3D cells are `cells`; the points
+/// `on_axis` (of a wedge case; none when empty) are on both planes.
+pub(super) fn flatten(mesh: &PolyMesh, cells: &Cells, on_axis: &[bool]) -> Result<Flat> {
+    let axis = |p: usize| on_axis.get(p).copied().unwrap_or(false);
     let err = |file: &str, line: usize, message: String| Error::Parse {
         path: mesh.file(file),
         line,
@@ -115,6 +122,9 @@ pub(super) fn flatten(mesh: &PolyMesh, cells: &Cells) -> Result<Flat> {
         let mut bad_edge: Option<(usize, usize)> = None;
         local.edges(|a, b| {
             let (a, b) = (nodes[a], nodes[b]);
+            if axis(a) || axis(b) {
+                return;
+            }
             let (lower, upper) = match (back(a), back(b)) {
                 (true, false) => (a, b),
                 (false, true) => (b, a),
@@ -138,7 +148,10 @@ pub(super) fn flatten(mesh: &PolyMesh, cells: &Cells) -> Result<Flat> {
         }
         let mut corners: Vec<usize> = Vec::new();
         local.facets(|f| {
-            if corners.is_empty() && f.iter().all(|&l| back(nodes[l])) {
+            // The largest: at the axis a side face may have all its
+            // points on the back plane too.
+            if f.len() > corners.len() && f.iter().all(|&l| back(nodes[l])) {
+                corners.clear();
                 corners.extend(f.iter().map(|&l| nodes[l]));
             }
         });
@@ -171,7 +184,7 @@ pub(super) fn flatten(mesh: &PolyMesh, cells: &Cells) -> Result<Flat> {
     for k in &mut flat_cells.nodes {
         *k = node_of_point[*k];
     }
-    let groups = lines(mesh, &side, &node_of_point)?;
+    let groups = lines(mesh, &side, &node_of_point, &axis)?;
     Ok(Flat {
         coords: points
             .iter()
@@ -182,18 +195,25 @@ pub(super) fn flatten(mesh: &PolyMesh, cells: &Cells) -> Result<Flat> {
         groups,
         plane: Plane {
             node_of_point,
-            z: (0..n_points).map(|p| mesh.points[3 * p + 2]).collect(),
+            across: Across::Z((0..n_points).map(|p| mesh.points[3 * p + 2]).collect()),
         },
     })
 }
 
-/// The patches that are not `empty`, each face as the line of its two back
-/// points; every face of an `empty` patch must lie in one plane.
-fn lines(mesh: &PolyMesh, side: &[Option<bool>], node_of_point: &[usize]) -> Result<Vec<Group>> {
+/// The patches that are not `empty` (nor `wedge`), each face as the line
+/// of its two back points (a triangle at the axis: its axis point and its
+/// back point); every face of an `empty` or `wedge` patch must lie in one
+/// plane (but for its axis points).
+fn lines(
+    mesh: &PolyMesh,
+    side: &[Option<bool>],
+    node_of_point: &[usize],
+    axis: &dyn Fn(usize) -> bool,
+) -> Result<Vec<Group>> {
     let mut groups = Vec::new();
     for patch in &mesh.patches {
         let faces = patch.start_face..patch.start_face + patch.n_faces;
-        let empty = patch.kind == "empty";
+        let empty = matches!(patch.kind.as_str(), "empty" | "wedge");
         let mut facets = Cells::new();
         for f in faces {
             let face = mesh.face(f);
@@ -202,10 +222,11 @@ fn lines(mesh: &PolyMesh, side: &[Option<bool>], node_of_point: &[usize]) -> Res
                 .copied()
                 .filter(|&p| side[p] == Some(true))
                 .collect();
+            let at_axis = face.iter().filter(|&&p| axis(p)).count();
             let ok = if empty {
-                on_back.is_empty() || on_back.len() == face.len()
+                on_back.len() == at_axis || on_back.len() == face.len()
             } else {
-                face.len() == 4 && on_back.len() == 2
+                (face.len() == 4 || face.len() == 3 && at_axis == 1) && on_back.len() == 2
             };
             if !ok {
                 return Err(Error::Parse {

@@ -1,8 +1,8 @@
 //! Writing the moved points of a mesh read from an OpenFOAM case.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use super::{same_polymesh, Origin};
+use super::{case_dir, same_polymesh, Across, Origin};
 use crate::error::{Error, Result};
 use crate::io::write_atomic;
 use crate::mesh::Mesh;
@@ -52,10 +52,16 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], time: Option<&str>)
             origin.dir.display()
         )));
     }
-    let xyz = points(mesh.dim, coords, origin);
+    let xyz = points(mesh, coords, origin).map_err(|(p, i, dr)| {
+        refuse(format!(
+            "point {p} of the wedge case's axis (node {}) was moved {dr:e} off the axis (its \
+             points must stay on it: keep them fixed, or move them along it with --slide)",
+            mesh.node_tags[i]
+        ))
+    })?;
     if same_polymesh(path, &origin.dir) {
         let target = match time {
-            Some(t) => case_root(&origin.dir).join(t).join("polyMesh"),
+            Some(t) => case_dir(&origin.dir).join(t).join("polyMesh"),
             None => origin.dir.clone(),
         };
         return write_points(&target, &xyz, time.unwrap_or("constant"));
@@ -74,27 +80,39 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], time: Option<&str>)
     Ok(())
 }
 
-/// The case directory of a polyMesh directory: two levels up from
-/// `CASE/constant/polyMesh`, else its parent.
-fn case_root(dir: &Path) -> PathBuf {
-    let parent = dir.parent().unwrap_or(Path::new("."));
-    match parent.file_name() {
-        Some(n) if n == "constant" => parent.parent().unwrap_or(Path::new(".")).to_path_buf(),
-        _ => parent.to_path_buf(),
-    }
-}
-
-/// `x y z` of every point of the case: the mesh's coordinates, or for a 2D
-/// case each point at its node's `x y` and its own `z`.
-fn points(dim: usize, coords: &[f64], origin: &Origin) -> Vec<f64> {
-    match &origin.plane {
-        None => coords.to_vec(),
-        Some(plane) => plane
+/// `x y z` of every point of the case at `coords`: the coordinates, or
+/// for a 2D case each point at its node's `x y` and its own `z`, for a
+/// wedge case moved in its plane as its node moved ([`super::Wedge`]);
+/// else the axis point that left the axis, its node and how far it went.
+fn points(
+    mesh: &Mesh,
+    coords: &[f64],
+    origin: &Origin,
+) -> std::result::Result<Vec<f64>, (usize, usize, f64)> {
+    let Some(plane) = &origin.plane else {
+        return Ok(coords.to_vec());
+    };
+    let dim = mesh.dim;
+    let node = |i: usize| [coords[dim * i], coords[dim * i + 1]];
+    match &plane.across {
+        Across::Z(z) => Ok(plane
             .node_of_point
             .iter()
-            .zip(&plane.z)
+            .zip(z)
             .flat_map(|(&i, &z)| [coords[dim * i], coords[dim * i + 1], z])
-            .collect(),
+            .collect()),
+        Across::Wedge(wedge) => {
+            let mut xyz = Vec::with_capacity(3 * plane.node_of_point.len());
+            for (p, &i) in plane.node_of_point.iter().enumerate() {
+                let [a, r] = node(i);
+                let (da, dr) = (a - mesh.coords[dim * i], r - mesh.coords[dim * i + 1]);
+                match wedge.place(p, da, dr) {
+                    Some(x) => xyz.extend(x),
+                    None => return Err((p, i, dr)),
+                }
+            }
+            Ok(xyz)
+        }
     }
 }
 
