@@ -243,6 +243,10 @@ impl Deformer {
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let given = pairs(displacements)?;
         let names: Vec<String> = given.iter().map(|(n, _)| n.clone()).collect();
+        // A misspelt group is unknown, whatever the first step moved.
+        for name in &names {
+            self.mesh.group(name).map_err(raise)?;
+        }
         match &self.moving {
             None if names.is_empty() => {
                 return Err(invalid_setting(

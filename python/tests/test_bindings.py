@@ -333,6 +333,10 @@ def test_bad_displacements_are_named():
         "invalid setting: the step moves airfoil, farfield but the deformer moves "
         "airfoil (the groups of its first step)"
     )
+    # A misspelt group on a later step is unknown, not another group.
+    with pytest.raises(verbss.VerbssError) as e:
+        d.step({"Airfoil": [0.0, 0.01]})
+    assert str(e.value) == "unknown group 'Airfoil' (the mesh has: airfoil, farfield)"
 
 
 def test_whole_float_ids_are_taken():

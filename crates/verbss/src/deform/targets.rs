@@ -13,7 +13,7 @@ use std::collections::HashMap;
 use super::roles::Plan;
 use super::Deformer;
 use crate::collective::{agree, Collective};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::motion::Clock;
 use crate::near_wall::Follows;
@@ -90,7 +90,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
             for &m in &self.bodies[b] {
                 self.motions[m].apply(self.global_of(node), &mut p, clock, &frames[m])?;
             }
-            targets.push((node, p));
+            targets.push(self.within_bounds(n, node, p)?);
         }
         let is_field = |b: usize| self.bodies[b].iter().all(|&m| self.motions[m].is_field());
         let displaced = (0..self.bodies.len())
@@ -115,9 +115,27 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
             }
             let x = &self.current.coords[dim * node..dim * (node + 1)];
             role.keep_on(&self.normals, &mut p, x);
-            targets.push((node, p));
+            targets.push(self.within_bounds(n, node, p)?);
         }
         Ok(targets)
+    }
+
+    /// The target `p` of `node` at step `n`, refused unless every
+    /// coordinate is finite and within ±1e100 (beyond it the springs'
+    /// products overflow): a motion whose numbers are too large or too
+    /// small (an infinite angle, a speed of 1e308, a wavelength of 1e-320,
+    /// a displacement of 1e308 given to a binding) never reaches a solve,
+    /// a message or a file as NaN.
+    fn within_bounds(&self, n: usize, node: usize, p: Vec<f64>) -> Result<(usize, Vec<f64>)> {
+        if p.iter().all(|x| x.abs() <= 1e100) {
+            return Ok((node, p));
+        }
+        Err(Error::InvalidSetting(format!(
+            "step {n}: the motion moves node {} to {}, not a finite position within ±1e100 \
+             (check the motion's numbers: angles, speeds, wavelengths, displacements)",
+            self.mesh.node_tags[node],
+            crate::error::format_point(&p)
+        )))
     }
 
     /// The displacement at this step of every moving node a layer node

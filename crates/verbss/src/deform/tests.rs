@@ -53,6 +53,43 @@ fn naca0012_rotated_40_degrees_in_40_steps_stays_valid() {
     }
 }
 
+/// A motion whose numbers make a non-finite (or overflowing) position —
+/// an infinite pitch, an angle that is not a number — is refused naming the node and
+/// the step, before any solve: no NaN reaches a message or a file.
+#[test]
+fn a_motion_beyond_finite_positions_is_refused_before_the_solve() {
+    let mesh = crate::io::read(Path::new(NACA)).unwrap();
+    let pitch = Motion::PitchPlunge {
+        center: [0.25, 0.0, 0.0],
+        axis: [0.0, 0.0, 1.0],
+        pitch: f64::INFINITY,
+        plunge: [0.0; 3],
+        period: None,
+    };
+    let turn = Motion::Rotation {
+        center: [0.25, 0.0, 0.0],
+        axis: [0.0, 0.0, 1.0],
+        angle: f64::NAN,
+    };
+    for motion in [pitch, turn] {
+        let mut d =
+            Deformer::new(&mesh, &[attach(&["airfoil"], motion)], Settings::new(10)).unwrap();
+        let e = d.step(1).unwrap_err().to_string();
+        assert!(
+            e.starts_with("invalid setting: step 1: the motion moves node "),
+            "{e}"
+        );
+        assert!(
+            e.ends_with(
+                "not a finite position within ±1e100 (check the motion's numbers: angles, speeds, \
+             wavelengths, displacements)"
+            ),
+            "{e}"
+        );
+        assert_eq!(d.current_step(), 0);
+    }
+}
+
 #[test]
 fn surface_file_puts_every_node_where_the_file_says() {
     let mesh = crate::io::read(Path::new(NACA)).unwrap();
