@@ -335,9 +335,7 @@ impl Summary {
         }
         code
     }
-}
 
-impl Summary {
     /// The folders the run wrote its meshes to: the output folder, or the
     /// input OpenFOAM case and its time directories (the first, second and
     /// last of more than four).
@@ -402,10 +400,11 @@ impl Files {
 impl Outputs for Files {
     /// `NAME_NNNN.vtu`, and `NAME.pvd` rewritten with it added (time `n·dt`);
     /// into the input OpenFOAM case, the step's time directory (none for
-    /// step 0, the case's own `constant/polyMesh`).
+    /// step 0, the case's own `constant/polyMesh`, nor for the last).
     fn step(&mut self, job: &Job, s: &Snapshot) -> anyhow::Result<()> {
         if job.foam_times.is_some() {
-            if s.report.step > 0 {
+            // The last step is the final mesh, written after the run.
+            if s.report.step > 0 && s.report.step < job.settings.steps {
                 self.last(job, &s.coords, s.report.step)?;
             }
             return Ok(());
