@@ -75,7 +75,7 @@ fn the_steps_go_to_the_time_directories_the_control_dict_names() {
     let case = dir.path().join("square");
     block_case(&case, 4, 1);
     set_times(&case, "0", "5e-06");
-    let o = turn(&case, "20", "4", &["--every", "2", "--quiet"]);
+    let o = turn(&case, "20", "4", &["--every", "2"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(time_dirs(&case), ["1e-05", "2e-05"]);
     let out = String::from_utf8_lossy(&o.stdout);
@@ -162,7 +162,6 @@ fn a_failed_run_leaves_the_case_as_it_was_but_for_its_failed_state() {
             steps,
             "--every",
             "1",
-            "--quiet",
         ])
     };
     let o = push("1.4", "1");
