@@ -124,7 +124,7 @@ impl Times {
     }
 }
 
-/// `t` as OpenFOAM names a time: see the [module](self).
+/// `t` as OpenFOAM names a time (the module's doc says how).
 pub fn time_name(t: f64, format: TimeFormat, precision: usize) -> String {
     let p = precision.min(MAX_PRECISION);
     match format {
