@@ -175,6 +175,11 @@ pub struct Frame {
     pub positions: HashMap<usize, Vec<f64>>,
 }
 
+/// The largest coordinate a position may have (a motion's points, a
+/// positions file's, every step's targets): beyond it the springs'
+/// products overflow.
+pub(crate) const MAX_COORDINATE: f64 = 1e100;
+
 /// `v` of length 1. Scaled by its largest component first, so that a
 /// direction of huge (or tiny) finite numbers is still one.
 fn unit(v: &[f64; 3], what: &str) -> Result<[f64; 3]> {
@@ -234,7 +239,7 @@ impl Motion {
             }
             _ => ("", None),
         };
-        if let Some(p) = point.filter(|p| !p.iter().all(|x| x.abs() <= 1e100)) {
+        if let Some(p) = point.filter(|p| !p.iter().all(|x| x.abs() <= MAX_COORDINATE)) {
             return bad(format!(
                 "{what} {} is beyond ±1e100 (the displacements would overflow)",
                 crate::error::format_point(&p[..dim.min(3)])

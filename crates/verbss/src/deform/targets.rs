@@ -127,7 +127,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
     /// a displacement of 1e308 given to a binding) never reaches a solve,
     /// a message or a file as NaN.
     fn within_bounds(&self, n: usize, node: usize, p: Vec<f64>) -> Result<(usize, Vec<f64>)> {
-        if p.iter().all(|x| x.abs() <= 1e100) {
+        if p.iter().all(|x| x.abs() <= crate::motion::MAX_COORDINATE) {
             return Ok((node, p));
         }
         Err(Error::InvalidSetting(format!(

@@ -115,10 +115,6 @@ impl Positions {
     }
 }
 
-/// The largest coordinate a position may have: beyond it the springs'
-/// products overflow (the bound of the motions' own points).
-const MAX_COORDINATE: f64 = 1e100;
-
 /// Reads a positions file of dimension `dim`.
 pub fn read(path: &Path, dim: usize) -> Result<Positions> {
     parse(&crate::io::read_bytes(path)?, path, dim)
@@ -209,7 +205,7 @@ pub fn parse(bytes: &[u8], path: &Path, dim: usize) -> Result<Positions> {
                     format!("non-finite coordinate '{f}' (expected a finite number)"),
                 ));
             }
-            if x.abs() > MAX_COORDINATE {
+            if x.abs() > crate::motion::MAX_COORDINATE {
                 return Err(err(
                     line,
                     format!(
