@@ -421,3 +421,28 @@ mod hand_written {
 
 #[cfg(with_cgns)]
 mod polyhedra;
+
+/// HDF5 opens and locks its files without close-on-exec: a child process
+/// started while a file is open would hold its lock after verbss closes it,
+/// and the next open of the file would fail until the child exits. A child
+/// started while a file is open for modifying does not hold it.
+#[test]
+fn a_child_process_started_while_a_file_is_open_does_not_hold_it() {
+    if !needs(LIBRARY, available()) {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("held.cgns");
+    let mesh = samples::hex_wedge_pyramid_tet();
+    write(&path, &mesh, &WriteOptions::default()).unwrap();
+    let file = super::ffi::File::open(&path, super::ffi::Mode::Modify).unwrap();
+    let mut child = std::process::Command::new("sleep")
+        .arg("5")
+        .spawn()
+        .unwrap();
+    file.close().unwrap();
+    let back = read(&path);
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert_eq!(back.unwrap().node_count(), mesh.node_count());
+}

@@ -239,8 +239,9 @@ impl H5File {
         // SAFETY: a valid C string and flags.
         let file = unsafe { (api.fopen)(name.as_ptr(), READ_ONLY, DEFAULT) };
         if file < 0 {
-            return Err("HDF5 cannot open it".into());
+            return Err("HDF5 cannot open it (is another process writing it?)".into());
         }
+        super::keep_from_children(path);
         Ok(Some(H5File {
             api,
             file,

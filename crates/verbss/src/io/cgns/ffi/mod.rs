@@ -71,6 +71,49 @@ pub const EDGE_CENTER: c_int = 8;
 /// `CG_NODE_NOT_FOUND`.
 const NODE_NOT_FOUND: c_int = 2;
 
+/// Marks the descriptors this process holds on `path` close-on-exec.
+///
+/// HDF5 opens a file without `O_CLOEXEC` and locks it (`flock`). A child
+/// process that another thread starts while the file is open inherits the
+/// descriptor, and with it the lock, which then outlives the file's close
+/// here: the next open of that file fails until the child exits. Called
+/// right after each open, with the library's lock held.
+#[cfg(target_os = "linux")]
+fn keep_from_children(path: &Path) {
+    extern "C" {
+        fn fcntl(fd: c_int, cmd: c_int, ...) -> c_int;
+    }
+    const F_GETFD: c_int = 1;
+    const F_SETFD: c_int = 2;
+    const FD_CLOEXEC: c_int = 1;
+    let (Ok(file), Ok(descriptors)) = (path.canonicalize(), std::fs::read_dir("/proc/self/fd"))
+    else {
+        return;
+    };
+    for entry in descriptors.flatten() {
+        let fd = entry
+            .file_name()
+            .to_str()
+            .and_then(|n| n.parse::<c_int>().ok());
+        if let (Some(fd), Ok(target)) = (fd, std::fs::read_link(entry.path())) {
+            if target == file {
+                // SAFETY: `fcntl` on a descriptor of this process, which
+                // only reads and sets its flags.
+                unsafe {
+                    let flags = fcntl(fd, F_GETFD);
+                    if flags >= 0 {
+                        fcntl(fd, F_SETFD, flags | FD_CLOEXEC);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Elsewhere there is no `/proc/self/fd` to find the descriptors in.
+#[cfg(not(target_os = "linux"))]
+fn keep_from_children(_path: &Path) {}
+
 mod boco;
 mod hdf5;
 mod sys;
@@ -128,6 +171,7 @@ impl File {
         let mut id = 0;
         // SAFETY: a valid C string and an out-pointer.
         check(unsafe { cg_open(name.as_ptr(), mode as c_int, &mut id) })?;
+        keep_from_children(path);
         Ok(File {
             id,
             open: true,

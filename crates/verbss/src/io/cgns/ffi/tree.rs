@@ -65,6 +65,7 @@ impl Tree {
         let mut cgio = 0;
         // SAFETY: a valid C string and an out-pointer.
         check(unsafe { cgio_open_file(name.as_ptr(), mode, kind, &mut cgio) })?;
+        super::keep_from_children(path);
         Ok(Tree { cgio, _lock: lock })
     }
 
