@@ -57,10 +57,13 @@ fn positions_put_every_listed_node_where_the_file_says() {
         "min_quality",
         "inverted",
         "bins",
+        "amplification",
     ] {
         assert!(last.get(key).is_some(), "report step lacks {key}");
     }
     assert_eq!(last["inverted"], 0);
+    // The bump moved the wall; the interior followed it.
+    assert!(last["amplification"].as_f64().unwrap() > 0.0, "{last}");
 }
 
 #[test]

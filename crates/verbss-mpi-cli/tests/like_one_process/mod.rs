@@ -440,7 +440,7 @@ fn gathered_like_one_process(
 /// The `--report` of a distributed run states the single-process steps'
 /// quality: per step the cell count (the sum of the bins), the bins and the
 /// inverted count exactly, the minimum quality to 1e-10, the mean to
-/// rounding; the header the whole mesh's node and cell counts; the solver's
+/// rounding, the amplification to 1e-8; the header the whole mesh's node and cell counts; the solver's
 /// true residual and the estimated error those of a converged solve.
 fn reports_like_one_process(path: &Path, whole: &Mesh, one: &[StepReport], np: usize) {
     let text = std::fs::read_to_string(path).unwrap();
@@ -474,6 +474,13 @@ fn reports_like_one_process(path: &Path, whole: &Mesh, one: &[StepReport], np: u
             (mean - want.mean_quality).abs() < 1e-10,
             "{np} ranks, step {n}: mean {mean} against {}",
             want.mean_quality
+        );
+        // The coordinates agree to 1e-10 of the largest displacement.
+        let amplification = got["amplification"].as_f64().unwrap();
+        assert!(
+            (amplification - want.amplification).abs() < 1e-8,
+            "{np} ranks, step {n}: amplification {amplification} against {}",
+            want.amplification
         );
         if n > 0 {
             // Escalating (no --omega): the accepted step's true residual

@@ -40,6 +40,10 @@ pub struct StepReport {
     pub bins: [usize; 5],
     /// The mean element quality.
     pub mean_quality: f64,
+    /// The largest displacement of a node the step solved for over the
+    /// largest of a node it prescribed, in this step (0 where the boundary
+    /// did not move; docs/method.md, "Amplification").
+    pub amplification: f64,
     /// The solvers the step used, in order of first use (`sweeps`,
     /// `multigrid`, `safe-sweeps`, `direct`).
     pub stages: Vec<Stage>,

@@ -90,6 +90,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
                 ..
             } = attempt;
             report.add(&info);
+            report.amplification = self.amplification(from, &trial, targets);
             if !info.converged || check.summary.invalid > 0 {
                 if h * 0.5 >= floor {
                     h *= 0.5;
@@ -154,6 +155,33 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
         let mut tag = [self.mesh.node_tags.get(node).map_or(-1.0, |&t| t as f64)];
         self.on.max(&mut tag);
         tag[0].max(0.0) as u64
+    }
+
+    /// The amplification of the move from `from` to `to` (collective): the
+    /// largest displacement of a node without a target over the largest of
+    /// a node with one, 0 where none of those moved.
+    fn amplification(&self, from: &[f64], to: &[f64], targets: &[(usize, Vec<f64>)]) -> f64 {
+        let dim = self.mesh.dim;
+        let moved = |i: usize| -> f64 {
+            let d = (0..dim).map(|k| to[dim * i + k] - from[dim * i + k]);
+            d.map(|v| v * v).sum::<f64>().sqrt()
+        };
+        let mut prescribed = vec![false; from.len() / dim];
+        // [solved, prescribed]
+        let mut largest = [0.0f64; 2];
+        for (i, _) in targets {
+            prescribed[*i] = true;
+            largest[1] = largest[1].max(moved(*i));
+        }
+        for (i, _) in prescribed.iter().enumerate().filter(|(_, &p)| !p) {
+            largest[0] = largest[0].max(moved(i));
+        }
+        self.on.max(&mut largest);
+        if largest[1] > 0.0 {
+            largest[0] / largest[1]
+        } else {
+            0.0
+        }
     }
 
     /// The configuration `coords` with its `check`, for the step of `report`.

@@ -122,7 +122,7 @@ fn translation_is_reproduced_by_both_references() {
         let mut d = Deformer::new(&mesh, &[attach(&all, shift.clone())], settings).unwrap();
         for n in 1..=3 {
             let r = d.step(n).unwrap();
-            assert_eq!(r.step, n);
+            assert_eq!((r.step, r.amplification), (n, 0.0));
         }
         assert!(d.displacement().iter().all(|u| u.abs() < 1e-12));
     }
@@ -135,8 +135,10 @@ fn translation_is_reproduced_by_both_references() {
         settings.solve.tolerance = 1e-12;
         let all = ["left", "right", "bottom", "top"];
         let mut d = Deformer::new(&mesh, &[attach(&all, moved.clone())], settings).unwrap();
+        // Every node moves as the boundary: an amplification of 1.
         for _ in 0..3 {
-            d.advance().unwrap();
+            let r = d.advance().unwrap();
+            assert!((r.amplification - 1.0).abs() < 1e-9, "{}", r.amplification);
         }
         let u = d.displacement();
         for i in 0..mesh.node_count() {
