@@ -1,8 +1,8 @@
 //! Interfaces a file declares between groups: the two sides of a sliding
 //! interface (OpenFOAM's `cyclicAMI`, `cyclicACMI`, `mapped*` patches),
 //! whose coincident nodes move each with its own side, and the two sides of
-//! a periodic pair (`cyclic`), each node of one side the image of a node of
-//! the other by the pair's transform.
+//! a periodic pair (OpenFOAM's `cyclic`, Gmsh's `$Periodic`), each node of
+//! one side the image of a node of the other by the pair's transform.
 
 use crate::geometry::{cross, dot, norm};
 
@@ -25,6 +25,16 @@ pub enum Coupling {
     /// Each node of the second side is the image of one of the first by
     /// the transform.
     Periodic(Transform),
+    /// As [`Coupling::Periodic`], the nodes paired by the file: each
+    /// `(first, second)` with `second` the image of `first` (Gmsh's
+    /// `$Periodic`: master, slave), by the transform or, without one, by
+    /// the mean translation between the pairs.
+    Linked {
+        /// The transform, if the file gives one.
+        transform: Option<Transform>,
+        /// The node pairs.
+        pairs: Vec<(usize, usize)>,
+    },
 }
 
 /// The transform of a periodic pair, taking the first side onto the second.
@@ -42,6 +52,8 @@ pub enum Transform {
         /// The angle.
         angle: f64,
     },
+    /// `x' = A x + b`, the 3 × 4 matrix `[A | b]` by rows.
+    Affine([f64; 12]),
 }
 
 impl Transform {
@@ -62,6 +74,9 @@ impl Transform {
                 let kd = dot(&k, &v) * (1.0 - c);
                 std::array::from_fn(|d| centre[d] + v[d] * c + kv[d] * s + k[d] * kd)
             }
+            Transform::Affine(m) => std::array::from_fn(|r| {
+                m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3]
+            }),
         }
     }
 }
@@ -84,6 +99,11 @@ mod tests {
         assert_eq!(
             Transform::Translation([0.5, 0.0, -1.0]).apply(&[1.0, 2.0, 3.0]),
             [1.5, 2.0, 2.0]
+        );
+        let shear = [1.0, 0.5, 0.0, 2.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0];
+        assert_eq!(
+            Transform::Affine(shear).apply(&[1.0, 2.0, 3.0]),
+            [4.0, 2.0, 2.0]
         );
     }
 }

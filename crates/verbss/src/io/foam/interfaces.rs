@@ -147,6 +147,7 @@ fn transform(poly: &PolyMesh, a: &Patch, b: &Patch) -> Transform {
             centre: *centre,
             angle: -angle,
         },
+        Transform::Affine(_) => return t,
     };
     if miss(&reverse, &ca, &cb) < miss(&t, &ca, &cb) {
         reverse
