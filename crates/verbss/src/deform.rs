@@ -152,7 +152,8 @@ pub struct Deformer<S = Engine, C = Whole> {
 impl Deformer {
     /// Prepares `mesh` for the motions in `attachments`: resolves each node's
     /// role, builds the solver's topology and checks the input mesh (which
-    /// must have no invalid element and no two nodes at the same position).
+    /// must have no invalid element, and no two nodes at the same position
+    /// but the two sides of an interface or of a baffle moving together).
     pub fn new(mesh: &Mesh, attachments: &[Attachment], settings: Settings) -> Result<Deformer> {
         Deformer::shared(Arc::new(mesh.clone()), attachments, settings)
     }
