@@ -1,10 +1,11 @@
 //! The coupled patches of a `boundary` file as the mesh's interfaces
 //! ([`Interface`]): `cyclicAMI` and `cyclicACMI` pairs (an ACMI side with
-//! its `nonOverlapPatch`) and `mapped*` patches (`samplePatch`) slide;
-//! `cyclic` pairs are periodic, their transform from `transform
-//! translational` (`separationVector`) or `rotational` (`rotationAxis`,
-//! `rotationCentre`, `rotationAngle` in degrees), else the translation
-//! between the two patches' centroids.
+//! its `nonOverlapPatch`) and `mapped*` patches (`samplePatch`, when it
+//! names a patch of this mesh) slide; `cyclic` (and `cyclicSlip`) pairs are
+//! periodic, their transform from `transform translational`
+//! (`separationVector`) or `rotational` (`rotationAxis`, `rotationCentre`,
+//! `rotationAngle` in degrees), else the translation between the two
+//! patches' centroids.
 
 use super::lex::Lexer;
 use super::read::{Patch, PolyMesh};
@@ -16,8 +17,11 @@ use crate::mesh::{Coupling, Interface, Transform};
 /// A patch's coupling entries.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(super) struct Coupled {
-    /// `neighbourPatch` (or a mapped patch's `samplePatch`) and its line.
+    /// `neighbourPatch` and its line.
     pub neighbour: Option<(String, usize)>,
+    /// A mapped patch's `samplePatch` (which may name a patch of another
+    /// region: then it is no interface of this mesh).
+    pub sample: Option<String>,
     /// `nonOverlapPatch` (ACMI) and its line.
     pub non_overlap: Option<(String, usize)>,
     /// `transform`.
@@ -40,9 +44,8 @@ impl Coupled {
             Ok(lx.expect_any(what)?.text.to_string())
         };
         match key {
-            "neighbourPatch" | "samplePatch" => {
-                self.neighbour = Some((word(lx, "a patch name")?, line));
-            }
+            "neighbourPatch" => self.neighbour = Some((word(lx, "a patch name")?, line)),
+            "samplePatch" => self.sample = Some(word(lx, "a patch name")?),
             "nonOverlapPatch" => self.non_overlap = Some((word(lx, "a patch name")?, line)),
             "transform" => self.transform = Some(word(lx, "a transform type")?),
             "separationVector" => self.separation = Some(vector(lx, key)?),
@@ -81,10 +84,14 @@ pub(super) fn interfaces(poly: &PolyMesh) -> Result<Vec<Interface>> {
     let mut found = Vec::new();
     let mut paired = vec![false; poly.patches.len()];
     for (a, p) in poly.patches.iter().enumerate() {
-        let Some((name, line)) = &p.coupled.neighbour else {
-            continue;
+        let b = match (&p.coupled.neighbour, &p.coupled.sample) {
+            (Some((name, line)), _) => find(name, *line, "the neighbour patch")?,
+            (None, Some(name)) => match poly.patches.iter().position(|q| &q.name == name) {
+                Some(b) => b,
+                None => continue,
+            },
+            (None, None) => continue,
         };
-        let b = find(name, *line, "the neighbour patch")?;
         if paired[a] || b == a {
             continue;
         }
@@ -99,7 +106,7 @@ pub(super) fn interfaces(poly: &PolyMesh) -> Result<Vec<Interface>> {
             }
             Ok(names)
         };
-        let coupling = if p.kind == "cyclic" {
+        let coupling = if matches!(p.kind.as_str(), "cyclic" | "cyclicSlip") {
             Coupling::Periodic(transform(poly, p, &poly.patches[b]))
         } else {
             Coupling::Sliding

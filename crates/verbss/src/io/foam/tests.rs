@@ -528,6 +528,13 @@ fn coupled_patches_are_the_mesh_interfaces() {
             }]
         );
     }
+    // A mapped patch sampling another region's patch is no interface here.
+    let mapped = coupled_case(
+        "type mappedWall; sampleMode nearestPatchFace; sampleRegion solid; samplePatch elsewhere;",
+        "type wall;",
+    )
+    .unwrap();
+    assert_eq!(mapped.origin.interfaces, []);
     let e = coupled_case("type cyclicAMI; neighbourPatch nowhere;", "type wall;")
         .unwrap_err()
         .to_string();
