@@ -80,9 +80,9 @@ extern "C" {
 // - `settings`: from `verbss_settings_new`, or NULL for the defaults.
 //
 // Checks the settings together, the sliding planes, the fixed groups and
-// the mesh (no
-// degenerate or inverted element, no two nodes at the same position) and
-// builds its topology, once.
+// the mesh (no degenerate or inverted element, no two nodes at the same
+// position but the two sides of a baffle moving together) and builds its
+// topology, once.
 //
 // # Safety
 // Each non-NULL array must hold the number of elements stated; `settings`

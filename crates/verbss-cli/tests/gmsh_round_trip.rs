@@ -108,3 +108,39 @@ fn convert_to_the_same_msh_writes_the_file_back_byte_for_byte() {
         }
     }
 }
+
+/// Gmsh's periodic box (its outlet the inlet moved by 2 along x): the links
+/// of `$Periodic` are read in every encoding, held while the body moves
+/// (above), and a motion of the outlet alone is refused.
+#[test]
+fn a_periodic_side_moved_without_its_master_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    if !gmsh_meshes(dir.path()) {
+        return;
+    }
+    for encoding in ENCODINGS {
+        let input = dir.path().join(format!("periodic_{encoding}.msh"));
+        let output = dir.path().join("parted.msh");
+        let o = verbss(&[
+            "deform",
+            s(&input),
+            "-o",
+            s(&output),
+            "--moving",
+            "body,outlet",
+            "--translate",
+            "0,-0.05,0",
+            "--quiet",
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{encoding}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert!(
+            e.starts_with("error: invalid setting: the periodic patches surface ")
+                && e.contains(" would no longer match: node ")
+                && e.contains(" is held and its partner, node ")
+                && e.contains(", moves; move both sides with one motion, or hold both"),
+            "{encoding}: {e}"
+        );
+        assert!(!output.exists());
+    }
+}

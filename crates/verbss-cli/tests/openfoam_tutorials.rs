@@ -1,7 +1,8 @@
 //! OpenFOAM's own tutorial meshes, built as their Allrun builds them, and a
-//! snappyHexMesh mesh of our own: polyhedra read and moved, and every mesh
-//! verbss accepts passes checkMesh's cell tests (docs/method.md,
-//! "Validity").
+//! snappyHexMesh mesh of our own (moved, and its wall deformed): polyhedra
+//! read and moved, and every mesh verbss accepts passes checkMesh's cell
+//! tests (docs/method.md, "Validity"). The tutorials with interfaces are in
+//! `openfoam_interfaces.rs`.
 
 use std::path::{Path, PathBuf};
 
@@ -215,45 +216,6 @@ fn wing_motion_pitches_40_degrees_and_every_step_written_passes_check_mesh() {
     );
 }
 
-#[test]
-fn oscillating_inlet_acmi_2d_is_read_and_a_moved_copy_passes_check_mesh() {
-    let name = "incompressible/pimpleFoam/RAS/oscillatingInletACMI2D";
-    let tools = ["blockMesh", "topoSet", "createBaffles", "checkMesh"];
-    if !have_tutorial(name) || !have_utilities(&tools) {
-        return;
-    }
-    let dir = tempfile::tempdir().unwrap();
-    let case = dir.path().join("acmi");
-    copy_tutorial(name, &case);
-    foam("blockMesh", &case, &[]);
-    foam("topoSet", &case, &["-constant"]);
-    foam("createBaffles", &case, &["-overwrite"]);
-    let log = foam("checkMesh", &case, &[]);
-    assert_eq!(count_after(&log, "polyhedra:"), Some(136), "{log}");
-    let mesh = verbss::io::read(&case).unwrap();
-    assert_eq!((mesh.dim, mesh.cell_count()), (2, 10880));
-    let o = verbss(&["quality", case.to_str().unwrap(), "--json"]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert_eq!(v["inverted"], 0, "{v}");
-    // The inlet channel (x < 1, and its side of the ACMI interface) slid
-    // up a quarter of its height, as the tutorial's own motion moves it.
-    let inlet_side: Vec<usize> = ["ACMI1_couple", "ACMI1_blockage"]
-        .iter()
-        .flat_map(|g| mesh.group(g).unwrap().nodes())
-        .collect();
-    let mut coords = mesh.coords.clone();
-    for i in 0..mesh.node_count() {
-        if mesh.point(i)[0] < 1.0 - 1e-9 || inlet_side.contains(&i) {
-            coords[2 * i + 1] += 0.1;
-        }
-    }
-    let moved = dir.path().join("slid");
-    verbss::io::write_moved(&moved, &mesh, &coords, &WriteOptions::default()).unwrap();
-    write_system(&moved);
-    assert_eq!(check_mesh_failures(&moved, &[]), Vec::<String>::new());
-}
-
 /// A sphere (patch `sphere`, radius 0.5) in a channel 6 × 2 × 2 of 60 × 20
 /// × 20 cells, the sphere's cells refined once by snappyHexMesh: about
 /// 27,000 cells, 1,100 of them polyhedra.
@@ -342,6 +304,35 @@ fn a_snappy_hex_mesh_sphere_moves_and_passes_check_mesh() {
             "{method}"
         );
     }
+    // A deforming wall: the sphere stretched into an ellipsoid (x by 1.1,
+    // y and z by 0.95) through given positions, in 2 steps.
+    let sphere = mesh.group("sphere").unwrap().nodes();
+    let stretched = |p: &[f64]| [1.1 * p[0], 0.95 * p[1], 0.95 * p[2]];
+    let mut table = String::from("id,x,y,z\n");
+    for &i in &sphere {
+        let q = stretched(mesh.point(i));
+        table += &format!("{i},{},{},{}\n", q[0], q[1], q[2]);
+    }
+    let positions = dir.path().join("ellipsoid.csv");
+    std::fs::write(&positions, table).unwrap();
+    let out = dir.path().join("stretched");
+    let motion = [
+        "--moving",
+        "sphere",
+        "--positions",
+        positions.to_str().unwrap(),
+        "--steps",
+        "2",
+    ];
+    let o = deform(&case, &out, &motion);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let moved = verbss::io::read(&out).unwrap();
+    for &i in &sphere {
+        let (want, got) = (stretched(mesh.point(i)), moved.point(i));
+        assert!((0..3).all(|d| (want[d] - got[d]).abs() < 1e-12), "node {i}");
+    }
+    write_system(&out);
+    assert_eq!(check_mesh_failures(&out, &[]), Vec::<String>::new());
     // The polyhedra written to .vtu and read back; SU2 cannot hold them.
     let vtu = dir.path().join("sphere.vtu");
     let o = verbss(&["convert", case.to_str().unwrap(), vtu.to_str().unwrap()]);

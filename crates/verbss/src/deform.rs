@@ -50,6 +50,10 @@ use crate::topology;
 
 mod accept;
 mod attempt;
+mod coincident;
+#[cfg(test)]
+mod interface_tests;
+mod periodic;
 mod report;
 mod roles;
 mod step;
@@ -58,7 +62,7 @@ mod targets;
 mod tests;
 
 pub use self::report::{Snapshot, StepReport};
-use self::roles::{duplicate_nodes, plan_roles};
+use self::roles::plan_roles;
 use crate::near_wall::blend::{self, Blend};
 
 /// What one process holds of the mesh a deformer moves ([`Deformer::on`]):
@@ -141,12 +145,15 @@ pub struct Deformer<S = Engine, C = Whole> {
     round_off: f64,
     current: Snapshot,
     failed: Option<Snapshot>,
+    /// The periodic pairs, checked at every step where both sides move.
+    periodic: Vec<periodic::Periodic>,
 }
 
 impl Deformer {
     /// Prepares `mesh` for the motions in `attachments`: resolves each node's
     /// role, builds the solver's topology and checks the input mesh (which
-    /// must have no invalid element and no two nodes at the same position).
+    /// must have no invalid element, and no two nodes at the same position
+    /// but the two sides of an interface or of a baffle moving together).
     pub fn new(mesh: &Mesh, attachments: &[Attachment], settings: Settings) -> Result<Deformer> {
         Deformer::shared(Arc::new(mesh.clone()), attachments, settings)
     }
@@ -197,19 +204,10 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
             m.validate(mesh.dim)?;
         }
         settings.reference = settings.reference.resolved(&motions);
-        agree(
-            &on,
-            match duplicate_nodes(mesh) {
-                Some((a, b)) => Err(Error::InvalidMesh(format!(
-                    "nodes {} and {} are at the same position {}: duplicate nodes",
-                    mesh.node_tags[a],
-                    mesh.node_tags[b],
-                    format_point(mesh.point(a))
-                ))),
-                None => Ok(()),
-            },
-        )?;
+        let baffles = agree(&on, coincident::baffles(mesh))?;
         let mut plan = agree(&on, plan_roles(mesh, attachments, &on))?;
+        agree(&on, coincident::check_baffles(mesh, &plan, &baffles))?;
+        let periodic = agree(&on, periodic::pairs(mesh, &plan))?;
         // The edge graph, built once for the near-wall treatments, the
         // blend and the springs, where the treatments or the blend need it.
         let blending = settings.robust.blend && !plan.bodies.is_empty();
@@ -298,6 +296,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
             bodies: plan.bodies,
             moving: plan.moving,
             layer,
+            periodic,
             anchors,
             layer_thickness: rigid.thickness,
             layer_nodes: layer_nodes[0] as usize,

@@ -17,20 +17,6 @@ use crate::near_wall::Bounds;
 use crate::solve::NodeRole;
 use crate::topology;
 
-/// The first two nodes (in node order of the second) at exactly the same
-/// position, if any.
-pub(super) fn duplicate_nodes(mesh: &Mesh) -> Option<(usize, usize)> {
-    let mut seen: HashMap<[u64; 3], usize> = HashMap::with_capacity(mesh.node_count());
-    (0..mesh.node_count()).find_map(|i| {
-        // `+ 0.0` makes −0 and +0 the same key; a 2D point leaves z at 0.
-        let mut key = [0u64; 3];
-        for (k, x) in key.iter_mut().zip(mesh.point(i)) {
-            *k = (x + 0.0).to_bits();
-        }
-        seen.insert(key, i).map(|first| (first, i))
-    })
-}
-
 /// Node roles, slide directions (plane normals and line directions), the
 /// bodies and the moving nodes.
 pub(super) struct Plan {

@@ -24,6 +24,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
     pub fn step(&mut self, n: usize) -> Result<StepReport> {
         let start = Instant::now();
         let targets = self.targets(n)?;
+        super::periodic::check(&self.periodic, &self.mesh, &targets, n)?;
         // The step starts from the current coordinates, lent to it rather
         // than copied, and given back when it fails.
         let from = std::mem::take(&mut self.current.coords);

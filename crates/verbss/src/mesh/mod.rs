@@ -2,11 +2,13 @@
 //! named boundary groups with their facets.
 
 mod faces;
+mod interface;
 mod kind;
 pub mod kinds;
 pub mod samples;
 
 pub use faces::{FaceList, Faces, Local};
+pub use interface::{Coupling, Interface, Transform};
 pub use kind::{CellKind, KindTable};
 
 use std::collections::hash_map::{DefaultHasher, Entry};
@@ -300,6 +302,10 @@ pub struct FileOrigin {
     /// cell as read is positively oriented by definition, whatever its
     /// shape ([`crate::quality::orientation`]).
     pub oriented: bool,
+    /// The interfaces the file declares between its groups (OpenFOAM's
+    /// coupled patches): what `deform` accepts of their coincident nodes
+    /// and keeps of their transforms.
+    pub interfaces: Vec<Interface>,
 }
 
 /// Two meshes are equal when everything but the file they came from is

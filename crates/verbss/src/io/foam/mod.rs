@@ -26,7 +26,9 @@
 //! (see [`Plane`]), and its `empty` patches are not groups. A case with two
 //! patches of type `wedge` is an axisymmetric one: read as the 2D mesh of
 //! its (axial, radial) plane ([`Wedge`]), its `wedge` patches not groups,
-//! the sides on its axis the group `axis`.
+//! the sides on its axis the group `axis`. Coupled patches (`cyclicAMI`,
+//! `cyclicACMI`, `cyclic`, `mapped*`) are the mesh's interfaces
+//! ([`crate::mesh::Interface`]).
 //!
 //! Writing ([`write()`]) needs a mesh read from a case, whose faces, owners,
 //! neighbours and patches it keeps: only the points change. Into the case
@@ -37,6 +39,7 @@
 
 mod cells;
 mod file;
+mod interfaces;
 mod lex;
 mod plane;
 mod read;
@@ -140,6 +143,7 @@ pub fn read(path: &Path) -> Result<Mesh> {
         });
     }
     let mut poly = read::read(&dir)?;
+    let interfaces = interfaces::interfaces(&poly)?;
     let cells = cells::cells(&poly)?;
     let n_points = poly.points.len() / 3;
     let has_empty = poly
@@ -197,6 +201,7 @@ pub fn read(path: &Path) -> Result<Mesh> {
                 plane,
             })),
             oriented: true,
+            interfaces,
             ..FileOrigin::default()
         },
     };

@@ -3,6 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use super::file::{self, end, header, label_below};
+use super::interfaces::Coupled;
 use super::lex::Lexer;
 use crate::error::{Error, Result};
 use crate::io::{shown, MAX_GROUPS};
@@ -20,6 +21,8 @@ pub(super) struct Patch {
     pub n_faces: usize,
     /// The line of its name in the `boundary` file.
     pub line: usize,
+    /// Its coupling entries (`neighbourPatch`, `transform`, …).
+    pub coupled: Coupled,
 }
 
 /// The lists of a `polyMesh` directory, checked against each other.
@@ -282,6 +285,7 @@ fn boundary(dir: &Path) -> Result<Vec<Patch>> {
         }
         lx.expect("{", &format!("after the patch name {}", shown(t.text)))?;
         let (mut kind, mut n_faces, mut start_face) = (None, None, None);
+        let mut coupled = Coupled::default();
         loop {
             let key = lx.expect_any("a patch entry or '}'")?;
             match key.text {
@@ -289,6 +293,7 @@ fn boundary(dir: &Path) -> Result<Vec<Patch>> {
                 "type" => kind = Some(lx.expect_any("the patch type")?.text.to_string()),
                 "nFaces" => n_faces = Some(lx.label("nFaces (a count)")?.0),
                 "startFace" => start_face = Some(lx.label("startFace (a face label)")?.0),
+                _ if coupled.entry(lx, key.text, key.line)? => {}
                 _ => {
                     lx.skip_value(key.text, key.line)?;
                     continue;
@@ -304,6 +309,7 @@ fn boundary(dir: &Path) -> Result<Vec<Patch>> {
             n_faces: n_faces.ok_or_else(|| missing("nFaces"))?,
             start_face: start_face.ok_or_else(|| missing("startFace"))?,
             line: t.line,
+            coupled,
         })
     })?;
     end(&mut lx)?;

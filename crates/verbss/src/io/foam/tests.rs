@@ -3,6 +3,7 @@ use std::path::Path;
 
 use super::*;
 use crate::mesh::samples::hex_wedge_pyramid_tet;
+use crate::mesh::{Coupling, Interface, Transform};
 use crate::quality::orientation;
 
 /// The five polyMesh files of a 3D `mesh` as text: faces from the kinds'
@@ -472,4 +473,74 @@ fn a_missing_or_compressed_file_is_named() {
     std::fs::rename(poly.join("owner"), poly.join("owner.gz")).unwrap();
     let e = read(dir.path()).unwrap_err().to_string();
     assert!(e.contains("owner: only owner.gz is there"), "{e}");
+}
+
+/// The sample's boundary with `floor` and `roof` given `floor` and `roof`
+/// as their types and further entries.
+fn coupled_case(floor: &str, roof: &str) -> Result<Mesh> {
+    let mut files = poly_files(&hex_wedge_pyramid_tet(), &[]);
+    let boundary = &mut files.iter_mut().find(|f| f.0 == "boundary").unwrap().1;
+    for (name, entries) in [("floor", floor), ("roof", roof)] {
+        let at = format!("    {name}\n    {{\n        type wall;");
+        *boundary = boundary.replace(&at, &format!("    {name}\n    {{\n        {entries}"));
+    }
+    let dir = tempfile::tempdir().unwrap();
+    write_files(dir.path(), &files);
+    read(dir.path())
+}
+
+#[test]
+fn coupled_patches_are_the_mesh_interfaces() {
+    let sliding = coupled_case(
+        "type cyclicAMI; neighbourPatch roof; matchTolerance 0.0001;",
+        "type cyclicAMI; neighbourPatch floor;",
+    )
+    .unwrap();
+    let sides = [vec!["floor".to_string()], vec!["roof".to_string()]];
+    assert_eq!(
+        sliding.origin.interfaces,
+        [Interface {
+            sides: sides.clone(),
+            coupling: Coupling::Sliding
+        }]
+    );
+    // A cyclic pair's translation from its centroids, or the file's turned
+    // round to take the first patch onto the second.
+    let centroid = |g: &str| -> [f64; 3] {
+        let nodes = sliding.group(g).unwrap().nodes();
+        std::array::from_fn(|d| {
+            nodes.iter().map(|&i| sliding.point(i)[d]).sum::<f64>() / nodes.len() as f64
+        })
+    };
+    let (f, r) = (centroid("floor"), centroid("roof"));
+    let shift: [f64; 3] = std::array::from_fn(|d| r[d] - f[d]);
+    let backwards = format!(
+        "type cyclic; neighbourPatch roof; transform translational; separationVector ({} {} {});",
+        -shift[0], -shift[1], -shift[2]
+    );
+    for floor in ["type cyclic; neighbourPatch roof;", &backwards] {
+        let periodic = coupled_case(floor, "type cyclic; neighbourPatch floor;").unwrap();
+        assert_eq!(
+            periodic.origin.interfaces,
+            [Interface {
+                sides: sides.clone(),
+                coupling: Coupling::Periodic(Transform::Translation(shift))
+            }]
+        );
+    }
+    // A mapped patch sampling another region's patch is no interface here.
+    let mapped = coupled_case(
+        "type mappedWall; sampleMode nearestPatchFace; sampleRegion solid; samplePatch elsewhere;",
+        "type wall;",
+    )
+    .unwrap();
+    assert_eq!(mapped.origin.interfaces, []);
+    let e = coupled_case("type cyclicAMI; neighbourPatch nowhere;", "type wall;")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("boundary:")
+            && e.contains("the neighbour patch 'nowhere' is not a patch of this boundary"),
+        "{e}"
+    );
 }

@@ -7,8 +7,10 @@
 //! 8; binary files hold the integer 1 after the format line to show their byte
 //! order, and must be little-endian), `$PhysicalNames`, `$Entities` and
 //! `$PartitionedEntities` (4.1: the physical tags of each geometric entity),
-//! `$Nodes` and `$Elements`, and skips every other section (`$Periodic`,
-//! `$NodeData`, …). Element types: 15 point,
+//! `$Nodes`, `$Elements` and `$Periodic` (its links, each node of a slave
+//! entity the image of a master node: the mesh's periodic interfaces,
+//! [`crate::mesh::Coupling::Linked`]), and skips every other section
+//! (`$NodeData`, …). Element types: 15 point,
 //! 1 line, 2 triangle, 3 quadrangle, 4 tetrahedron, 5 hexahedron, 6 prism,
 //! 7 pyramid; any other type (higher order, …) is an error.
 //!
@@ -63,6 +65,7 @@ mod cursor;
 mod entities;
 mod model;
 pub mod partitioned;
+mod periodic;
 mod source;
 pub mod split;
 pub mod split_write;
@@ -126,6 +129,7 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
     let mut entities = entities::Entities::default();
     let mut nodes: Option<(Nodes, NodeIndex)> = None;
     let mut elements: Option<(Elements, Mark)> = None;
+    let mut links = Vec::new();
     while let Some(tok) = c.next_token() {
         let section = c.mark();
         match tok {
@@ -162,6 +166,7 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
                 };
                 elements = Some((read, section));
             }
+            b"$Periodic" => links.extend(periodic::read(&mut c, version)?),
             t if t.len() > 1 && t[0] == b'$' && !t.starts_with(b"$End") => {
                 let name = String::from_utf8_lossy(&t[1..]).into_owned();
                 c.skip_past(&format!("$End{name}"))?;
@@ -184,6 +189,7 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<Mesh> {
     let spans = std::mem::take(&mut nodes.spans);
     let (mut mesh, structure) =
         finish(&c, nodes, elements, &names, version == MshVersion::V22, end)?;
+    mesh.origin.interfaces = periodic::interfaces(&c, &links, &mesh.node_tags)?;
     let source = Source::new(bytes, (version, c.binary()), spans, structure, &mesh);
     mesh.origin.gmsh = Some(Arc::new(source));
     Ok(mesh)

@@ -5,7 +5,7 @@ use std::path::Path;
 use super::{cells, group, written};
 use crate::io::gmsh::parse;
 use crate::io::MshVersion;
-use crate::mesh::CellKind;
+use crate::mesh::{CellKind, Coupling, Interface, Transform};
 
 pub(super) const V22: &str = "$MeshFormat
 2.2 0 8
@@ -117,13 +117,51 @@ fn unnamed_and_multiple_physical_tags() {
 
 #[test]
 fn skips_unknown_sections() {
-    let extra = "$Periodic\n1\n1 1 1\n$EndPeriodic\n$NodeData\n1\n\"u\"\n$EndNodeData\n";
+    let extra = "$Comments\n1\n1 1 1\n$EndComments\n$NodeData\n1\n\"u\"\n$EndNodeData\n";
     let bytes = replaced(V22, "$Nodes\n", &format!("{extra}$Nodes\n"));
     let plain = parse(V22.as_bytes(), Path::new("t.msh")).unwrap();
     assert_eq!(parse(&bytes, Path::new("t.msh")).unwrap(), plain);
     let mut binary = written(&plain, MshVersion::V41, true);
     binary.extend_from_slice(extra.as_bytes());
     assert_eq!(parse(&binary, Path::new("t.msh")).unwrap(), plain);
+}
+
+#[test]
+fn periodic_links_are_the_mesh_interfaces() {
+    // The square's right side (nodes 2, 3) the image of its left (1, 4).
+    let link =
+        "$Periodic\n1\n1 2 1\nAffine 1 0 0 1 0 1 0 0 0 0 1 0 0 0 0 1\n2\n2 1\n3 4\n$EndPeriodic\n";
+    let m = parse((V22.to_string() + link).as_bytes(), Path::new("t.msh")).unwrap();
+    let shift = [1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+    assert_eq!(
+        m.origin.interfaces,
+        [Interface {
+            sides: [vec!["curve 1".into()], vec!["curve 2".into()]],
+            coupling: Coupling::Linked {
+                transform: Some(Transform::Affine(shift)),
+                pairs: vec![(0, 1), (3, 2)],
+            },
+        }]
+    );
+    let bare = link.replace("Affine 1 0 0 1 0 1 0 0 0 0 1 0 0 0 0 1\n", "");
+    let m = parse((V22.to_string() + &bare).as_bytes(), Path::new("t.msh")).unwrap();
+    assert!(matches!(
+        &m.origin.interfaces[0].coupling,
+        Coupling::Linked {
+            transform: None,
+            ..
+        }
+    ));
+    let e = parse(
+        (V22.to_string() + &link.replace("3 4", "3 9")).as_bytes(),
+        Path::new("t.msh"),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("the periodic link of entity 2 names node 9, which $Nodes does not have"),
+        "{e}"
+    );
 }
 
 #[test]
