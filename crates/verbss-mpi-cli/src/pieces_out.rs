@@ -83,9 +83,11 @@ impl<'a> Pieces<'a> {
     fn files(&self, job: &Job, ranks: i32) -> Vec<Output> {
         let dir = output_dir(&self.output);
         let stem = file_stem(&self.output);
-        let vtu = |flag: &str, name: &str| {
+        let vtu = |flag: &str, name: &str| -> Vec<Output> {
             let pieces = (0..ranks).map(|r| Output::new(flag, piece_path(&dir, name, r)));
-            pieces.chain([Output::new(flag, dir.join(format!("{name}.pvtu")))])
+            pieces
+                .chain([Output::new(flag, dir.join(format!("{name}.pvtu")))])
+                .collect()
         };
         let mut files: Vec<Output> = match has_extension(&self.output, "msh") {
             true => (1..=ranks as usize)
@@ -94,7 +96,7 @@ impl<'a> Pieces<'a> {
                     ..Output::new("-o", split_path(&dir, &stem, k))
                 })
                 .collect(),
-            false => vtu("-o", &stem).collect(),
+            false => vtu("-o", &stem),
         };
         if job.series {
             let steps = std::iter::once(0).chain(job.written_steps(job.settings.steps));
