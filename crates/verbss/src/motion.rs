@@ -185,7 +185,10 @@ pub(crate) const MAX_COORDINATE: f64 = 1e100;
 /// other number and, by `node(k)`, where its row `k` came from
 /// (`Python Deformer.step displacement of node 17`).
 pub fn check_displacement(u: &[f64], dim: usize, node: impl Fn(usize) -> String) -> Result<()> {
-    match u.iter().position(|x| !(x.abs() <= MAX_COORDINATE)) {
+    match u
+        .iter()
+        .position(|x| x.is_nan() || x.abs() > MAX_COORDINATE)
+    {
         None => Ok(()),
         Some(k) => Err(Error::InvalidDisplacement(format!(
             "{} is {} (expected finite numbers within ±1e100)",
