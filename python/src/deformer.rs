@@ -6,8 +6,8 @@ use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods}
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 use verbss::deform::StepReport;
-use verbss::settings::Settings;
 use verbss::motion::{check_displacement, Attachment, Motion, PositionSource};
+use verbss::settings::Settings;
 
 use crate::{asarray, invalid_setting, pairs, points_array, raise, shape_text, GilProbe, Mesh};
 
