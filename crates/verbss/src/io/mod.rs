@@ -190,7 +190,8 @@ pub fn temp_path(path: &Path) -> PathBuf {
 /// only once everything was written and flushed. On failure the temporary
 /// file is removed and `path` is untouched. A symbolic link is followed (its
 /// final target is replaced, the link kept); a device, FIFO or socket is
-/// written to directly, never replaced.
+/// written to directly, never replaced (the commands refuse them as outputs
+/// before a run: [`outputs::check`]).
 pub fn write_atomic(
     path: &Path,
     fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
