@@ -6,8 +6,8 @@ use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods}
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 use verbss::deform::StepReport;
+use verbss::motion::{check_displacement, Attachment, Motion, PositionSource};
 use verbss::settings::Settings;
-use verbss::motion::{Attachment, Motion, PositionSource};
 
 use crate::{asarray, invalid_setting, pairs, points_array, raise, shape_text, GilProbe, Mesh};
 
@@ -89,7 +89,7 @@ fn setting_text(value: &Bound<'_, PyAny>) -> PyResult<String> {
 /// or a callable given the group's input coordinates and the step number.
 fn displacement(
     value: &Bound<'_, PyAny>,
-    name: &str,
+    (name, nodes): (&str, &[usize]),
     x0: &Bound<'_, PyArray2<f64>>,
     step: usize,
 ) -> PyResult<Vec<f64>> {
@@ -109,17 +109,18 @@ fn displacement(
         let row = a.as_array().to_vec();
         row.iter().copied().cycle().take(n * dim).collect()
     } else {
-        return Err(invalid_setting(format!(
+        return Err(raise(verbss::Error::InvalidDisplacement(format!(
             "the displacement of group '{name}' has shape {}, expected ({n}, {dim}) or ({dim},)",
             shape_text(&shape)
-        )));
+        ))));
     };
-    if let Some(k) = u.iter().position(|x| !x.is_finite()) {
-        return Err(invalid_setting(format!(
-            "the displacement of group '{name}' is not finite at row {}",
-            k / dim
-        )));
-    }
+    check_displacement(&u, dim, |row| {
+        format!(
+            "Python Deformer.step displacement of node {} (row {row} of group '{name}')",
+            nodes[row]
+        )
+    })
+    .map_err(raise)?;
     Ok(u)
 }
 
@@ -277,7 +278,8 @@ impl Deformer {
         for (name, value) in &given {
             let nodes = mesh.group(name).map_err(raise)?.nodes();
             let coords: Vec<f64> = nodes.iter().flat_map(|&i| mesh.point(i).to_vec()).collect();
-            let u = displacement(value, name, &points_array(py, &coords, dim), step)?;
+            let x0 = points_array(py, &coords, dim);
+            let u = displacement(value, (name, &nodes), &x0, step)?;
             let targets: HashMap<usize, Vec<f64>> = nodes
                 .iter()
                 .zip(u.chunks(dim))

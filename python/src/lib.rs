@@ -271,7 +271,9 @@ impl Mesh {
                     let (ids, columns) = node_ids(&array, n, &what)?;
                     let kind = if nested {
                         CellKind::from_name(&kind_name)
-                            .filter(|k| k.dim() < dim && !k.is_general() && k.node_count() == columns)
+                            .filter(|k| {
+                                k.dim() < dim && !k.is_general() && k.node_count() == columns
+                            })
                             .ok_or_else(|| {
                                 invalid_mesh(format!(
                                     "{what} has facets '{kind_name}' with {columns} nodes, \

@@ -314,12 +314,17 @@ def test_rejected_step_keeps_the_last_one_and_can_be_retried():
 
 def test_bad_displacements_are_named():
     d = verbss.Deformer(verbss.read(NACA))
+    node = int(d.mesh.groups["airfoil"][0])
+    named = ("invalid displacement: Python Deformer.step displacement of node %d (row 0 of "
+             "group 'airfoil') is %s (expected finite numbers within ±1e100)")
     cases = [
         ({"airfoil": np.zeros((3, 2))},
-         "invalid setting: the displacement of group 'airfoil' has shape (3, 2), "
+         "invalid displacement: the displacement of group 'airfoil' has shape (3, 2), "
          "expected (200, 2) or (2,)"),
-        ({"airfoil": [0.0, np.nan]},
-         "invalid setting: the displacement of group 'airfoil' is not finite at row 0"),
+        ({"airfoil": [0.0, np.nan]}, named % (node, "NaN")),
+        # Issue 43, 11 and 15: a huge displacement is named, printed short,
+        # before it makes a NaN position.
+        ({"airfoil": [1e308, 0.0]}, named % (node, "1e308")),
         ({}, "invalid setting: the first step names no group to move"),
     ]
     for given, message in cases:

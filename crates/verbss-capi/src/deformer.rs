@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use std::ffi::c_int;
 
 use verbss::deform::{Deformer, StepReport};
-use verbss::motion::{Attachment, Motion, PositionSource};
+use verbss::motion::{check_displacement, Attachment, Motion, PositionSource};
 use verbss::topology::boundary_facets;
 use verbss::{Error, Mesh};
 
@@ -205,13 +205,12 @@ pub unsafe extern "C" fn verbss_deformer_step(
         }
         // SAFETY: the caller guarantees `len` numbers.
         let u = unsafe { slice(displacement, len, "displacement") }?;
-        if let Some(k) = u.iter().position(|x| !x.is_finite()) {
-            return Err(Error::InvalidSetting(format!(
-                "the displacement of moving node {} is not finite",
-                k / dim
-            ))
-            .into());
-        }
+        check_displacement(u, dim, |k| {
+            format!(
+                "verbss_deformer_step displacement of moving node {k} (node {})",
+                d.moving[k]
+            )
+        })?;
         let mesh = d.deformer.initial();
         let positions = d
             .moving

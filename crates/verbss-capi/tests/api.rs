@@ -296,10 +296,22 @@ fn bad_input_returns_status_2_and_says_what_is_wrong() {
         unsafe { verbss_deformer_step(d, u.as_ptr(), 2) },
         VERBSS_ERROR_INPUT
     );
+    let named = |x: &str| {
+        format!(
+            "invalid displacement: verbss_deformer_step displacement of moving node 0 (node {}) \
+             is {x} (expected finite numbers within ±1e100)",
+            MOVING[0]
+        )
+    };
+    assert_eq!(last_error(), named("NaN"));
+    // Issue 43, 11 and 15: a huge displacement is refused with its number,
+    // printed short, before it makes a NaN position.
+    let u = [1e308, 0.0];
     assert_eq!(
-        last_error(),
-        "invalid setting: the displacement of moving node 0 is not finite"
+        unsafe { verbss_deformer_step(d, u.as_ptr(), 2) },
+        VERBSS_ERROR_INPUT
     );
+    assert_eq!(last_error(), named("1e308"));
     let mut out = [0.0; 4];
     assert_eq!(
         unsafe { verbss_deformer_points(d, out.as_mut_ptr(), 4) },

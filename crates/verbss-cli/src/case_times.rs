@@ -10,6 +10,7 @@ use std::path::Path;
 
 use anyhow::bail;
 use clap::Args;
+use verbss::error::format_number;
 use verbss::io::foam::{self, Times};
 use verbss::io::Format;
 
@@ -32,7 +33,10 @@ impl TimeArgs {
     pub fn dt(&self) -> anyhow::Result<Option<f64>> {
         match self.dt {
             Some(dt) if !(dt > 0.0 && dt.is_finite()) => {
-                bail!("--dt must be a positive number of time per step (got {dt})")
+                bail!(
+                    "--dt must be a positive number of time per step (got {})",
+                    format_number(dt)
+                )
             }
             dt => Ok(dt),
         }
@@ -49,7 +53,10 @@ impl TimeArgs {
     ) -> anyhow::Result<Option<Times>> {
         let dt = self.dt()?;
         if let Some(t) = self.start_time.filter(|t| !t.is_finite()) {
-            bail!("--start-time must be a finite time (got {t})");
+            bail!(
+                "--start-time must be a finite time (got {})",
+                format_number(t)
+            );
         }
         let Some(case) = in_case(input, output) else {
             if self.start_time.is_some() {

@@ -21,13 +21,14 @@ use std::sync::Arc;
 use anyhow::bail;
 use clap::{ArgGroup, Args};
 
+use verbss::io::outputs::Input;
 use verbss::io::{Format, WriteOptions};
 use verbss::motion::{Attachment, Motion, Numbering, PositionSource};
 use verbss::Mesh;
 
 use crate::case_times::TimeArgs;
 use crate::msh::MshArgs;
-use crate::overwrite::refuse_input_as_output;
+use crate::overwrite::{mesh_inputs, refuse_input_as_output};
 use crate::render::{PictureArgs, Recorder};
 use crate::run::{file_stem, output_dir, parse_every, run_here, Job, Prepared};
 use crate::settings::SettingArgs;
@@ -212,6 +213,9 @@ impl DeformArgs {
                 |e| e.to_string_lossy().into_owned(),
             ),
             dir,
+            inputs: self.inputs(),
+            overwrite: self.overwrite,
+            from_case: false,
         };
         let recorder = Recorder::new(&self.pictures, &job.mesh, job.settings.steps, None);
         Ok(Prepared {
@@ -219,6 +223,16 @@ impl DeformArgs {
             quiet: self.quiet,
             recorder,
         })
+    }
+
+    /// The files `verbss deform` reads: the mesh and the positions file.
+    pub fn inputs(&self) -> Vec<Input> {
+        let mut inputs = mesh_inputs(&self.mesh);
+        inputs.extend(self.positions.iter().map(|path| Input {
+            what: "the positions file",
+            path: path.clone(),
+        }));
+        inputs
     }
 
     /// The input mesh.

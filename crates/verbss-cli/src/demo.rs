@@ -69,6 +69,9 @@ pub fn job(out: PathBuf, every: usize) -> anyhow::Result<Job> {
         report: Some(out.join("report.json")),
         extension: "su2".into(),
         dir: out,
+        inputs: Vec::new(),
+        overwrite: false,
+        from_case: false,
     })
 }
 

@@ -10,6 +10,7 @@ use anyhow::Context;
 use clap::Args;
 use std::path::Path;
 use verbss::deform::Snapshot;
+use verbss::io::outputs::Output;
 use verbss::mesh::Mesh;
 use verbss::quality;
 use verbss::report::Report;
@@ -99,6 +100,8 @@ fn parse_cut(s: &str) -> Result<(usize, f64), String> {
 
 /// Runs `verbss render`.
 pub fn run(args: RenderArgs) -> anyhow::Result<ExitCode> {
+    let inputs = crate::overwrite::mesh_inputs(&args.mesh);
+    verbss::io::outputs::check(&inputs, &[Output::new("-o", &args.output)])?;
     let mesh = crate::input::read_mesh(&args.mesh)?;
     let orientation = quality::orientation(&mesh);
     let q = quality::qualities(&mesh, &mesh.coords, &orientation);
@@ -205,6 +208,13 @@ impl Recorder {
             gif: None,
             gif_view: None,
         }
+    }
+
+    /// The files it writes: `--html` and `--gif`.
+    pub fn outputs(&self) -> Vec<Output> {
+        let html = self.args.html.iter().map(|p| Output::new("--html", p));
+        html.chain(self.args.gif.iter().map(|p| Output::new("--gif", p)))
+            .collect()
     }
 
     /// Whether the run must record the sweeps' eq.-8 values (for the report).

@@ -24,6 +24,7 @@ use verbss::case::Case;
 use verbss::collective::Collective;
 use verbss::deform::{Deformer, Snapshot};
 use verbss::io::foam::Times;
+use verbss::io::outputs::Input;
 use verbss::io::{self, vtu, WriteOptions};
 use verbss::mesh::Mesh;
 use verbss::motion::Attachment;
@@ -34,7 +35,7 @@ use verbss::Error;
 
 use crate::case_times::TimeArgs;
 use crate::msh::MshArgs;
-use crate::overwrite::{note_lost_su2_blocks, refuse_input_as_output};
+use crate::overwrite::{check_outputs, mesh_inputs, note_lost_su2_blocks, refuse_input_as_output};
 use crate::progress::Progress;
 use crate::render::{PictureArgs, Recorder};
 
@@ -110,6 +111,9 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         report: case.output.report.then(|| dir.join("report.json")),
         extension,
         dir,
+        inputs: case_inputs(&case),
+        overwrite: args.overwrite,
+        from_case: true,
     };
     let recorder = Recorder::new(&args.pictures, &job.mesh, job.settings.steps, None);
     run_here(Prepared {
@@ -117,6 +121,21 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         quiet: args.quiet,
         recorder,
     })
+}
+
+/// The files a case file's run reads: the case file, the mesh and the
+/// positions files.
+fn case_inputs(case: &Case) -> Vec<Input> {
+    let mut inputs = vec![Input {
+        what: "the case file",
+        path: case.path.clone(),
+    }];
+    inputs.extend(mesh_inputs(&case.mesh));
+    inputs.extend(case.position_files().into_iter().map(|path| Input {
+        what: "a positions file",
+        path,
+    }));
+    inputs
 }
 
 /// A job ready to run: what to compute and write, whether to print
@@ -132,8 +151,9 @@ pub struct Prepared {
 
 /// Runs a prepared job in this process and prints its summary.
 pub fn run_here(mut prepared: Prepared) -> anyhow::Result<ExitCode> {
-    spill_source(&prepared.job);
     let job = &prepared.job;
+    check_outputs(job, &prepared.recorder, Vec::new())?;
+    spill_source(job);
     let mut deformer = Deformer::shared(
         Arc::clone(&job.mesh),
         &job.attachments,
@@ -206,6 +226,13 @@ pub struct Job {
     pub write_options: WriteOptions,
     /// The output folder.
     pub dir: PathBuf,
+    /// The files the run reads, which no output may replace.
+    pub inputs: Vec<Input>,
+    /// The final mesh may replace the input mesh (`--overwrite`).
+    pub overwrite: bool,
+    /// The outputs are named by a case file's `[output]`, not by options
+    /// (as messages name them).
+    pub from_case: bool,
 }
 
 impl Job {
@@ -240,10 +267,24 @@ impl Job {
         Some(io::foam::case_dir(&origin.dir))
     }
 
+    /// The file of step `n` of the `.vtu` series: `NAME_NNNN.vtu`.
+    pub fn series_file(&self, n: usize) -> String {
+        format!("{}_{n:04}.vtu", self.name)
+    }
+
+    /// Where the failed state goes: `NAME.failed.vtu` beside the outputs;
+    /// into the input OpenFOAM case, `CASE/verbss.failed.vtu`.
+    pub fn failed_path(&self) -> PathBuf {
+        match self.case_dir() {
+            Some(case) => case.join("verbss.failed.vtu"),
+            None => self.dir.join(format!("{}.failed.vtu", self.name)),
+        }
+    }
+
     /// The steps whose meshes a run that accepted `steps` steps wrote
     /// (besides the series' step 0): every `every`-th of the series, and
     /// the last.
-    fn written_steps(&self, steps: usize) -> Vec<usize> {
+    pub fn written_steps(&self, steps: usize) -> Vec<usize> {
         (1..=steps)
             .filter(|&n| n == steps || (self.series && n % self.every == 0))
             .collect()
@@ -409,7 +450,7 @@ impl Outputs for Files {
             }
             return Ok(());
         }
-        let file = format!("{}_{:04}.vtu", job.name, s.report.step);
+        let file = job.series_file(s.report.step);
         if self.writer {
             let path = job.dir.join(&file);
             vtu::write_moved(&path, &job.mesh, &s.coords, &fields(&job.mesh, s))?;
@@ -437,13 +478,9 @@ impl Outputs for Files {
         Ok(job.time_dir(steps).unwrap_or(path))
     }
 
-    /// `NAME.failed.vtu` beside the outputs; into the input OpenFOAM case,
-    /// `CASE/verbss.failed.vtu`.
+    /// The failed state at [`Job::failed_path`].
     fn failed(&mut self, job: &Job, s: &Snapshot) -> anyhow::Result<PathBuf> {
-        let path = match job.case_dir() {
-            Some(case) => case.join("verbss.failed.vtu"),
-            None => job.dir.join(format!("{}.failed.vtu", job.name)),
-        };
+        let path = job.failed_path();
         if self.writer {
             vtu::write_moved(&path, &job.mesh, &s.coords, &fields(&job.mesh, s))?;
         }
@@ -482,7 +519,7 @@ pub fn execute<S: SpringSolver, C: Collective>(
     report.steps.push(initial.report.clone());
     if writer {
         // Outcome "running" until this run ends: an earlier run's report never
-        // outlives a failure of this one (a FIFO or device gets one report only).
+        // outlives a failure of this one.
         if let Some(path) = job.report.as_ref().filter(|p| p.is_file()) {
             report.write(path)?;
         }

@@ -340,7 +340,7 @@ fn slide_groups_keep_their_plane_and_let_nodes_move_in_it() {
         (
             "y_m:0,0,0",
             "error: invalid setting: the slide normal of group 'y_m' must be a finite non-zero \
-             vector (got [0.0, 0.0, 0.0])\n",
+             vector (got 0, 0, 0)\n",
         ),
     ] {
         let (o, out) = run("bad.su2", &["--slide", value]);

@@ -385,9 +385,9 @@ fn a_failed_run_leaves_no_stale_completed_report() {
     let (dir, square) = folder();
     let report = dir.path().join("report.json");
     std::fs::write(&report, "{\"outcome\": \"completed\"}").expect("write a stale report");
-    // The output is a folder: the run fails (exit 2) when it writes the mesh.
-    let out = dir.path().join("out.su2");
-    std::fs::create_dir(&out).expect("a folder in the way");
+    // A name too long for the file system: the run fails (exit 2) when it
+    // writes the mesh, after the steps.
+    let out = dir.path().join(format!("{}.su2", "o".repeat(300)));
     let o = verbss(&[
         "deform",
         square.to_str().unwrap(),

@@ -178,3 +178,89 @@ fn positions_with_1_based_ids_get_the_hint() {
     let o = move_left_to(dir.path(), &positions);
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+/// Issue 43, 11: a case file's number that would make a non-finite
+/// position (an infinite angle, a speed of 1e308, a wavelength of 1e-320)
+/// is refused with exit 2, naming the file, the line of its motion, the
+/// key and the value, printed short; no solve, no NaN.
+#[test]
+fn a_case_files_number_beyond_range_is_named_with_its_key() {
+    let dir = tempfile::tempdir().unwrap();
+    square(dir.path());
+    let case = dir.path().join("case.toml");
+    let motions = [
+        (
+            "kind = \"pitch-plunge\"\ncenter = [0.5, 0.5]\npitch_deg = inf\nplunge = [0, 0]",
+            "`pitch_deg` = inf: expected a finite number within ±1e100",
+        ),
+        (
+            "kind = \"undulation\"\nhead = [0, 0]\naxis = [1, 0]\namplitude = [0.01]\n\
+             wavelength = 1.0\nspeed = 1e308",
+            "`speed` = 1e308: expected a finite number within ±1e100",
+        ),
+        (
+            "kind = \"undulation\"\nhead = [0, 0]\naxis = [1, 0]\namplitude = [0.01]\n\
+             wavelength = 1e-320\nspeed = 1.0",
+            "`wavelength` = 1e-320: expected a positive number from 1e-100 to 1e100",
+        ),
+        (
+            "kind = \"translation\"\ndisplacement = [1e300, 0]",
+            "`displacement` = 1e300: expected a finite number within ±1e100",
+        ),
+    ];
+    for (motion, message) in motions {
+        let text = format!(
+            "mesh = \"square.su2\"\nsteps = 2\n\n[[motion]]\ngroups = [\"rest\"]\n{motion}\n\n\
+             [output]\ndir = \"out\"\n"
+        );
+        std::fs::write(&case, text).unwrap();
+        let o = verbss(&["run", case.to_str().unwrap(), "--quiet"]);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert_eq!(
+            stderr(&o),
+            format!(
+                "error: {}:4: {message} (beyond it the positions overflow)\n",
+                case.display()
+            )
+        );
+        assert!(!dir.path().join("out").exists());
+    }
+}
+
+/// Issue 43, 15: `--slide GROUP:1e308,1e308` is the direction (1, 1), not
+/// "a zero vector"; an infinite one is named.
+#[test]
+fn a_huge_slide_normal_is_a_direction() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = deform(
+        dir.path(),
+        &[
+            "--moving",
+            "left",
+            "--translate",
+            "0,0.01",
+            "--slide",
+            "rest:1e308,1e308",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = deform(
+        dir.path(),
+        &[
+            "--moving",
+            "left",
+            "--translate",
+            "0,0.01",
+            "--slide",
+            "rest:inf,0",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(
+            "the slide normal of group 'rest' must be a finite non-zero vector (got inf, 0)"
+        ),
+        "{}",
+        stderr(&o)
+    );
+}

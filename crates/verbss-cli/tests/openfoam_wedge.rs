@@ -178,10 +178,22 @@ fn a_wedge_case_moves_in_its_plane_and_stays_on_both_wedge_planes() {
         .collect();
     assert!(axis.iter().any(|p| (p[0] - 1.1).abs() < 1e-12), "{axis:?}");
 
-    // A rotation takes the body's axis points off the axis: refused.
+    // A rotation takes the body's axis points off the axis: refused (time
+    // directory 1 is there from the run above: --overwrite).
     let before = std::fs::read_dir(&case).unwrap().count();
     let o = verbss(&[
-        "deform", c, "-o", c, "--moving", "body", "--rotate", "5", "--center", "1.5,0", "--quiet",
+        "deform",
+        c,
+        "-o",
+        c,
+        "--moving",
+        "body",
+        "--rotate",
+        "5",
+        "--center",
+        "1.5,0",
+        "--quiet",
+        "--overwrite",
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(

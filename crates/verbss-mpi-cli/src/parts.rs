@@ -118,14 +118,14 @@ pub fn run_parts(
         .map_err(|e| verbss::Error::InvalidSetting(e.to_string())),
         "could not prepare the job",
     ))?;
-    let job = &prepared.job;
     let mut pieces = Pieces::new(&world, &args, &share, part.local())?;
     prepare_output(
         &world,
-        (&pieces, job, gather.as_deref()),
+        (&pieces, &mut prepared, gather.as_deref()),
         args.mesh(),
         split,
     )?;
+    let job = &prepared.job;
     if let Some(path) = &gather {
         gather::check_tags(&world, path, &share.mesh)?;
     }

@@ -15,13 +15,14 @@ use verbss::deform::Snapshot;
 use verbss::io::gmsh::partitioned::Share;
 use verbss::io::gmsh::split::split_file;
 use verbss::io::gmsh::split_write::{SplitModel, SplitPiece};
+use verbss::io::outputs::{Input, Output, MESH};
 use verbss::{quality, Mesh};
 use verbss_cli::deform::DeformArgs;
-use verbss_cli::overwrite::refuse_input_as_output;
-use verbss_cli::run::{file_stem, output_dir, Job, Outputs};
+use verbss_cli::overwrite::check_outputs;
+use verbss_cli::run::{file_stem, output_dir, Job, Outputs, Prepared};
 use verbss_mpi::pieces::{
-    decode_entities, encode_entities, encode_groups, msh_facet_tags, split_groups, split_path,
-    write_local_piece, write_msh_piece,
+    decode_entities, encode_entities, encode_groups, msh_facet_tags, piece_path, split_groups,
+    split_path, write_local_piece, write_msh_piece,
 };
 use verbss_mpi::share::agree;
 use verbss_mpi::Comm;
@@ -75,6 +76,37 @@ impl<'a> Pieces<'a> {
             output,
             series: Vec::new(),
         })
+    }
+
+    /// The files the `ranks` write of `job`: the pieces of the moved mesh
+    /// (`-o`), of the series (`--every`) and of the failed state.
+    fn files(&self, job: &Job, ranks: i32) -> Vec<Output> {
+        let dir = output_dir(&self.output);
+        let stem = file_stem(&self.output);
+        let vtu = |flag: &str, name: &str| -> Vec<Output> {
+            let pieces = (0..ranks).map(|r| Output::new(flag, piece_path(&dir, name, r)));
+            pieces
+                .chain([Output::new(flag, dir.join(format!("{name}.pvtu")))])
+                .collect()
+        };
+        let mut files: Vec<Output> = match has_extension(&self.output, "msh") {
+            true => (1..=ranks as usize)
+                .map(|k| Output {
+                    overwrite: Some(self.overwrite),
+                    ..Output::new("-o", split_path(&dir, &stem, k))
+                })
+                .collect(),
+            false => vtu("-o", &stem),
+        };
+        if job.series {
+            let steps = std::iter::once(0).chain(job.written_steps(job.settings.steps));
+            for n in steps {
+                files.extend(vtu("--every", &format!("{stem}_{n:04}")));
+            }
+            files.push(Output::new("--every", dir.join(format!("{stem}.pvd"))));
+        }
+        files.extend(vtu("the failed state", &format!("{stem}.failed")));
+        files
     }
 
     /// The share's coordinates in the part's `coords`.
@@ -146,40 +178,36 @@ pub fn has_extension(path: &Path, ext: &str) -> bool {
 
 /// Before the solve (collective): makes the folders of the output, of the
 /// report and of the gathered mesh (`gather`), and fails on every rank
-/// where a rank's MSH piece would replace a file of the input (`input`, or
-/// with `split` the files of its set), unless `--overwrite`.
+/// where a file the ranks write ([`Pieces::files`], the report, `gather`)
+/// is an input (`input`, or with `split` the files of its set; a rank's
+/// MSH piece may be one with `--overwrite`), another output or no regular
+/// file.
 pub fn prepare_output(
     world: &Comm,
-    (pieces, job, gather): (&Pieces, &Job, Option<&Path>),
+    (pieces, prepared, gather): (&Pieces, &mut Prepared, Option<&Path>),
     input: &Path,
     split: bool,
 ) -> anyhow::Result<()> {
-    let output = &pieces.output;
-    let dir = output_dir(output);
-    let check = || -> anyhow::Result<()> {
-        let outputs = [Some(output.as_path()), job.report.as_deref(), gather];
+    let check = |prepared: &mut Prepared| -> anyhow::Result<()> {
+        let job = &mut prepared.job;
+        let outputs = [Some(pieces.output.as_path()), job.report.as_deref(), gather];
         for folder in outputs.into_iter().flatten().map(output_dir) {
             std::fs::create_dir_all(&folder).map_err(|e| {
                 anyhow::anyhow!("{}: cannot make the folder: {e}", folder.display())
             })?;
         }
-        if pieces.overwrite || !has_extension(output, "msh") {
-            return Ok(());
+        if split {
+            job.inputs.retain(|i| i.what != MESH);
+            for k in 1..=pieces.share.partitions {
+                let path = split_file(input, k)?;
+                job.inputs.push(Input { what: MESH, path });
+            }
         }
-        let piece = split_path(&dir, &file_stem(output), world.rank() as usize + 1);
-        let inputs = if split {
-            (1..=pieces.share.partitions)
-                .map(|k| split_file(input, k))
-                .collect::<verbss::Result<Vec<_>>>()?
-        } else {
-            vec![input.to_path_buf()]
-        };
-        for file in &inputs {
-            refuse_input_as_output(file, &piece, false, false)?;
-        }
-        Ok(())
+        let mut files = pieces.files(job, world.size());
+        files.extend(gather.map(|p| Output::new("--gather", p)));
+        Ok(check_outputs(&prepared.job, &prepared.recorder, files)?)
     };
-    let checked = check().map_err(|e| verbss::Error::InvalidSetting(e.to_string()));
+    let checked = check(prepared).map_err(|e| verbss::Error::InvalidSetting(e.to_string()));
     told(agree(world, checked, "refused its output"))
 }
 

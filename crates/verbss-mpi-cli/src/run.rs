@@ -8,8 +8,10 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::sync::Arc;
 
+use verbss::io::outputs::Output;
+use verbss_cli::overwrite::{check_outputs, whole_files};
 use verbss_cli::run::{execute, Files, Prepared};
-use verbss_mpi::pieces::{write_piece, write_pvtu};
+use verbss_mpi::pieces::{piece_path, write_piece, write_pvtu};
 use verbss_mpi::share::agree;
 use verbss_mpi::stepper::stepper;
 use verbss_mpi::Comm;
@@ -26,6 +28,17 @@ pub fn run_distributed(mut prepared: Prepared) -> anyhow::Result<ExitCode> {
     let world = Comm::world();
     let root = world.rank() == 0;
     let job = &prepared.job;
+    let mut files = whole_files(job);
+    files.extend(
+        (0..world.size())
+            .map(|r| Output::new("a rank's piece", piece_path(&job.dir, &job.name, r))),
+    );
+    files.push(Output::new(
+        "a rank's piece",
+        job.dir.join(format!("{}.pvtu", job.name)),
+    ));
+    let checked = check_outputs(job, &prepared.recorder, files);
+    told(agree(&world, checked, "refused its outputs"))?;
     let mut stepper = stepper(
         &world,
         Arc::clone(&job.mesh),

@@ -87,9 +87,10 @@ fn msh_pieces_of_an_su2_channel() {
     );
 }
 
-/// A piece that only rank 1 cannot write (a folder stands in its place):
-/// every rank stops, rank 0 says which rank, which file and why, once;
-/// exit code 2. `--pieces` with another output than `.msh` or `.pvtu` is
+/// A piece that only rank 1 cannot write (a link into a missing folder
+/// stands in its place): every rank stops, rank 0 says which rank, which
+/// file and why, once; exit code 2. A folder in its place is refused
+/// before the first solve. `--pieces` with another output than `.msh` or `.pvtu` is
 /// refused with exit code 2.
 #[test]
 fn a_piece_one_rank_cannot_write_stops_every_rank() {
@@ -119,6 +120,17 @@ fn a_piece_one_rank_cannot_write_stops_every_rank() {
         assert_eq!(o.status.code(), Some(2));
         String::from_utf8_lossy(&o.stderr).into_owned()
     };
+    // A folder in the way is refused before the first solve.
+    let stderr = deform(&dir.path().join("moved.msh"));
+    let message = format!(
+        "error: -o {}: a directory, not a regular file (verbss writes its outputs to regular \
+         files only)",
+        blocked.display()
+    );
+    assert_eq!(stderr.matches(&message).count(), 1, "{stderr}");
+    // A link into a missing folder fails when rank 1 writes its piece.
+    std::fs::remove_dir(&blocked).unwrap();
+    std::os::unix::fs::symlink("missing/moved_2.msh", &blocked).unwrap();
     let stderr = deform(&dir.path().join("moved.msh"));
     let message = format!(
         "error: rank 1 could not write its piece: {}: ",

@@ -274,7 +274,13 @@ impl Case {
         }
         let dt = file.dt.unwrap_or(1.0 / file.steps as f64);
         if !(dt > 0.0 && dt.is_finite()) {
-            return Err(at(top("dt"), format!("`dt` must be positive (got {dt})")));
+            return Err(at(
+                top("dt"),
+                format!(
+                    "`dt` must be positive (got {})",
+                    crate::error::format_number(dt)
+                ),
+            ));
         }
         if file.reference.is_some() {
             return Err(at(
@@ -340,6 +346,27 @@ impl Case {
         })
     }
 
+    /// The positions files its motions read: each `file`, and each step's
+    /// file of a `files` pattern.
+    pub fn position_files(&self) -> Vec<PathBuf> {
+        let base = self.path.parent().unwrap_or(Path::new(""));
+        let mut files = Vec::new();
+        for (_, spec) in &self.motions {
+            match spec {
+                MotionSpec::Positions { file: Some(f), .. } => files.push(base.join(f)),
+                MotionSpec::Positions {
+                    files: Some(pattern),
+                    ..
+                } => files.extend(
+                    (1..=self.settings.steps)
+                        .map(|n| crate::motion::step_path(&base.join(pattern), n)),
+                ),
+                _ => {}
+            }
+        }
+        files
+    }
+
     /// The motions for `mesh`: vectors checked against its dimension, groups
     /// checked to exist, position files read (node IDs are 0-based node
     /// indices in the mesh file's order: SU2's `GlobalID`).
@@ -374,7 +401,7 @@ impl Case {
                 } => Motion::Rotation {
                     center: v("center", center)?,
                     axis: turn(axis)?,
-                    angle: angle_deg.to_radians(),
+                    angle: number("angle_deg", *angle_deg, false).map_err(at)?.to_radians(),
                 },
                 MotionSpec::PitchPlunge {
                     center,
@@ -386,7 +413,7 @@ impl Case {
                 } => Motion::PitchPlunge {
                     center: v("center", center)?,
                     axis: turn(axis)?,
-                    pitch: pitch_deg.to_radians(),
+                    pitch: number("pitch_deg", *pitch_deg, false).map_err(at)?.to_radians(),
                     plunge: v("plunge", plunge)?,
                     period: *period,
                 },
@@ -414,9 +441,12 @@ impl Case {
                         head: v("head", head)?,
                         axis,
                         lateral,
-                        amplitude: amplitude.clone(),
-                        wavelength: *wavelength,
-                        speed: *speed,
+                        amplitude: amplitude
+                            .iter()
+                            .map(|&a| number("amplitude", a, false).map_err(at))
+                            .collect::<Result<_>>()?,
+                        wavelength: number("wavelength", *wavelength, true).map_err(at)?,
+                        speed: number("speed", *speed, false).map_err(at)?,
                         ramp: *ramp,
                     }
                 }
@@ -431,8 +461,8 @@ impl Case {
                     root: v("root", root)?,
                     span_axis: v("span_axis", span_axis)?,
                     direction: v("direction", direction)?,
-                    span: *span,
-                    tip: *tip,
+                    span: number("span", *span, true).map_err(at)?,
+                    tip: number("tip", *tip, false).map_err(at)?,
                 },
                 MotionSpec::Positions { file, files, .. } => match (file, files) {
                     (Some(f), None) => {
@@ -478,8 +508,34 @@ fn rotation_axis(axis: Option<&[f64]>, dim: usize) -> std::result::Result<[f64; 
     }
 }
 
-/// A vector of `dim` numbers (a 2D mesh also takes 3 numbers with z = 0), padded to 3.
+/// The number `x` of `key`, unless it is not finite or beyond ±1e100
+/// ([`crate::motion::MAX_COORDINATE`]: beyond it positions overflow), or,
+/// when `positive`, below 1e-100 (a length divided by it overflows).
+fn number(key: &str, x: f64, positive: bool) -> std::result::Result<f64, String> {
+    let bound = crate::motion::MAX_COORDINATE;
+    let fits = match positive {
+        true => (1.0 / bound..=bound).contains(&x),
+        false => x.abs() <= bound,
+    };
+    if fits {
+        return Ok(x);
+    }
+    Err(format!(
+        "`{key}` = {}: expected {} (beyond it the positions overflow)",
+        crate::error::format_number(x),
+        match positive {
+            true => "a positive number from 1e-100 to 1e100",
+            false => "a finite number within ±1e100",
+        }
+    ))
+}
+
+/// A vector of `dim` numbers (a 2D mesh also takes 3 numbers with z = 0),
+/// each finite and within ±1e100 ([`number`]), padded to 3.
 fn vector(key: &str, x: &[f64], dim: usize) -> std::result::Result<[f64; 3], String> {
+    for &v in x {
+        number(key, v, false)?;
+    }
     match x.len() {
         n if n == dim => Ok([x[0], x[1], if dim == 3 { x[2] } else { 0.0 }]),
         3 if dim == 2 && x[2] == 0.0 => Ok([x[0], x[1], 0.0]),

@@ -72,6 +72,20 @@ pub enum Error {
     /// A setting or an argument is out of range.
     #[error("invalid setting: {0}")]
     InvalidSetting(String),
+    /// A displacement given to a binding (Python, C) is out of range.
+    #[error("invalid displacement: {0}")]
+    InvalidDisplacement(String),
+    /// A file a command would write is refused before the solve: it is an
+    /// input, another output, or no regular file.
+    #[error("{flag} {}: {message}", path.display())]
+    Output {
+        /// The option (or case-file key) that names it.
+        flag: String,
+        /// The file.
+        path: PathBuf,
+        /// Why it is refused.
+        message: String,
+    },
     /// A named boundary group does not exist.
     #[error("unknown group '{name}' (the mesh has: {available})")]
     UnknownGroup {
@@ -181,6 +195,12 @@ pub fn format_number(x: f64) -> String {
     } else {
         format!("{x:e}")
     }
+}
+
+/// Numbers as messages print them ([`format_number`]), comma separated.
+pub fn format_numbers(xs: &[f64]) -> String {
+    let shown: Vec<String> = xs.iter().map(|&x| format_number(x)).collect();
+    shown.join(", ")
 }
 
 /// Result with the library's [`Error`].

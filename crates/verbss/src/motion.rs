@@ -180,15 +180,32 @@ pub struct Frame {
 /// products overflow.
 pub(crate) const MAX_COORDINATE: f64 = 1e100;
 
+/// Refuses a displacement that a binding gives (`u`, `dim` numbers per
+/// node) unless every number is finite and within ±1e100: names the first
+/// other number and, by `node(k)`, where its row `k` came from
+/// (`Python Deformer.step displacement of node 17`).
+pub fn check_displacement(u: &[f64], dim: usize, node: impl Fn(usize) -> String) -> Result<()> {
+    match u
+        .iter()
+        .position(|x| x.is_nan() || x.abs() > MAX_COORDINATE)
+    {
+        None => Ok(()),
+        Some(k) => Err(Error::InvalidDisplacement(format!(
+            "{} is {} (expected finite numbers within ±1e100)",
+            node(k / dim.max(1)),
+            crate::error::format_number(u[k])
+        ))),
+    }
+}
+
 /// `v` of length 1. Scaled by its largest component first, so that a
 /// direction of huge (or tiny) finite numbers is still one.
 fn unit(v: &[f64; 3], what: &str) -> Result<[f64; 3]> {
     let largest = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     if !(largest > 0.0 && largest.is_finite()) {
-        let shown: Vec<String> = v.iter().map(|&x| crate::error::format_number(x)).collect();
         return Err(Error::InvalidSetting(format!(
             "{what} must be a non-zero vector of finite numbers (got {})",
-            shown.join(", ")
+            crate::error::format_numbers(v)
         )));
     }
     let w = v.map(|x| x / largest);
@@ -264,7 +281,8 @@ impl Motion {
                     Ok(())
                 } else {
                     bad(format!(
-                        "the wavelength must be positive (got {wavelength})"
+                        "the wavelength must be positive (got {})",
+                        crate::error::format_number(*wavelength)
                     ))
                 }
             }
@@ -281,7 +299,10 @@ impl Motion {
                 if *span > 0.0 {
                     Ok(())
                 } else {
-                    bad(format!("the span must be positive (got {span})"))
+                    bad(format!(
+                        "the span must be positive (got {})",
+                        crate::error::format_number(*span)
+                    ))
                 }
             }
             Motion::Slide { normal: Some(n) } => unit(n, "the slide normal").map(|_| ()),

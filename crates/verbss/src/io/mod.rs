@@ -20,6 +20,7 @@ pub mod cgns;
 pub mod foam;
 mod format;
 pub mod gmsh;
+pub mod outputs;
 pub mod positions;
 pub mod pvd;
 pub mod su2;
@@ -140,17 +141,7 @@ pub(crate) fn open_input(path: &Path) -> Result<File> {
 /// Refuses `path` when it exists and is a FIFO, device or socket (a
 /// missing file is left to whoever opens it).
 pub(crate) fn regular_input(path: &Path) -> Result<()> {
-    use std::os::unix::fs::FileTypeExt;
-    let Ok(kind) = std::fs::metadata(path).map(|m| m.file_type()) else {
-        return Ok(());
-    };
-    let what = if kind.is_fifo() {
-        "a FIFO"
-    } else if kind.is_char_device() || kind.is_block_device() {
-        "a device"
-    } else if kind.is_socket() {
-        "a socket"
-    } else {
+    let Some(what) = special_kind(path) else {
         return Ok(());
     };
     Err(Error::Io {
@@ -160,6 +151,22 @@ pub(crate) fn regular_input(path: &Path) -> Result<()> {
             format!("{what}, not a regular file (verbss reads its inputs from regular files only)"),
         ),
     })
+}
+
+/// What `path` (links followed) is when it is a FIFO (`a FIFO`), a device
+/// or a socket; `None` for anything else, or nothing.
+fn special_kind(path: &Path) -> Option<&'static str> {
+    use std::os::unix::fs::FileTypeExt;
+    let kind = std::fs::metadata(path).ok()?.file_type();
+    if kind.is_fifo() {
+        Some("a FIFO")
+    } else if kind.is_char_device() || kind.is_block_device() {
+        Some("a device")
+    } else if kind.is_socket() {
+        Some("a socket")
+    } else {
+        None
+    }
 }
 
 /// The temporary file beside `path` that an atomic write fills first
@@ -183,7 +190,8 @@ pub fn temp_path(path: &Path) -> PathBuf {
 /// only once everything was written and flushed. On failure the temporary
 /// file is removed and `path` is untouched. A symbolic link is followed (its
 /// final target is replaced, the link kept); a device, FIFO or socket is
-/// written to directly, never replaced.
+/// written to directly, never replaced (the commands refuse them as outputs
+/// before a run: [`outputs::check`]).
 pub fn write_atomic(
     path: &Path,
     fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
@@ -200,21 +208,41 @@ pub fn write_atomic(
         })();
         return result.map_err(io_err);
     }
-    let target = link_target(path);
-    let tmp = temp_path(&target);
+    fill_and_rename(&link_target(path), fill).map_err(io_err)
+}
+
+/// [`write_atomic`] without following a link: a symbolic link at `path` is
+/// itself replaced by the new file (its target untouched), as is a FIFO or
+/// device.
+pub fn write_replacing(
+    path: &Path,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> Result<()> {
+    fill_and_rename(path, fill).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Fills the temporary file beside `target` and renames it over `target`;
+/// on failure removes it.
+fn fill_and_rename(
+    target: &Path,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let tmp = temp_path(target);
     let result = (|| {
         let file = File::create(&tmp)?;
         let mut w = BufWriter::new(file);
         fill(&mut w)?;
         let file = w.into_inner().map_err(|e| e.into_error())?;
         file.sync_all()?;
-        std::fs::rename(&tmp, &target)
+        std::fs::rename(&tmp, target)
     })();
-    if let Err(e) = result {
+    if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
-        return Err(io_err(e));
     }
-    Ok(())
+    result
 }
 
 /// Whether `path` (links followed) is a device, FIFO or socket.

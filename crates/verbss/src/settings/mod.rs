@@ -199,7 +199,7 @@ impl Settings {
         if !(self.dt > 0.0 && self.dt.is_finite()) {
             return Err(Error::InvalidSetting(format!(
                 "dt must be positive (got {})",
-                self.dt
+                crate::error::format_number(self.dt)
             )));
         }
         self.solve.validate()?;
@@ -269,7 +269,7 @@ impl Attachment {
                 return Err(Error::InvalidSetting(format!(
                     "the slide normal of group '{group}' has z = {} on a 2D mesh: give NX,NY \
                      (or NX,NY,0)",
-                    n[2]
+                    crate::error::format_number(n[2])
                 )))
             }
             Some(n) if n.len() != dim && !(dim == 2 && n.len() == 3) => {
@@ -282,10 +282,17 @@ impl Attachment {
             Some(n) if !n.iter().all(|x| x.is_finite()) || n.iter().all(|&x| x == 0.0) => {
                 return Err(Error::InvalidSetting(format!(
                     "the slide normal of group '{group}' must be a finite non-zero vector \
-                     (got {n:?})"
+                     (got {})",
+                    crate::error::format_numbers(n)
                 )))
             }
-            Some(n) => Some([n[0], n[1], n.get(2).copied().unwrap_or(0.0)]),
+            // Scaled by its largest number: a normal of huge (or tiny)
+            // finite numbers is still a direction.
+            Some(n) => {
+                let largest = n.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                let v = [n[0], n[1], n.get(2).copied().unwrap_or(0.0)];
+                Some(v.map(|x| x / largest))
+            }
         };
         Ok(Attachment {
             groups: vec![group.to_string()],

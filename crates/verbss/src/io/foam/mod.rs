@@ -56,6 +56,10 @@ use std::path::{Path, PathBuf};
 use crate::error::{Error, Result};
 use crate::mesh::{CellKind, Cells, FileOrigin, Group, Mesh};
 
+/// The files of a polyMesh: the points, then the four that a moved mesh
+/// keeps.
+pub const FILES: [&str; 5] = ["points", "faces", "owner", "neighbour", "boundary"];
+
 /// Where a mesh read from an OpenFOAM case came from, for writing its
 /// points back.
 #[derive(Debug, Clone, PartialEq)]

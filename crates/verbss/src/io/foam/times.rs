@@ -86,7 +86,7 @@ impl Times {
                 } else {
                     format!("{} deltaT", path.display())
                 },
-                times.delta
+                crate::error::format_number(times.delta)
             )));
         }
         Ok(times)

@@ -2,13 +2,11 @@
 
 use std::path::Path;
 
-use super::{case_dir, same_polymesh, Across, Origin};
+use super::{case_dir, same_polymesh, Across, Origin, FILES};
 use crate::error::{Error, Result};
-use crate::io::write_atomic;
+use crate::io::outputs::resolved;
+use crate::io::write_replacing;
 use crate::mesh::Mesh;
-
-/// The files of a polyMesh that never change.
-const TOPOLOGY: [&str; 4] = ["faces", "owner", "neighbour", "boundary"];
 
 /// Writes the points of `mesh` (read from an OpenFOAM case) to the case or
 /// polyMesh directory `path`:
@@ -60,11 +58,10 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], time: Option<&str>)
         ))
     })?;
     if same_polymesh(path, &origin.dir) {
-        let target = match time {
-            Some(t) => case_dir(&origin.dir).join(t).join("polyMesh"),
-            None => origin.dir.clone(),
+        return match time {
+            Some(t) => write_time(&case_dir(&origin.dir).join(t), origin, &xyz, t),
+            None => write_points(&origin.dir, &xyz, "constant"),
         };
-        return write_points(&target, &xyz, time.unwrap_or("constant"));
     }
     let target = if path.ends_with("polyMesh") {
         path.to_path_buf()
@@ -72,10 +69,10 @@ pub fn write_moved(path: &Path, mesh: &Mesh, coords: &[f64], time: Option<&str>)
         path.join("constant").join("polyMesh")
     };
     write_points(&target, &xyz, "constant")?;
-    for name in TOPOLOGY {
+    for name in &FILES[1..] {
         let from = origin.dir.join(name);
         let bytes = std::fs::read(&from).map_err(|source| Error::Io { path: from, source })?;
-        write_atomic(&target.join(name), |w| w.write_all(&bytes))?;
+        write_replacing(&target.join(name), |w| w.write_all(&bytes))?;
     }
     Ok(())
 }
@@ -116,13 +113,54 @@ fn points(
     }
 }
 
-/// Writes `dir/points` (creating `dir`), its header's location `TIME/polyMesh`.
+/// Writes the time directory `time_dir` (`CASE/TIME`) of the case of
+/// `origin`: a new `polyMesh` holding `points` replaces the one there, if
+/// any, whole (a link in its place is replaced, never followed), unless it
+/// is the polyMesh the mesh was read from.
+fn write_time(time_dir: &Path, origin: &Origin, xyz: &[f64], time: &str) -> Result<()> {
+    let target = time_dir.join("polyMesh");
+    let io = |path: &Path| {
+        let path = path.to_path_buf();
+        move |source| Error::Io { path, source }
+    };
+    if origin
+        .dir
+        .canonicalize()
+        .is_ok_and(|d| d == resolved(&target, true))
+    {
+        return Err(Error::Io {
+            path: target.clone(),
+            source: std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                format!(
+                    "the time directory's polyMesh is the input polyMesh {} (through a link): \
+                     verbss never writes into it",
+                    origin.dir.display()
+                ),
+            ),
+        });
+    }
+    let fresh = crate::io::temp_path(&target);
+    if fresh.exists() {
+        std::fs::remove_dir_all(&fresh).map_err(io(&fresh))?;
+    }
+    write_points(&fresh, xyz, time)?;
+    match std::fs::symlink_metadata(&target) {
+        Ok(m) if m.is_dir() => std::fs::remove_dir_all(&target).map_err(io(&target))?,
+        Ok(_) => std::fs::remove_file(&target).map_err(io(&target))?,
+        Err(_) => {}
+    }
+    std::fs::rename(&fresh, &target).map_err(io(&target))
+}
+
+/// Writes `dir/points` (creating `dir`), its header's location
+/// `TIME/polyMesh`; a link at `dir/points` is replaced, never followed.
 fn write_points(dir: &Path, xyz: &[f64], time: &str) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|source| Error::Io {
         path: dir.to_path_buf(),
         source,
     })?;
-    write_atomic(&dir.join("points"), |w| {
+    write_replacing(&dir.join("points"), |w| {
         writeln!(
             w,
             "FoamFile\n{{\n    version     2.0;\n    format      ascii;\n    \
