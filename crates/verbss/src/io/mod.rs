@@ -190,8 +190,8 @@ pub fn temp_path(path: &Path) -> PathBuf {
 /// only once everything was written and flushed. On failure the temporary
 /// file is removed and `path` is untouched. A symbolic link is followed (its
 /// final target is replaced, the link kept); a device, FIFO or socket is
-/// written to directly, never replaced (the commands refuse them as outputs
-/// before a run: [`outputs::check`]).
+/// refused (writing into one would block or go nowhere; the commands refuse
+/// them before a run: [`outputs::check`]).
 pub fn write_atomic(
     path: &Path,
     fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
@@ -201,12 +201,9 @@ pub fn write_atomic(
         source,
     };
     if is_special(path) {
-        let result = (|| {
-            let mut w = BufWriter::new(File::options().write(true).open(path)?);
-            fill(&mut w)?;
-            w.flush()
-        })();
-        return result.map_err(io_err);
+        return Err(io_err(std::io::Error::other(
+            "a device, FIFO or socket: give a regular file to write",
+        )));
     }
     fill_and_rename(&link_target(path), fill).map_err(io_err)
 }

@@ -61,3 +61,20 @@ fn coordinates_of_the_wrong_length_are_refused() {
     assert!(e.to_string().contains("coordinates for the"), "{e}");
     assert!(!path.exists());
 }
+
+/// A FIFO (as a device or socket) is refused as a file to write (through
+/// the library, as Python and C write): writing into a FIFO would block until someone
+/// reads it, and the file would never be whole.
+#[test]
+fn a_fifo_is_refused_as_a_file_to_write() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("mesh.vtu");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo");
+    let mesh = asset("channel_hole_v41_ascii.msh");
+    let err = write(&fifo, &mesh, &WriteOptions::default()).unwrap_err();
+    assert!(
+        err.to_string().contains("a device, FIFO or socket"),
+        "{err}"
+    );
+}
