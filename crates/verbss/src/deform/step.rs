@@ -11,7 +11,7 @@ use super::Deformer;
 use crate::collective::Collective;
 use crate::error::{Error, Result, Unconverged};
 use crate::settings::{Predictor, Reference};
-use crate::solve::{SolveInfo, SpringSolver, Stage};
+use crate::solve::{NodeRole, SolveInfo, SpringSolver, Stage};
 
 impl<S: SpringSolver, C: Collective> Deformer<S, C> {
     /// Moves the boundary to its position at step `n` and the interior with
@@ -91,7 +91,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
                 ..
             } = attempt;
             report.add(&info);
-            report.amplification = self.amplification(from, &trial, targets);
+            report.amplification = self.amplification(from, &trial);
             if !info.converged || check.summary.invalid > 0 {
                 if h * 0.5 >= floor {
                     h *= 0.5;
@@ -159,23 +159,17 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
     }
 
     /// The amplification of the move from `from` to `to` (collective): the
-    /// largest displacement of a node without a target over the largest of
-    /// a node with one, 0 where none of those moved.
-    fn amplification(&self, from: &[f64], to: &[f64], targets: &[(usize, Vec<f64>)]) -> f64 {
+    /// largest displacement of a node the springs solve for (free or
+    /// sliding) over the largest of a fixed one, 0 where none of those moved.
+    fn amplification(&self, from: &[f64], to: &[f64]) -> f64 {
         let dim = self.mesh.dim;
-        let moved = |i: usize| -> f64 {
-            let d = (0..dim).map(|k| to[dim * i + k] - from[dim * i + k]);
-            d.map(|v| v * v).sum::<f64>().sqrt()
-        };
-        let mut prescribed = vec![false; from.len() / dim];
         // [solved, prescribed]
         let mut largest = [0.0f64; 2];
-        for (i, _) in targets {
-            prescribed[*i] = true;
-            largest[1] = largest[1].max(moved(*i));
-        }
-        for (i, _) in prescribed.iter().enumerate().filter(|(_, &p)| !p) {
-            largest[0] = largest[0].max(moved(i));
+        for (i, role) in self.roles.iter().enumerate() {
+            let d = (0..dim).map(|k| to[dim * i + k] - from[dim * i + k]);
+            let moved = d.map(|v| v * v).sum::<f64>().sqrt();
+            let side = usize::from(*role == NodeRole::Fixed);
+            largest[side] = largest[side].max(moved);
         }
         self.on.max(&mut largest);
         if largest[1] > 0.0 {
