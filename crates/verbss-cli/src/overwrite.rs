@@ -48,7 +48,7 @@ pub fn check_outputs(job: &Job, recorder: &Recorder, more: Vec<Output>) -> verbs
     } else {
         more
     };
-    let flag = |option: &str, key: &str| (if job.from_case { key } else { option }).to_string();
+    let flag = |option: &str, key: &str| flag(job, option, key);
     if let Some(report) = &job.report {
         files.push(Output::new(flag("--report", "output.report"), report));
     }
@@ -84,11 +84,17 @@ fn refuse_existing_times(job: &Job) -> verbss::Result<()> {
     Ok(())
 }
 
+/// How a message names a setting of `job`: its case-file `key` when the
+/// job came from a case file, else its command-line `option`.
+fn flag(job: &Job, option: &str, key: &str) -> String {
+    (if job.from_case { key } else { option }).to_string()
+}
+
 /// The files a one-process run of `job` writes: the final mesh (or the
 /// OpenFOAM files or time directories it makes), the series and its
 /// `.pvd`, and the failed state.
 pub fn whole_files(job: &Job) -> Vec<Output> {
-    let flag = |option: &str, key: &str| (if job.from_case { key } else { option }).to_string();
+    let flag = |option: &str, key: &str| flag(job, option, key);
     let (final_flag, every) = (flag("-o", "output.dir"), flag("--every", "output.every"));
     let steps = job.settings.steps;
     let mut files = Vec::new();
