@@ -7,7 +7,7 @@ use clap::Args;
 use verbss::io;
 
 use crate::msh::MshArgs;
-use crate::overwrite::{note_lost_su2_blocks, refuse_input_as_output};
+use crate::overwrite::{mesh_inputs, mesh_outputs, note_lost_su2_blocks};
 use crate::zone::{self, ZoneArg};
 
 /// Arguments of `verbss convert`.
@@ -28,14 +28,10 @@ pub struct ConvertArgs {
 
 /// Runs `verbss convert`.
 pub fn run(args: ConvertArgs) -> anyhow::Result<ExitCode> {
-    refuse_input_as_output(&args.input, &args.output, args.overwrite, false)?;
-    if !matches!(io::Format::from_path(&args.output), Ok(io::Format::Foam)) {
-        let output = io::outputs::Output {
-            overwrite: Some(args.overwrite),
-            ..io::outputs::Output::new("the output", &args.output)
-        };
-        io::outputs::check(&crate::overwrite::mesh_inputs(&args.input), &[output])?;
-    }
+    io::outputs::check(
+        &mesh_inputs(&args.input),
+        &mesh_outputs("the output", &args.output, args.overwrite),
+    )?;
     // SU2 to SU2 keeps every zone: no note that only one is used. Any other
     // input keeps its notes (a CGNS file's zones among them).
     let is_su2 = |p: &std::path::Path| matches!(io::Format::from_path(p), Ok(io::Format::Su2));

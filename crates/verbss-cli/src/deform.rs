@@ -28,7 +28,7 @@ use verbss::Mesh;
 
 use crate::case_times::TimeArgs;
 use crate::msh::MshArgs;
-use crate::overwrite::{mesh_inputs, refuse_input_as_output};
+use crate::overwrite::mesh_inputs;
 use crate::render::{PictureArgs, Recorder};
 use crate::run::{file_stem, output_dir, parse_every, run_here, Job, Prepared};
 use crate::settings::SettingArgs;
@@ -131,7 +131,6 @@ pub fn run(args: DeformArgs) -> anyhow::Result<ExitCode> {
 /// and decides the motion and the settings ([`DeformArgs::prepare_on`]).
 pub fn prepare(args: DeformArgs) -> anyhow::Result<Prepared> {
     let format = Format::from_path(&args.output)?;
-    refuse_input_as_output(&args.mesh, &args.output, args.overwrite, true)?;
     let mut mesh = zone::read(&args.mesh, args.zone.zone, "--zone K", args.quiet)?;
     let write_options = args.msh.options(&mesh);
     if format != Format::Msh {

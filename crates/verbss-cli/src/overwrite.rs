@@ -4,7 +4,6 @@
 
 use std::path::Path;
 
-use anyhow::bail;
 use verbss::io::outputs::{self, Input, Output, MESH};
 use verbss::io::su2::Anchor;
 use verbss::io::{foam, Format};
@@ -90,6 +89,30 @@ fn flag(job: &Job, option: &str, key: &str) -> String {
     (if job.from_case { key } else { option }).to_string()
 }
 
+/// The files of a mesh written whole to `path` (named by `flag`), which may
+/// be the input mesh when `overwrite`: the file, or an OpenFOAM case's
+/// polyMesh files, each replacing a link at its path.
+pub fn mesh_outputs(flag: &str, path: &Path, overwrite: bool) -> Vec<Output> {
+    if !matches!(Format::from_path(path), Ok(Format::Foam)) {
+        return vec![Output {
+            overwrite: Some(overwrite),
+            ..Output::new(flag, path)
+        }];
+    }
+    let dir = match path.ends_with("polyMesh") {
+        true => path.to_path_buf(),
+        false => path.join("constant").join("polyMesh"),
+    };
+    foam::FILES
+        .iter()
+        .map(|f| Output {
+            replaces_link: true,
+            overwrite: Some(overwrite),
+            ..Output::new(flag, dir.join(f))
+        })
+        .collect()
+}
+
 /// The files a one-process run of `job` writes: the final mesh (or the
 /// OpenFOAM files or time directories it makes), the series and its
 /// `.pvd`, and the failed state.
@@ -98,32 +121,18 @@ pub fn whole_files(job: &Job) -> Vec<Output> {
     let (final_flag, every) = (flag("-o", "output.dir"), flag("--every", "output.every"));
     let steps = job.settings.steps;
     let mut files = Vec::new();
-    let foam_file = |flag: &str, path: std::path::PathBuf| Output {
-        replaces_link: true,
-        ..Output::new(flag, path)
-    };
     match job.time_dir(0) {
         Some(_) => files.extend(job.written_steps(steps).into_iter().map(|n| {
             let dir = job.time_dir(n).expect("an OpenFOAM output in the case");
             let flag = if n == steps { &final_flag } else { &every };
-            foam_file(flag, dir.join("polyMesh").join("points"))
+            Output {
+                replaces_link: true,
+                ..Output::new(flag, dir.join("polyMesh").join("points"))
+            }
         })),
-        None if job.final_mesh && job.extension.is_empty() => {
-            let path = job.final_path();
-            let dir = match path.ends_with("polyMesh") {
-                true => path,
-                false => path.join("constant").join("polyMesh"),
-            };
-            files.extend(
-                foam::FILES
-                    .iter()
-                    .map(|f| foam_file(&final_flag, dir.join(f))),
-            );
+        None if job.final_mesh => {
+            files.extend(mesh_outputs(&final_flag, &job.final_path(), job.overwrite));
         }
-        None if job.final_mesh => files.push(Output {
-            overwrite: Some(job.overwrite),
-            ..Output::new(&final_flag, job.final_path())
-        }),
         None => {}
     }
     if job.series && job.foam_times.is_none() {
@@ -136,38 +145,6 @@ pub fn whole_files(job: &Job) -> Vec<Output> {
     }
     files.push(Output::new("the failed state", job.failed_path()));
     files
-}
-
-/// Fails when `output` is the mesh `input` (the same file, or the same
-/// OpenFOAM polyMesh), unless `overwrite` (`--overwrite`). An OpenFOAM
-/// output that gets its points in a new time directory (`time_dir`, as
-/// `deform` writes into the input case) leaves `constant/polyMesh` as it
-/// was, and passes.
-pub fn refuse_input_as_output(
-    input: &Path,
-    output: &Path,
-    overwrite: bool,
-    time_dir: bool,
-) -> anyhow::Result<()> {
-    let both_foam = [input, output]
-        .iter()
-        .all(|p| matches!(Format::from_path(p), Ok(Format::Foam)));
-    let same = if both_foam {
-        foam::same_polymesh(input, output)
-    } else {
-        match (input.canonicalize(), output.canonicalize()) {
-            (Ok(a), Ok(b)) => a == b,
-            _ => false,
-        }
-    };
-    if same && !overwrite && !(both_foam && time_dir) {
-        bail!(
-            "{}: the output is the input mesh {} (give --overwrite to replace it)",
-            output.display(),
-            input.display()
-        );
-    }
-    Ok(())
 }
 
 /// Says on standard error that `output`, not an SU2 file, leaves out the

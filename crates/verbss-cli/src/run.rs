@@ -35,7 +35,7 @@ use verbss::Error;
 
 use crate::case_times::TimeArgs;
 use crate::msh::MshArgs;
-use crate::overwrite::{check_outputs, mesh_inputs, note_lost_su2_blocks, refuse_input_as_output};
+use crate::overwrite::{check_outputs, mesh_inputs, note_lost_su2_blocks};
 use crate::progress::Progress;
 use crate::render::{PictureArgs, Recorder};
 
@@ -86,10 +86,6 @@ pub fn run(args: RunArgs) -> anyhow::Result<ExitCode> {
         .extension()
         .map(|e| e.to_string_lossy().into_owned())
         .unwrap_or_else(|| "vtu".into());
-    if case.output.final_mesh {
-        let last = dir.join(format!("{name}.{extension}"));
-        refuse_input_as_output(&case.mesh, &last, args.overwrite, false)?;
-    }
     let write_options = args.msh.apply(case.output.write_options(&mesh));
     let foam_times = match case.output.final_mesh {
         true => {

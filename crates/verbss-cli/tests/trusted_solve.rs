@@ -69,7 +69,7 @@ fn the_default_escalates_where_the_sweeps_diverge_and_records_what_ran() {
     assert_eq!(s["method"], "verbss");
     assert_eq!(s["blend"], false);
     assert_eq!(s["escalate"], true);
-    assert_eq!(s["accel"], "none");
+    assert_eq!(s["accel"], "auto");
     assert_eq!(s["predictor"], "previous");
     assert_eq!(s["rigid_layer"], "auto");
     assert_eq!(s["stiffening"], 1.0);

@@ -428,7 +428,7 @@ fn methods_that_are_not_distributed_are_refused() {
     assert!(
         stderr(&o).contains(
             "error: invalid setting: verbss-mpi distributes the solve of its sweeper, which runs \
-             --method robust, verbss or spring with --accel none (got method laplacian, accel none)"
+             --method robust, verbss or spring with --accel none or auto (got method laplacian, accel none)"
         ),
         "{}",
         stderr(&o)

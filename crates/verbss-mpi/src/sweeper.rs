@@ -276,13 +276,13 @@ impl<'c> Sweeper<'c> {
 
     /// Whether the distributed sweeps can solve with `params`: the sweeps of
     /// the methods verbss and spring (the robust preset's is verbss), with
-    /// accel none.
+    /// accel none or auto (the robust preset's: the multigrid it would hand
+    /// a slow step to is not distributed, so on ranks it means the sweeps).
     pub fn supports(params: &SolveParams) -> Result<()> {
-        if !matches!(params.method, Method::Verbss | Method::Spring) || params.accel != Accel::None
-        {
+        if !matches!(params.method, Method::Verbss | Method::Spring) || params.accel == Accel::Amg {
             return Err(Error::InvalidSetting(format!(
                 "verbss-mpi distributes the solve of its sweeper, which runs --method robust, \
-                 verbss or spring with --accel none (got method {}, accel {})",
+                 verbss or spring with --accel none or auto (got method {}, accel {})",
                 params.method, params.accel
             )));
         }

@@ -445,10 +445,11 @@ pub static TABLE: &[Setting] = &[
         name: "accel",
         values: Values::Names(Accel::NAMES),
         default: "none",
-        presets: &[],
-        help: "Plain VerBSS sweeps (none), the multigrid-accelerated solve (amg), or amg on large \
-               meshes of mostly triangles or tetrahedra (auto). Given, it is the only solver \
-               used (escalate off unless given).",
+        presets: &[(Preset::Robust, "auto")],
+        help: "Plain VerBSS sweeps (none), the multigrid-accelerated solve (amg), or sweeps that \
+               hand a step they have not finished in 100 sweeps to the multigrid, which then \
+               solves every later step (auto; meshes of mostly triangles or tetrahedra). Given, \
+               it is the only solver used (escalate off unless given).",
         put: |s, v| {
             s.solve.accel = v.name().parse()?;
             Ok(())

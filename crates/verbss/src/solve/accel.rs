@@ -13,8 +13,9 @@
 //! reused for the next steps even when the springs are rebuilt on moved
 //! coordinates (updated reference): the fine level always uses the current
 //! springs, so the answer is unchanged and only the preconditioner ages. It
-//! is rebuilt when a solve needs more than 1.5 times (plus 2) the iterations
-//! of the first solve after the last build.
+//! is rebuilt when the iterations a solve needs beyond the first solve after
+//! the last build cost more than [`1/PAYBACK_STEPS`](PAYBACK_STEPS) of the
+//! set-up: a rebuild then pays for itself within that many such steps.
 
 use std::time::Instant;
 
@@ -23,8 +24,8 @@ use rayon::prelude::*;
 use super::amg::Hierarchy;
 use super::gmres::{self, Workspace};
 use super::{
-    chunked_dot, sweep, verbss, Accel, Built, Layout, Method, SolveInfo, SolveParams,
-    AUTO_AMG_NODES_2D, AUTO_AMG_NODES_3D, CHUNK, GMRES_RESTART,
+    chunked_dot, sweep, verbss, Accel, Built, Layout, Method, SolveInfo, SolveParams, CHUNK,
+    GMRES_RESTART,
 };
 use crate::error::Result;
 use crate::mesh::CellKind;
@@ -34,6 +35,12 @@ use crate::springs::NodeBlocks;
 const RESTART: usize = 20;
 /// Relaxation factor of the finest level's VerBSS smoothing sweeps.
 const SMOOTHING_OMEGA: f64 = 1.0;
+/// What a hierarchy takes a node, at most (3.3–3.6 KB measured on
+/// tetrahedra, BENCHMARKS.md).
+const HIERARCHY_BYTES_PER_NODE: u64 = 4_096;
+/// The hierarchy is rebuilt when a solve's iterations beyond its first
+/// solve's cost more than its set-up over this many steps.
+const PAYBACK_STEPS: f64 = 4.0;
 
 /// What the engine keeps for the accelerated solve: the accelerator of the
 /// last system, and what [`Accel::Auto`] decides by.
@@ -43,6 +50,8 @@ pub(crate) struct AccelState {
     simplicial: bool,
     /// [`Accel::Auto`] could not build a multigrid for this mesh.
     declined: bool,
+    /// [`Accel::Auto`] handed a step to the multigrid: it solves every later one.
+    switched: bool,
 }
 
 impl AccelState {
@@ -56,14 +65,42 @@ impl AccelState {
             accelerator: None,
             simplicial: 2 * simplices >= kinds.len(),
             declined: false,
+            switched: false,
         }
+    }
+
+    /// Under [`Accel::Auto`], whether a step's plain sweeps of `unknowns`
+    /// nodes stop after [`super::AUTO_SWEEPS`] to hand the step to the
+    /// multigrid: on a mesh of mostly triangles or tetrahedra whose
+    /// hierarchy would take at most half the memory available, until the
+    /// multigrid took over or could not be built.
+    pub(crate) fn may_switch(&self, unknowns: usize) -> bool {
+        self.simplicial
+            && !self.declined
+            && !self.switched
+            && available_memory()
+                .is_none_or(|bytes| (HIERARCHY_BYTES_PER_NODE * unknowns as u64) <= bytes / 2)
+    }
+
+    /// Whether a multigrid hierarchy is kept (for the order of the unknowns
+    /// it was built on).
+    pub(crate) fn has_hierarchy(&self) -> bool {
+        self.accelerator
+            .as_ref()
+            .is_some_and(|a| matches!(a.preconditioner, Preconditioner::Multigrid { .. }))
+    }
+
+    /// Under [`Accel::Auto`], the multigrid solves this step and the next.
+    pub(crate) fn switch(&mut self) {
+        self.switched = true;
     }
 
     /// Whether the solve of `built` with `params` uses the multigrid: the
     /// accelerator to use (`None`: plain sweeps), built first when the kept
     /// one does not fit, with the seconds that took (`None`: nothing built).
-    /// Under [`Accel::Auto`] a hierarchy that cannot be built means plain
-    /// sweeps for the rest of the run.
+    /// Under [`Accel::Auto`] it is used once [`AccelState::switch`]ed, and a
+    /// hierarchy that cannot be built means plain sweeps for the rest of
+    /// the run.
     pub(crate) fn prepare(
         &mut self,
         built: &Built,
@@ -77,14 +114,7 @@ impl AccelState {
             && match params.accel {
                 Accel::None => false,
                 Accel::Amg => true,
-                Accel::Auto => {
-                    let from = if dim == 2 {
-                        AUTO_AMG_NODES_2D
-                    } else {
-                        AUTO_AMG_NODES_3D
-                    };
-                    !self.declined && self.simplicial && unknowns >= from
-                }
+                Accel::Auto => self.switched && !self.declined,
             };
         if !wanted {
             return Ok((None, None));
@@ -102,9 +132,11 @@ impl AccelState {
                 2 => Accelerator::new::<2>(built, method),
                 _ => Accelerator::new::<3>(built, method),
             }) {
-                Ok(a) => {
+                Ok(mut a) => {
+                    let built_in = started.elapsed().as_secs_f64();
+                    a.set_up_in(built_in);
                     self.accelerator = Some(a);
-                    seconds = Some(started.elapsed().as_secs_f64());
+                    seconds = Some(built_in);
                 }
                 Err(_) if params.accel == Accel::Auto => {
                     self.declined = true;
@@ -124,6 +156,8 @@ enum Preconditioner {
         hierarchy: Box<Hierarchy>,
         /// Iterations of the first solve after the hierarchy was built.
         baseline: Option<usize>,
+        /// Seconds the hierarchy took to build.
+        setup_seconds: f64,
         /// Rebuild before the next solve.
         stale: bool,
     },
@@ -161,12 +195,20 @@ impl Accelerator {
             preconditioner: Preconditioner::Multigrid {
                 hierarchy: Box::new(hierarchy),
                 baseline: None,
+                setup_seconds: 0.0,
                 stale: false,
             },
             method,
             workspace: Workspace::new(n, RESTART),
             zeros: vec![0.0; n],
         })
+    }
+
+    /// Records that the hierarchy took `seconds` to build.
+    fn set_up_in(&mut self, seconds: f64) {
+        if let Preconditioner::Multigrid { setup_seconds, .. } = &mut self.preconditioner {
+            *setup_seconds = seconds;
+        }
     }
 
     /// GMRES preconditioned by one symmetric VerBSS sweep, for `unknowns`
@@ -243,13 +285,21 @@ impl Accelerator {
             chunked_dot,
             record_history.then_some(&mut history),
         );
+        let seconds = started.elapsed().as_secs_f64();
         if let Preconditioner::Multigrid {
-            baseline, stale, ..
+            baseline,
+            setup_seconds,
+            stale,
+            ..
         } = &mut self.preconditioner
         {
             match *baseline {
                 None => *baseline = Some(outcome.iterations),
-                Some(b) => *stale = outcome.iterations > b + b / 2 + 2,
+                Some(b) => {
+                    let extra = outcome.iterations.saturating_sub(b) as f64;
+                    let per_iteration = seconds / outcome.iterations.max(1) as f64;
+                    *stale = extra * per_iteration > *setup_seconds / PAYBACK_STEPS;
+                }
             }
         }
         SolveInfo {
@@ -257,7 +307,7 @@ impl Accelerator {
             residual: outcome.estimate,
             converged: outcome.converged,
             diverged: outcome.diverged,
-            solve_seconds: started.elapsed().as_secs_f64(),
+            solve_seconds: seconds,
             history,
             levels: match &self.preconditioner {
                 Preconditioner::Multigrid { hierarchy, .. } => hierarchy.levels(),
@@ -291,4 +341,13 @@ fn residual<const D: usize>(
                 ));
             }
         });
+}
+
+/// The memory the system says is available (`MemAvailable` of
+/// `/proc/meminfo`, Linux), in bytes; `None` where it cannot tell.
+fn available_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
 }

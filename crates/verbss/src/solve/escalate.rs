@@ -28,7 +28,7 @@ use std::time::Instant;
 use super::accel::Accelerator;
 use super::{
     prescribed_scale, run, verify, Accel, Engine, Method, SolveInfo, SolveParams, Solver, Stage,
-    System, ERROR_FRACTION,
+    System, AUTO_SWEEPS, ERROR_FRACTION,
 };
 use crate::error::{Error, Result};
 use crate::geometry::{ldlt_factor, packed_len, point};
@@ -140,7 +140,7 @@ impl Engine {
         let mut total = SolveInfo::default();
         let mut hierarchy_seconds = 0.0;
         for (k, &stage) in stages.iter().enumerate() {
-            let (info, seconds) = match self.stage(displacement, params, stage, exact) {
+            let (info, seconds, label) = match self.stage(displacement, params, stage, exact) {
                 Ok(Some(done)) => done,
                 Ok(None) => continue,
                 Err(e) if k == 0 => return Err(e),
@@ -155,7 +155,7 @@ impl Engine {
             total.history.extend(info.history);
             total.levels = total.levels.max(info.levels);
             total.hierarchy_built |= seconds.is_some();
-            total.stages.push(stage);
+            total.stages.push(label);
             if info.diverged {
                 // What is left is the initial guess: its residual and error
                 // are what a failed solve reports.
@@ -226,14 +226,15 @@ impl Engine {
 
     /// Runs one stage from `displacement`; `None` when the stage does not
     /// apply (no multigrid for the system, or too large a direct solve).
-    /// Gives the solve and, when a multigrid was built, its seconds.
+    /// Gives the solve, when a multigrid was built its seconds, and what
+    /// solved it ([`Stage::Multigrid`] for sweeps the multigrid replaced).
     fn stage(
         &mut self,
         displacement: &mut [f64],
         params: &SolveParams,
         stage: Stage,
         exact: bool,
-    ) -> Result<Option<(SolveInfo, Option<f64>)>> {
+    ) -> Result<Option<(SolveInfo, Option<f64>, Stage)>> {
         let dim = self.conn.dim;
         let Engine {
             conn,
@@ -252,10 +253,23 @@ impl Engine {
         let mut stage_params = params.clone();
         let mut hierarchy = None;
         let mut sweep_gmres;
+        // Under `auto`, sweeps that have not converged after AUTO_SWEEPS
+        // hand the step to the multigrid.
+        let switching = stage == Stage::Sweeps
+            && params.accel == Accel::Auto
+            && factored
+            && accel.may_switch(built.layout.len());
+        if switching {
+            stage_params.max_iterations = params.max_iterations.min(AUTO_SWEEPS);
+        }
+        let mut label = stage;
         let accelerator = match stage {
             Stage::Sweeps => {
                 let (a, seconds) = accel.prepare(built, pool, params, dim)?;
                 hierarchy = seconds;
+                if a.is_some() {
+                    label = Stage::Multigrid;
+                }
                 a
             }
             Stage::Multigrid => {
@@ -312,7 +326,7 @@ impl Engine {
             }
         };
         let run_in: RunIn = if conn.dim == 2 { run::<2> } else { run::<3> };
-        let info = run_in(
+        let mut info = run_in(
             built,
             pool,
             accelerator,
@@ -321,7 +335,23 @@ impl Engine {
             threshold,
             stage,
         )?;
-        Ok(Some((info, hierarchy)))
+        if switching && !info.converged {
+            accel.switch();
+            let (a, seconds) = accel.prepare(built, pool, params, dim)?;
+            hierarchy = seconds;
+            if a.is_some() {
+                label = Stage::Multigrid;
+            }
+            let mut rest = params.clone();
+            rest.max_iterations = params.max_iterations.saturating_sub(info.iterations);
+            let after = run_in(built, pool, a, displacement, &rest, threshold, stage)?;
+            info = SolveInfo {
+                iterations: info.iterations + after.iterations,
+                history: [info.history, after.history].concat(),
+                ..after
+            };
+        }
+        Ok(Some((info, hierarchy, label)))
     }
 
     /// Fills the true residual and the worst estimated error of `total`

@@ -102,7 +102,7 @@ pub use self::escalate::{
 pub use self::frame::{unit_directions, Frame, Frames};
 pub use self::params::{
     clear_prescribed, default_roles, Accel, Method, NodeRole, SolveInfo, SolveParams, Solver,
-    Stage, AUTO_AMG_NODES_2D, AUTO_AMG_NODES_3D, ERROR_FRACTION,
+    Stage, AUTO_SWEEPS, ERROR_FRACTION,
 };
 use self::pass::{gather, prescribed_scale, run};
 pub use self::spring_solver::{SolverSetup, SpringSolver};
@@ -399,7 +399,8 @@ impl Engine {
     /// Orders the unknowns, assembles the springs and prepares the diagonal;
     /// the springs are written over `kept`, the blocks of the last build of
     /// the same method, when the order is the same
-    /// ([`springs::assemble_reusing`]).
+    /// ([`springs::assemble_reusing`]). The order follows the moving nodes
+    /// ([`Engine::layout`]) except while a multigrid hierarchy is kept.
     fn build<const D: usize>(
         &mut self,
         coords: &[f64],
@@ -408,8 +409,11 @@ impl Engine {
         kept: Option<NodeBlocks>,
     ) -> Result<Built> {
         let seeds = self.moving::<D>(displacement);
+        // A multigrid hierarchy is built on the order of the unknowns: while
+        // one is kept, so is the order, even when the moving nodes change.
+        let hierarchy = self.accel.has_hierarchy();
         let (layout, kept) = match &self.layout {
-            Some((same, layout)) if *same == seeds => (Arc::clone(layout), kept),
+            Some((same, layout)) if *same == seeds || hierarchy => (Arc::clone(layout), kept),
             _ => {
                 let layout = Arc::new(self.layout::<D>(&seeds));
                 self.layout = Some((seeds, Arc::clone(&layout)));

@@ -101,11 +101,15 @@ pub enum Accel {
     /// root-mean-square error of the unknowns is below the threshold
     /// (`docs/acceleration.md`).
     Amg,
-    /// The multigrid (amg) for meshes of mostly triangles or tetrahedra with
-    /// at least 3,000 (2D) or 100,000 (3D) unknown nodes (AUTO_AMG_NODES_2D,
-    /// AUTO_AMG_NODES_3D), plain sweeps (none) otherwise; a multigrid that
-    /// cannot be built or a solve it cannot finish falls back to plain
-    /// sweeps.
+    /// Plain sweeps while they converge within [`AUTO_SWEEPS`]; on a mesh
+    /// of mostly triangles or tetrahedra, the first step whose sweeps do not
+    /// is handed to the multigrid (amg) from where they stopped, and the
+    /// multigrid, its hierarchy kept, solves every later step. A multigrid
+    /// that cannot be built or a solve it cannot finish falls back to plain
+    /// sweeps. The robust default's solver: a rigid motion, which the blend
+    /// leaves the springs almost nothing to solve, never pays for a
+    /// hierarchy; a deforming wall, whose sweeps grow with the mesh, gets
+    /// iterations that do not.
     Auto,
 }
 
@@ -118,12 +122,11 @@ crate::names::named!(Method, "method", [
 crate::names::named!(Solver, "solver", [Sor => "sor", Direct => "direct"]);
 crate::names::named!(Accel, "accel", [None => "none", Amg => "amg", Auto => "auto"]);
 
-/// The size from which [`Accel::Auto`] uses the multigrid in 2D: where a
-/// first step, setup included, stops being slower than plain sweeps.
-pub const AUTO_AMG_NODES_2D: usize = 3_000;
-/// The same in 3D, where plain sweeps need fewer sweeps for the same size
-/// and each setup costs more.
-pub const AUTO_AMG_NODES_3D: usize = 100_000;
+/// The sweeps after which [`Accel::Auto`] hands an unconverged step to the
+/// multigrid: about the cost of one step solved by it with its hierarchy
+/// kept (5–16 GMRES iterations of a V-cycle each; BENCHMARKS.md), so that a
+/// step the sweeps finish sooner never pays for a hierarchy.
+pub const AUTO_SWEEPS: usize = 100;
 
 /// Settings of one solve (one time step).
 #[derive(Debug, Clone, PartialEq)]

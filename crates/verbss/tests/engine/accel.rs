@@ -1,9 +1,7 @@
 //! The multigrid-accelerated solve: exactness, thread independence, the kept
 //! hierarchy and what `auto` chooses.
 
-use verbss::solve::{
-    default_roles, Accel, Engine, Method, Solver, AUTO_AMG_NODES_2D, AUTO_AMG_NODES_3D,
-};
+use verbss::solve::{default_roles, Accel, Engine, Method, Solver, Stage, AUTO_SWEEPS};
 
 use crate::grid::{grid, Layout, LAYOUTS};
 use crate::{amg, direct_solution, params, rel_diff, solve, thread_runs, wavy_boundary};
@@ -67,41 +65,52 @@ fn the_hierarchy_is_kept_while_the_mesh_moves_and_the_answer_stays_exact() {
     assert!(total.iter().any(|&v| v != 0.0));
 }
 
+/// `auto` sweeps while they finish within AUTO_SWEEPS; on simplex meshes
+/// a step they do not finish goes to the multigrid, which keeps its
+/// hierarchy and solves the next step from the start.
 #[test]
-fn auto_accelerates_large_simplex_meshes_only() {
-    assert!(47usize.pow(3) >= AUTO_AMG_NODES_3D && 59usize.pow(2) >= AUTO_AMG_NODES_2D);
-    for (layout, accelerated) in [
-        (Layout::Tet, true),
-        (Layout::Hex, false),
-        (Layout::Tri, true),
-        (Layout::Quad, false),
+fn auto_hands_a_step_the_sweeps_do_not_finish_to_the_multigrid_on_simplex_meshes() {
+    for (layout, n, simplex) in [
+        (Layout::Tet, 24, true),
+        (Layout::Hex, 24, false),
+        (Layout::Tri, 60, true),
+        (Layout::Quad, 60, false),
     ] {
-        let mesh = grid(
-            layout,
-            if layout == Layout::Tri || layout == Layout::Quad {
-                60
-            } else {
-                48
-            },
-        );
+        let mesh = grid(layout, n);
         let roles = default_roles(&mesh);
-        let mut u = wavy_boundary(&mesh);
-        let mut p = params(Method::Verbss, Solver::Sor, 1e-2);
+        let mut engine = Engine::new(&mesh, &roles, &[]).unwrap();
+        let mut p = params(Method::Verbss, Solver::Sor, 1e-8);
         p.accel = Accel::Auto;
-        // What `auto` chooses, without the escalation that a loose
-        // tolerance would trigger.
+        // What `auto` chooses, without the escalation.
         p.escalate = false;
-        let info = solve(&mesh, &roles, &[], &mut u, &p);
-        assert!(info.converged);
-        assert_eq!(info.levels >= 2, accelerated, "{layout:?}: {info:?}");
+        let mut u = wavy_boundary(&mesh);
+        let first = engine.solve(&mesh.coords, &mut u, &p).unwrap();
+        assert!(first.converged, "{layout:?}: {first:?}");
+        assert!(first.iterations > AUTO_SWEEPS, "{layout:?}: {first:?}");
+        assert_eq!(first.hierarchy_built, simplex, "{layout:?}: {first:?}");
+        let solver = if simplex {
+            Stage::Multigrid
+        } else {
+            Stage::Sweeps
+        };
+        assert_eq!(first.stages, [solver], "{layout:?}");
+        let mut again = wavy_boundary(&mesh);
+        let second = engine.solve(&mesh.coords, &mut again, &p).unwrap();
+        assert!(second.converged && !second.hierarchy_built, "{layout:?}");
+        assert_eq!(second.stages, [solver], "{layout:?}");
+        if simplex {
+            assert!(
+                second.iterations < AUTO_SWEEPS / 4,
+                "{layout:?}: {second:?}"
+            );
+            assert!(rel_diff(&again, &u) < 1e-5, "{layout:?}");
+        }
     }
-    for small in [grid(Layout::Tet, 20), grid(Layout::Tri, 40)] {
-        let mut u = wavy_boundary(&small);
-        let mut p = params(Method::Verbss, Solver::Sor, 1e-6);
-        p.accel = Accel::Auto;
-        assert_eq!(
-            solve(&small, &default_roles(&small), &[], &mut u, &p).levels,
-            0
-        );
-    }
+    // A step the sweeps finish builds nothing.
+    let small = grid(Layout::Tet, 4);
+    let mut u = wavy_boundary(&small);
+    let mut p = params(Method::Verbss, Solver::Sor, 1e-6);
+    p.accel = Accel::Auto;
+    let info = solve(&small, &default_roles(&small), &[], &mut u, &p);
+    assert!(info.converged && info.iterations <= AUTO_SWEEPS && !info.hierarchy_built);
 }
