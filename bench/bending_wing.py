@@ -61,7 +61,8 @@ import meshio
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from compare import FOAM_HEADER, foam_env, foam_timed, later, mean, peak_rss, quality, run  # noqa: E402
+from compare import (FOAM_HEADER, foam_env, foam_timed, later, mean, peak_rss,  # noqa: E402
+                     quality, run)
 from openfoam_peer import read_foam_points, read_mesh, signed_measures  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -211,8 +212,8 @@ def check_mesh(case, latest=False):
     (case / "log.checkMesh").write_text(r.stdout + r.stderr)
     verdict = re.findall(r"^(Mesh OK\.|Failed \d+ mesh checks\.)", r.stdout, flags=re.M)
     problems = [line.strip() for line in r.stdout.splitlines() if line.strip().startswith("***")]
-    return {"verdict": verdict[-1] if verdict else f"checkMesh exit {r.returncode}",
-            "problems": problems}
+    return {"problems": problems,
+            "verdict": verdict[-1].rstrip(".") if verdict else f"checkMesh exit {r.returncode}"}
 
 
 FV_SCHEMES = ("dictionary", """
@@ -410,7 +411,8 @@ def foam_quality(f):
     """The minimum quality over the steps before the first inverted one."""
     bad = f["first_inverted_step"]
     valid = f["min_quality"][:bad - 1 if bad else None]
-    return (f"{min(valid):.4f}" if valid else "–") + (f" (inverted from step {bad})" if bad else "")
+    text = f"{min(valid):.4f}" if valid else "–"
+    return text + (f" (inverted from step {bad})" if bad else "")
 
 
 HEADER = ("| nodes | tets | verbss s/step | sweeps/step | verbss min quality | peak bytes/node "
@@ -425,15 +427,15 @@ def table(results):
 
 
 def generated(results, command, loads):
+    """The command, its date and load, OpenFOAM's checkMesh verdicts and the table."""
     checks = "; ".join(
-        f"{m['nodes']:,} nodes: " + ", ".join(f"{k} {f['checkMesh']['verdict'].rstrip('.')}"
+        f"{m['nodes']:,} nodes: " + ", ".join(f"{k} {f['checkMesh']['verdict']}"
                                               for k, f in m.get("openfoam", {}).items())
         for m in results)
     return "\n".join([
-        "```sh", command, "```", "",
-        f"Measured {datetime.now(timezone.utc):%Y-%m-%d}, load average "
-        f"{loads[0]:.1f} at the start and {loads[1]:.1f} at the end; OpenFOAM's checkMesh of "
-        f"its last time: {checks}.", "", table(results)])
+        f"`{command}` ({datetime.now(timezone.utc):%Y-%m-%d}, load average {loads[0]:.1f} at "
+        f"the start, {loads[1]:.1f} at the end; checkMesh of OpenFOAM's last time: {checks}):",
+        "", table(results)])
 
 
 def write_benchmarks(text):
