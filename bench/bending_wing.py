@@ -3,8 +3,9 @@
 
     python3 bench/bending_wing.py [--sizes 0.016,0.011,0.0086] [--steps 10] [--tip 0.8]
                                   [--threads N] [--work DIR] [--verbss PATH] [--json OUT]
-                                  [--write-benchmarks]
-    python3 bench/bending_wing.py --smoke     # minutes: h 0.05 (about 6k nodes), 2 steps
+                                  [--converged-cycles 10] [--reference-cycles 40]
+                                  [--verify-steps K] [--no-openfoam] [--write-benchmarks]
+    python3 bench/bending_wing.py --smoke     # seconds: h 0.05 (4,922 nodes), 2 steps
 
 The paper's §5.3 case, cases/bending-wing.toml: the wing (group `wing`)
 of a wing-body half model, clamped at its root, bends to a tip deflection
@@ -26,19 +27,21 @@ give about 105k, 307k and 647k nodes):
   both write), GAMG (GaussSeidel smoother, relTol 0) in three settings:
   `one-cycle`, the usual tolerance 1e-6 (the inverse-distance
   coefficients at the wing are huge, and the residual normalised by them
-  meets it after one V-cycle, as it meets 1e-14); `converged`, exactly
-  --converged-cycles V-cycles a step (minIter = maxIter, tolerance 0);
-  `reference`, --reference-cycles, against which the other two are
-  measured: per step the largest node distance to the reference over the
-  step's largest wall displacement (`converged` counts as verified when
-  that stays below 0.1 % at every step; the error of a V-cycle iteration
-  falls geometrically, so the reference's own is far below). s/step:
+  falls to about 1e-15 in one V-cycle, far from the solution);
+  `reference`, exactly --reference-cycles V-cycles a step (minIter =
+  maxIter, tolerance 0) for the first --verify-steps steps, against which
+  the other two are measured: per step the largest node distance to the
+  reference over the step's largest wall displacement; `converged`,
+  exactly --converged-cycles V-cycles a step, raised (twice at most, to
+  half the reference's at most, guessed from the error's geometric fall
+  since one cycle) until that distance is below 0.1 % at every step
+  (`verified`; the reference's own error is then far below). s/step:
   ExecutionTime (CPU) differences, steps 2 on (step 1 includes reading
   the mesh; each step writes its points, binary); min quality: `verbss
   quality` of every step's points on the mesh's tetrahedra before the
   first step where a tetrahedron's signed volume changed sign;
-* checkMesh of every final mesh: verbss's (`verbss convert` to an
-  OpenFOAM case) and each OpenFOAM setting's last time.
+* checkMesh of every final mesh: verbss's (`verbss convert` to MSH 2.2,
+  gmshToFoam) and each OpenFOAM setting's last time.
 
 Prints the table (Markdown), writes every number to --json (after each
 mesh), and with --write-benchmarks replaces the generated part of
@@ -241,10 +244,7 @@ def read_points(path):
     head = data[:data.index(b"}") + 1]
     if b"binary" not in head:
         return read_foam_points(path)
-    m = re.compile(rb"\s*(\d+)\s*\(").match(data, len(head))
-    while m is None:  # skip the comment lines between the header and the list
-        head = data[:data.index(b"\n", len(head)) + 1]
-        m = re.compile(rb"\s*(\d+)\s*\(").match(data, len(head))
+    m = re.compile(rb"^(\d+)\s*\(", re.M).search(data, len(head))  # the count, past the comments
     n = int(m.group(1))
     return np.frombuffer(data, dtype="<f8", count=3 * n, offset=m.end()).reshape(n, 3)
 
@@ -347,7 +347,9 @@ def foam_run(verbss, setting, mesh, msh22, case, points, cells, wing, m, steps, 
 
 
 def openfoam_runs(a, mesh, work, points, cells, wing, m):
+    """The reference, one-cycle and converged settings."""
     msh22 = work / f"{mesh.stem}_22.msh"
+
     def setting(name, gamg, end, reference):
         case = work / f"{mesh.stem}_foam_{name}_s{a.steps}_tip{a.tip:g}"
         return foam_run(a.verbss, name, mesh, msh22, case, points, cells, wing, m, a.steps, end,
@@ -361,9 +363,6 @@ def openfoam_runs(a, mesh, work, points, cells, wing, m):
     out[REFERENCE], reference = setting(REFERENCE, cycles(a.reference_cycles), verify, None)
     out[ONE_CYCLE], _ = setting(ONE_CYCLE, f"tolerance {a.foam_tolerance:g}; maxIter 1000;",
                                 a.steps, reference)
-    # converged: --converged-cycles, more while the distance to the
-    # reference is above 0.1 % (guessed from the error's geometric fall
-    # since one cycle), at most half the reference's
     c, tried = a.converged_cycles, []
     while True:
         out[CONVERGED], _ = setting(CONVERGED, cycles(c), a.steps, reference)
