@@ -6,6 +6,7 @@
                                   [--converged-cycles 10] [--reference-cycles 40]
                                   [--verify-steps K] [--no-openfoam] [--write-benchmarks]
     python3 bench/bending_wing.py --smoke     # seconds: h 0.05 (4,922 nodes), 2 steps
+    python3 bench/bending_wing.py --report OUT.json [--write-benchmarks]   # an earlier run
 
 The paper's §5.3 case, cases/bending-wing.toml: the wing (group `wing`)
 of a wing-body half model, clamped at its root, bends to a tip deflection
@@ -31,11 +32,13 @@ give about 105k, 307k and 647k nodes):
   `converged`, exactly --converged-cycles V-cycles a step (minIter =
   maxIter, tolerance 0), raised (twice at most, to half the reference's
   at most, guessed from the error's geometric fall since one cycle) until
-  its solve error is below 0.1 % at every step (`verified`). Solve error
-  of a step: the largest node distance to the same step solved again from
-  the run's own previous step with --reference-cycles V-cycles (the same
-  system: the same initial residuals; first --verify-steps steps), over
-  the step's largest wall displacement. s/step:
+  its solve error is below 0.1 % at every step that starts from a valid
+  mesh (`verified`: the steps up to the first inverted one; past it the
+  meshes tangle and the solves with them). Solve error of a step: the
+  largest node distance to the same step solved again from the run's own
+  previous step with --reference-cycles V-cycles (the same system: the
+  same initial residuals; first --verify-steps steps), over the step's
+  largest wall displacement. s/step:
   ExecutionTime (CPU) differences, steps 2 on (step 1 includes reading
   the mesh; each step writes its points, binary); min quality: `verbss
   quality` of every step's points on the mesh's tetrahedra before the
@@ -369,9 +372,16 @@ def foam_run(verbss, setting, mesh, msh22, case, points, cells, wing, m, steps, 
     res["checkMesh"] = check_mesh(case, latest=True)
     print(f"  OpenFOAM {setting}: {later(cpu):.3f} CPU s/step (2-), "
           f"{mean(iters):.1f} GAMG cycles/step, min quality {foam_quality(res)}, "
-          f"solve error {100 * max(res['solve_error'], default=0):.3g} %, "
+          f"solve error {pct(solve_error(res))} (steps from a valid mesh), "
           f"checkMesh {res['checkMesh']['verdict']}", file=sys.stderr)
     return res
+
+
+def solve_error(f):
+    """The largest solve error of the steps that start from a valid mesh
+    (up to the first inverted one: past it the meshes tangle, and the
+    solves with them), None if none was measured."""
+    return max(f["solve_error"][:f["first_inverted_step"]], default=None)
 
 
 def openfoam_runs(a, mesh, work, points, cells, wing, m):
@@ -392,8 +402,8 @@ def openfoam_runs(a, mesh, work, points, cells, wing, m):
     while True:
         out[CONVERGED] = setting(CONVERGED, cycles(c))
         tried.append(c)
-        e = max(out[CONVERGED]["solve_error"], default=0.0)
-        e1 = max(out[ONE_CYCLE]["solve_error"], default=1.0)
+        e = solve_error(out[CONVERGED]) or 0.0
+        e1 = solve_error(out[ONE_CYCLE]) or 1.0
         if e <= CONVERGED_WITHIN or c >= a.reference_cycles // 2 or len(tried) == 3:
             break
         rate = (e / e1) ** (1 / (c - 1)) if 0 < e < e1 and c > 1 else 0.9
@@ -422,12 +432,16 @@ def row(m):
             cells += ["", "", "", "", ""]
             continue
         s = later(f["cpu_seconds"])
-        off = f"{100 * max(f['solve_error'], default=math.nan):.2g} %"
+        off = pct(solve_error(f))
         if name == CONVERGED and not f["verified"]:
             off += " (not within 0.1 %)"
         cells += [f"{s:.3f}", f"{mean(f['gamg_iterations']):.0f}", foam_quality(f), off,
                   f"{s / per:.1f}×" if done and not math.isnan(s) else ""]
     return "| " + " | ".join(cells) + " |"
+
+
+def pct(x):
+    return "–" if x is None else f"{100 * x:.2g} %"
 
 
 def foam_quality(f):
@@ -497,7 +511,17 @@ def main():
     ap.add_argument("--write-benchmarks", action="store_true",
                     help="replace the generated table of BENCHMARKS.md's bending-wing section")
     ap.add_argument("--smoke", action="store_true", help="h 0.05, 2 steps: checks that it all runs")
+    ap.add_argument("--report", metavar="JSON",
+                    help="the table of an earlier run's --json file (and --write-benchmarks)")
     a = ap.parse_args()
+    if a.report:
+        results = json.loads(Path(a.report).read_text())
+        text = generated(results, results[0]["command"],
+                         (results[0]["load_average_start"], results[-1]["load_average"][0]))
+        print(text)
+        if a.write_benchmarks:
+            write_benchmarks(text)
+        return
     if a.smoke:
         a.sizes, a.steps = "0.05", 2
     if not Path(a.verbss).is_file():
@@ -533,7 +557,7 @@ def main():
               f"B/node, checkMesh {v['checkMesh']['verdict']}", file=sys.stderr)
         if have_foam:
             r["openfoam"] = openfoam_runs(a, mesh, work, points, cells, wing, m)
-        r["load_average"] = os.getloadavg()
+        r.update(load_average=os.getloadavg(), load_average_start=start_load, command=command)
         results.append(r)
         if a.json:
             Path(a.json).write_text(json.dumps(results, indent=1))
