@@ -411,9 +411,9 @@ def openfoam_runs(a, mesh, work, points, cells, wing, m):
         rate = (e / e1) ** (1 / (c - 1)) if 0 < e < e1 and c > 1 else 0.9
         more = math.ceil(math.log(CONVERGED_WITHIN / e) / math.log(rate)) + 1
         c = min(c + max(more, 1), a.reference_cycles // 2)
-    out[CONVERGED].update(cycles=c, cycles_tried=tried,
-                          verified=solve_error(out[CONVERGED]) is not None and e <= CONVERGED_WITHIN,
-                          verified_steps=verify)
+    measured = solve_error(out[CONVERGED]) is not None
+    out[CONVERGED].update(cycles=c, cycles_tried=tried, verified_steps=verify,
+                          verified=measured and e <= CONVERGED_WITHIN)
     return out
 
 
