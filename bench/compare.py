@@ -75,11 +75,16 @@ def run(cmd, **kw):
     return subprocess.run(cmd, check=True, text=True, capture_output=True, **kw)
 
 
+def peak_rss(time_v_stderr):
+    """The peak RSS in bytes that /usr/bin/time -v wrote, or None."""
+    peak = re.search(r"Maximum resident set size \(kbytes\): (\d+)", time_v_stderr)
+    return int(peak.group(1)) * 1024 if peak else None
+
+
 def timed(cmd, **kw):
     """Runs cmd under /usr/bin/time -v; returns (stdout, peak RSS bytes)."""
     r = run(["/usr/bin/time", "-v"] + cmd, **kw)
-    peak = re.search(r"Maximum resident set size \(kbytes\): (\d+)", r.stderr)
-    return r.stdout, int(peak.group(1)) * 1024 if peak else None
+    return r.stdout, peak_rss(r.stderr)
 
 
 def mesh_for(work, h):
@@ -273,8 +278,7 @@ def foam_timed(app, case):
     # ExecutionTime is the process's CPU time since it started: the first
     # step's value includes reading the mesh, so the first step has none.
     cpu = [float("nan")] + [b - a for a, b in zip(cpu[:-1], cpu[1:])]
-    peak = re.search(r"Maximum resident set size \(kbytes\): (\d+)", err)
-    return wall, cpu, iters, int(peak.group(1)) * 1024
+    return wall, cpu, iters, peak_rss(err)
 
 
 def openfoam_run(bins, mesh, work, steps, apps):
