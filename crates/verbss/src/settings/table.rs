@@ -447,7 +447,7 @@ pub static TABLE: &[Setting] = &[
         default: "none",
         presets: &[(Preset::Robust, "auto")],
         help: "Plain VerBSS sweeps (none), the multigrid-accelerated solve (amg), or sweeps that \
-               hand a step they have not finished in 100 sweeps to the multigrid, which then \
+               hand a step they have not finished in 200 sweeps to the multigrid, which then \
                solves every later step (auto; meshes of mostly triangles or tetrahedra). Given, \
                it is the only solver used (escalate off unless given).",
         put: |s, v| {

@@ -79,7 +79,7 @@ fn auto_hands_a_step_the_sweeps_do_not_finish_to_the_multigrid_on_simplex_meshes
         let mesh = grid(layout, n);
         let roles = default_roles(&mesh);
         let mut engine = Engine::new(&mesh, &roles, &[]).unwrap();
-        let mut p = params(Method::Verbss, Solver::Sor, 1e-8);
+        let mut p = params(Method::Verbss, Solver::Sor, 1e-10);
         p.accel = Accel::Auto;
         // What `auto` chooses, without the escalation.
         p.escalate = false;
