@@ -128,8 +128,6 @@ pub struct Deformer<S = Engine, C = Whole> {
     blend: Option<Blend>,
     /// The input mesh's minimum quality.
     input_quality: f64,
-    /// The input mesh's quality of each local cell.
-    input_qualities: Vec<f64>,
     orientation: Vec<i8>,
     /// The last solution per unit step fraction (increment, or the total
     /// displacement from the start with the fixed and anchored references):
@@ -280,7 +278,6 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
         };
         Ok(Deformer {
             input_quality: current.report.min_quality,
-            input_qualities: check.quality,
             size: (nodes[0] as usize, current.report.bins.iter().sum()),
             guess: vec![0.0; mesh.coords.len()],
             earlier: None,

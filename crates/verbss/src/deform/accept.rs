@@ -111,35 +111,6 @@ pub fn weak(check: &Check, reference_quality: f64) -> bool {
     check.summary.invalid > 0 || check.summary.min_quality < QUALITY_DROP * reference_quality
 }
 
-/// Whether the solve `a` (its account and its check) damages the cells
-/// less than `b`: valid where `b` is not, or, both valid, of a larger
-/// smallest ratio `q_c / q_c⁰` of a cell's quality to its quality `before`
-/// in the input mesh, over the cells with `q_c⁰ > 0` of every process
-/// (collective). Cells compressed along their sides keep their quality
-/// and the ratio 1; the ratio, unlike the minimum quality, sees the
-/// damage done to good cells while the worst cell is one the motion
-/// leaves alone.
-pub fn less_damaged(
-    a: (&SolveInfo, &Check),
-    b: (&SolveInfo, &Check),
-    before: &[f64],
-    on: &dyn Collective,
-) -> bool {
-    let valid = |(info, check): (&SolveInfo, &Check)| info.converged && check.summary.invalid == 0;
-    let ratio = |check: &Check| {
-        check
-            .quality
-            .iter()
-            .zip(before)
-            .filter(|(_, &q0)| q0 > 0.0)
-            .map(|(q, q0)| q / q0)
-            .fold(f64::INFINITY, f64::min)
-    };
-    let mut low = [-ratio(a.1), -ratio(b.1)];
-    on.max(&mut low);
-    valid(a) && (!valid(b) || low[0] < low[1])
-}
-
 /// Whether the solve `a` (its account and its check) is better than `b`:
 /// valid (converged, no invalid cell) where `b` is not, or of a higher
 /// minimum quality.

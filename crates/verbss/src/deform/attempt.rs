@@ -5,12 +5,11 @@
 //! motion"), and the springs solve what is left. A body that translates
 //! has its translation's weight coupled across the motion
 //! ([`Weighting::Directional`]): the cells ahead of it are compressed
-//! along the motion rather than sheared. Next to a fixed wall along the
-//! motion the directional weight shears the cells between body and wall
-//! in a thinner band, so the (sub-)step is also solved with the isotropic
-//! weight, and the one whose most damaged cell is the less damaged is kept
-//! ([`accept::less_damaged`]: the smallest ratio of a cell's quality to
-//! its quality in the input mesh). The blend's weights are
+//! along the motion rather than sheared. Where that solve is weak
+//! ([`accept::weak`]: next to a fixed wall along the motion the
+//! directional weight shears the cells between body and wall in a thinner
+//! band) the (sub-)step is solved again with the isotropic weight and the
+//! better of the two is kept ([`accept::better`]). The blend's weights are
 //! harmonic: next to a sharp convex corner of a body their gradient is
 //! singular, and on a mesh that is coarse there the blended start can crush
 //! the cells ahead of the corner that the springs alone keep valid. The
@@ -44,21 +43,10 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
     ) -> Result<Attempt> {
         let (start, translated) = self.blended(coords, targets, Weighting::Directional);
         let mut blended = self.judged(&start, targets, fraction, report)?;
-        if translated {
+        if translated && accept::weak(&blended.check, reference_quality) {
             let (start, _) = self.blended(coords, targets, Weighting::Isotropic);
             let isotropic = self.judged(&start, targets, fraction, report)?;
-            let (kept, dropped) = if accept::less_damaged(
-                (&isotropic.info, &isotropic.check),
-                (&blended.info, &blended.check),
-                &self.input_qualities,
-                &self.on,
-            ) {
-                (isotropic, blended)
-            } else {
-                (blended, isotropic)
-            };
-            report.add(&dropped.info);
-            blended = kept;
+            blended = better_of(isotropic, blended, report);
         }
         if self.blend.is_none() || !accept::weak(&blended.check, reference_quality) {
             return Ok(blended);

@@ -241,6 +241,9 @@ mod tests {
         let isotropic = spread(None);
         let directional = spread(Some(&[1.0, 0.0, 0.0]));
         assert!(isotropic > 0.3, "{isotropic}");
-        assert!(directional < 0.1 * isotropic, "{directional} against {isotropic}");
+        assert!(
+            directional < 0.1 * isotropic,
+            "{directional} against {isotropic}"
+        );
     }
 }
