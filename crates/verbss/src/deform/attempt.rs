@@ -3,13 +3,13 @@
 //! A (sub-)step starts from the reference configuration moved by the
 //! blended rigid motion when the blend is on (docs/method.md, "Blended rigid
 //! motion"), and the springs solve what is left. A body that translates
-//! has its translation's weight coupled across the motion
-//! ([`Weighting::Directional`]): the cells ahead of it are compressed
-//! along the motion rather than sheared. Where that solve is weak
-//! ([`accept::weak`]: next to a fixed wall along the motion the
-//! directional weight shears the cells between body and wall in a thinner
-//! band) the (sub-)step is solved again with the isotropic weight and the
-//! better of the two is kept ([`accept::better`]). The blend's weights are
+//! on a 2D mesh has its translation's weight coupled across the motion
+//! ahead of and behind it ([`Weighting::Directional`]): the cells there
+//! are compressed along the motion rather than sheared. Where that solve
+//! is weak ([`accept::weak`]: next to a fixed wall along the motion the
+//! directional weight can shear the cells between body and wall in a
+//! thinner band) the (sub-)step is solved again with the isotropic weight
+//! and the better of the two is kept ([`accept::better`]). The blend's weights are
 //! harmonic: next to a sharp convex corner of a body their gradient is
 //! singular, and on a mesh that is coarse there the blended start can crush
 //! the cells ahead of the corner that the springs alone keep valid. The

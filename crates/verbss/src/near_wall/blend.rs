@@ -18,10 +18,11 @@
 //! * `w` solves a Laplacian on the mesh the increment starts from
 //!   (`harmonic.rs`), sliding nodes free (their move is then projected
 //!   onto their plane by the springs' remainder): [`Weighting::Directional`]
-//!   couples the edges across the translation [`super::harmonic::ACROSS`]
-//!   times more than those along it, so the cells ahead of a body are
-//!   compressed along the motion, not sheared; [`Weighting::Isotropic`]
-//!   takes `k = 1/L`. Recomputed every increment, it follows a gap that
+//!   (2D meshes) couples the edges across the translation in the body's
+//!   shadow along it up to [`super::harmonic::ACROSS`] times more than
+//!   those along it, so the cells ahead of a body are compressed along the
+//!   motion, not sheared; [`Weighting::Isotropic`] (and 3D meshes) takes
+//!   `k = 1/L`. Recomputed every increment, it follows a gap that
 //!   closes: compressed edges couple more strongly and the compression
 //!   spreads over the gap;
 //! * `v = 1 − ln(1 + d/ρ) / ln(1 + (d + e)/ρ)`, with `d` the distance to the
@@ -38,7 +39,7 @@
 use std::sync::Arc;
 
 use super::distances::Nearest;
-use super::harmonic::Laplace;
+use super::harmonic::{Laplace, Shadow};
 use crate::collective::{exact_sums, Collective};
 use crate::geometry::{cross, dot, norm};
 use crate::near_wall::{Bounds, Follows};
@@ -94,6 +95,13 @@ pub struct Blend {
     slide_along: [[f64; 3]; 3],
 }
 
+/// The dimension whose meshes take the directional weight: on the
+/// tetrahedra of the sphere moved toward the cube's wall (docs/robustness.md,
+/// "Squeezed gaps") it inverted cells the isotropic weight keeps, the
+/// radius ratio seeing the compression along the motion that a
+/// quadrilateral's scaled Jacobian does not.
+const DIRECTIONAL_DIMENSION: usize = 2;
+
 /// How the translation's weight couples the edges (`harmonic.rs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Weighting {
@@ -107,8 +115,8 @@ pub enum Weighting {
 pub struct Blended {
     /// The coordinates.
     pub coords: Vec<f64>,
-    /// Whether a body translated (the [`Weighting`]s give different
-    /// configurations only then).
+    /// Whether a body translated with the directional weight (the
+    /// [`Weighting`]s give different configurations only then).
     pub translated: bool,
 }
 
@@ -202,7 +210,9 @@ impl Blend {
         let dim = self.dim;
         let mut moved = coords.to_vec();
         let mut translated = false;
-        let slot = usize::from(weighting == Weighting::Directional);
+        // The directional weight in 2D only (see `DIRECTIONAL_DIMENSION`).
+        let directional = weighting == Weighting::Directional && dim == DIRECTIONAL_DIMENSION;
+        let slot = usize::from(directional);
         for body in &mut self.bodies {
             let mut moving = [f64::from(u8::from(body.fitted.iter().any(|&k| {
                 let (i, q) = &targets[k];
@@ -225,7 +235,7 @@ impl Blend {
                 if !moves(part) {
                     continue;
                 }
-                translated = true;
+                translated |= directional;
                 for (wi, &u) in w.iter_mut().zip(unknown.iter()) {
                     if !u {
                         *wi = 0.0;
@@ -236,8 +246,10 @@ impl Blend {
                 }
                 let l = norm(part);
                 let direction = [part[0] / l, part[1] / l, part[2] / l];
-                let along = (weighting == Weighting::Directional).then_some(&direction);
-                self.laplace.solve(on, coords, unknown, w, along);
+                let fitted: Vec<usize> = body.fitted.iter().map(|&k| targets[k].0).collect();
+                let shadow = directional
+                    .then(|| Shadow::of(dim, direction, coords, &fitted, body.radius, on));
+                self.laplace.solve(on, coords, unknown, w, shadow.as_ref());
             }
             // The body's radius about the centre it turns about.
             let mut reach = [body
