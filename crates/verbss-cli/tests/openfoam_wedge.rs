@@ -338,8 +338,10 @@ fn moving_cone_reaches_its_full_3_mm_in_30_steps_with_the_defaults() {
     assert!(o.status.success(), "{}", stderr(&o));
     let r: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    // Step 0 (the input mesh), then the 30 steps.
     let steps = r["steps"].as_array().unwrap();
-    assert_eq!(steps.len(), 30);
+    let numbers: Vec<u64> = steps.iter().map(|s| s["step"].as_u64().unwrap()).collect();
+    assert_eq!(numbers, (0..=30).collect::<Vec<u64>>());
     for s in steps {
         assert_eq!(s["inverted"].as_u64(), Some(0), "{s}");
         assert!(s["min_quality"].as_f64().unwrap() >= 0.9, "{s}");
