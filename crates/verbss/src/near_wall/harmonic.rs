@@ -36,9 +36,10 @@ const REDUCTION: f64 = 1e-8;
 const MAX_ITERATIONS: usize = 4000;
 
 /// The directional weight's coupling across the motion over along it,
-/// `A`: on OpenFOAM's movingCone (the cone pushed 3 mm, in 30 and in 600
-/// steps) 10 kept a minimum quality of 0.63, 20 kept 0.87, 30 0.92, 50 and
-/// more the input's 0.9416 (docs/robustness.md, "Squeezed gaps").
+/// `A`: on OpenFOAM's movingCone (the cone pushed 3 mm in 30 steps, the
+/// weight directional everywhere) 10 kept a minimum quality of 0.63, 20
+/// kept 0.87, 30 0.92, 50 and more the input's 0.9416 (docs/robustness.md,
+/// "Squeezed gaps"); 100 sits between those and OpenFOAM's 200.
 pub(super) const ACROSS: f64 = 100.0;
 
 /// A body's shadow along its translation: the points whose coordinates
