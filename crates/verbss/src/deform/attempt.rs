@@ -2,7 +2,14 @@
 //!
 //! A (sub-)step starts from the reference configuration moved by the
 //! blended rigid motion when the blend is on (docs/method.md, "Blended rigid
-//! motion"), and the springs solve what is left. The blend's weights are
+//! motion"), and the springs solve what is left. A body that translates
+//! on a 2D mesh has its translation's weight coupled across the motion
+//! ahead of and behind it ([`Weighting::Directional`]): the cells there
+//! are compressed along the motion rather than sheared. Where that solve
+//! is weak ([`accept::weak`]: next to a fixed wall along the motion the
+//! directional weight can shear the cells between body and wall in a
+//! thinner band) the (sub-)step is solved again with the isotropic weight
+//! and the better of the two is kept ([`accept::better`]). The blend's weights are
 //! harmonic: next to a sharp convex corner of a body their gradient is
 //! singular, and on a mesh that is coarse there the blended start can crush
 //! the cells ahead of the corner that the springs alone keep valid. The
@@ -17,6 +24,7 @@ use super::accept::{self, Check};
 use super::{blend, Deformer, Reference, StepReport};
 use crate::collective::Collective;
 use crate::error::Result;
+use crate::near_wall::blend::Weighting;
 use crate::solve::{clear_prescribed, SolveInfo, SpringSolver, Stage};
 
 impl<S: SpringSolver, C: Collective> Deformer<S, C> {
@@ -33,21 +41,19 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
         reference_quality: f64,
         report: &mut StepReport,
     ) -> Result<Attempt> {
-        let start = self.blended(coords, targets);
-        let blended = self.judged(&start, targets, fraction, report)?;
+        let (start, translated) = self.blended(coords, targets, Weighting::Directional);
+        let mut blended = self.judged(&start, targets, fraction, report)?;
+        if translated && accept::weak(&blended.check, reference_quality) {
+            let (start, _) = self.blended(coords, targets, Weighting::Isotropic);
+            let isotropic = self.judged(&start, targets, fraction, report)?;
+            blended = better_of(isotropic, blended, report);
+        }
         if self.blend.is_none() || !accept::weak(&blended.check, reference_quality) {
             return Ok(blended);
         }
         let plain_start = reference_of(self.settings.reference, coords, &self.mesh.coords).to_vec();
         let plain = self.judged(&plain_start, targets, fraction, report)?;
-        let (kept, dropped) =
-            if accept::better((&plain.info, &plain.check), (&blended.info, &blended.check)) {
-                (plain, blended)
-            } else {
-                (blended, plain)
-            };
-        report.add(&dropped.info);
-        Ok(kept)
+        Ok(better_of(plain, blended, report))
     }
 
     /// [`Deformer::attempt`] from `start`, and when it converged but left an
@@ -85,21 +91,27 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
     /// Where a (sub-)step from `coords` towards `targets` starts: the
     /// reference configuration (`coords`, or the input mesh with the fixed
     /// and anchored references) moved by the blended rigid motion when it is on
-    /// (docs/method.md, "Blended rigid motion").
-    fn blended(&mut self, coords: &[f64], targets: &[(usize, Vec<f64>)]) -> Vec<f64> {
+    /// (docs/method.md, "Blended rigid motion"), its translation weighted as
+    /// `weighting` says; and whether a body translated.
+    fn blended(
+        &mut self,
+        coords: &[f64],
+        targets: &[(usize, Vec<f64>)],
+        weighting: Weighting,
+    ) -> (Vec<f64>, bool) {
         let reference = reference_of(self.settings.reference, coords, &self.mesh.coords);
         let Some(blend) = &mut self.blend else {
-            return reference.to_vec();
+            return (reference.to_vec(), false);
         };
-        let mut moved = blend.apply(reference, targets, &self.on);
+        let mut moved = blend.apply(reference, targets, &self.on, weighting);
         blend::keep_in_planes(
             self.mesh.dim,
             &self.roles,
             &self.normals,
             reference,
-            &mut moved,
+            &mut moved.coords,
         );
-        moved
+        (moved.coords, moved.translated)
     }
 
     /// Whether `start` ([`Deformer::blended`]) already puts every
@@ -196,6 +208,18 @@ pub(super) struct Attempt {
     pub(super) check: Check,
     /// Seconds of the check.
     pub(super) check_seconds: f64,
+}
+
+/// The better of the solves `a` and `b` ([`accept::better`]; `b` where
+/// neither is), the other's solve added to `report`'s account.
+fn better_of(a: Attempt, b: Attempt, report: &mut StepReport) -> Attempt {
+    let (kept, dropped) = if accept::better((&a.info, &a.check), (&b.info, &b.check)) {
+        (a, b)
+    } else {
+        (b, a)
+    };
+    report.add(&dropped.info);
+    kept
 }
 
 /// The reference configuration of a (sub-)step from `coords`: `coords`, or

@@ -15,11 +15,16 @@
 //! its rigid layer and 0 on every other prescribed node (fixed walls, the
 //! far field, other bodies):
 //!
-//! * `w` solves the Laplacian with `k = 1/L` on the mesh the increment
-//!   starts from (`harmonic.rs`), sliding nodes free (their move is then
-//!   projected onto their plane by the springs' remainder); recomputed
-//!   every increment, it follows a gap that closes: compressed edges couple
-//!   more strongly and the compression spreads over the gap;
+//! * `w` solves a Laplacian on the mesh the increment starts from
+//!   (`harmonic.rs`), sliding nodes free (their move is then projected
+//!   onto their plane by the springs' remainder): [`Weighting::Directional`]
+//!   (2D meshes) couples the edges across the translation in the body's
+//!   shadow along it up to [`super::harmonic::ACROSS`] times more than
+//!   those along it, so the cells ahead of a body are compressed along the
+//!   motion, not sheared; [`Weighting::Isotropic`] (and 3D meshes) takes
+//!   `k = 1/L`. Recomputed every increment, it follows a gap that
+//!   closes: compressed edges couple more strongly and the compression
+//!   spreads over the gap;
 //! * `v = 1 − ln(1 + d/ρ) / ln(1 + (d + e)/ρ)`, with `d` the distance to the
 //!   body's held nodes, `e` the distance to the other prescribed nodes and
 //!   `ρ` twice the body's radius about the centre it turns about: the angle
@@ -34,7 +39,7 @@
 use std::sync::Arc;
 
 use super::distances::Nearest;
-use super::harmonic::Laplace;
+use super::harmonic::{Laplace, Shadow};
 use crate::collective::{exact_sums, Collective};
 use crate::geometry::{cross, dot, norm};
 use crate::near_wall::{Bounds, Follows};
@@ -58,10 +63,11 @@ struct Body {
     held: Vec<usize>,
     /// Half the body's size (its wall nodes' bounding-box diagonal).
     radius: f64,
-    /// The translation's last weights, the next increment's initial
-    /// guesses: sliding nodes held at 0, and sliding nodes free.
-    held_slides: Vec<f64>,
-    free_slides: Vec<f64>,
+    /// The translation's last weights of each [`Weighting`], the next
+    /// increment's initial guesses: sliding nodes held at 0, and sliding
+    /// nodes free.
+    held_slides: [Vec<f64>; 2],
+    free_slides: [Vec<f64>; 2],
     /// The angle's weight's nearest held node and nearest other
     /// prescribed node of every node.
     near_held: Nearest,
@@ -87,6 +93,31 @@ pub struct Blend {
     /// sliding nodes move with the translation's part in it and stay for
     /// the rest.
     slide_along: [[f64; 3]; 3],
+}
+
+/// The dimension whose meshes take the directional weight: on the
+/// tetrahedra of the sphere moved toward the cube's wall (docs/robustness.md,
+/// "Squeezed gaps") it inverted cells the isotropic weight keeps, the
+/// radius ratio seeing the compression along the motion that a
+/// quadrilateral's scaled Jacobian does not.
+const DIRECTIONAL_DIMENSION: usize = 2;
+
+/// How the translation's weight couples the edges (`harmonic.rs`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Weighting {
+    /// `k = 1/L`.
+    Isotropic,
+    /// `k = (cos²α + A sin²α)/L`, `α` the edge's angle to the translation.
+    Directional,
+}
+
+/// A blended configuration.
+pub struct Blended {
+    /// The coordinates.
+    pub coords: Vec<f64>,
+    /// Whether a body translated with the directional weight (the
+    /// [`Weighting`]s give different configurations only then).
+    pub translated: bool,
 }
 
 /// One body's fitted rigid motion: `x ↦ c + t + R(θ)(x − c)`.
@@ -149,8 +180,8 @@ impl Blend {
                     radius: 0.5 * size(&wall),
                     fitted,
                     held,
-                    held_slides: vec![0.0; n],
-                    free_slides: vec![0.0; n],
+                    held_slides: [vec![0.0; n], vec![0.0; n]],
+                    free_slides: [vec![0.0; n], vec![0.0; n]],
                 }
             })
             .collect();
@@ -166,16 +197,22 @@ impl Blend {
     }
 
     /// `coords` moved by every body's blended rigid motion towards
-    /// `targets` (the prescribed nodes' positions, moving nodes first),
-    /// over the processes `on` (collective).
+    /// `targets` (the prescribed nodes' positions, moving nodes first), the
+    /// translation's weight coupled as `weighting` says, over the processes
+    /// `on` (collective).
     pub fn apply(
         &mut self,
         coords: &[f64],
         targets: &[(usize, Vec<f64>)],
         on: &dyn Collective,
-    ) -> Vec<f64> {
+        weighting: Weighting,
+    ) -> Blended {
         let dim = self.dim;
         let mut moved = coords.to_vec();
+        let mut translated = false;
+        // The directional weight in 2D only (see `DIRECTIONAL_DIMENSION`).
+        let directional = weighting == Weighting::Directional && dim == DIRECTIONAL_DIMENSION;
+        let slot = usize::from(directional);
         for body in &mut self.bodies {
             let mut moving = [f64::from(u8::from(body.fitted.iter().any(|&k| {
                 let (i, q) = &targets[k];
@@ -192,12 +229,13 @@ impl Blend {
             let across: [f64; 3] = std::array::from_fn(|r| t[r] - along[r]);
             let moves = |v: &[f64; 3]| norm(v) > ROUND_OFF * self.extent;
             for (w, unknown, part) in [
-                (&mut body.held_slides, &self.unknown, &across),
-                (&mut body.free_slides, &self.unknown_slides, &along),
+                (&mut body.held_slides[slot], &self.unknown, &across),
+                (&mut body.free_slides[slot], &self.unknown_slides, &along),
             ] {
                 if !moves(part) {
                     continue;
                 }
+                translated |= directional;
                 for (wi, &u) in w.iter_mut().zip(unknown.iter()) {
                     if !u {
                         *wi = 0.0;
@@ -206,7 +244,12 @@ impl Blend {
                 for &i in &body.held {
                     w[i] = 1.0;
                 }
-                self.laplace.solve(on, coords, unknown, w);
+                let l = norm(part);
+                let direction = [part[0] / l, part[1] / l, part[2] / l];
+                let fitted: Vec<usize> = body.fitted.iter().map(|&k| targets[k].0).collect();
+                let shadow = directional
+                    .then(|| Shadow::of(dim, direction, coords, &fitted, body.radius, on));
+                self.laplace.solve(on, coords, unknown, w, shadow.as_ref());
             }
             // The body's radius about the centre it turns about.
             let mut reach = [body
@@ -227,8 +270,16 @@ impl Blend {
             let rotation = angle_weights(&to_held, &to_others, reach[0]);
             let (across_on, along_on) = (moves(&across), moves(&along));
             for i in 0..coords.len() / dim {
-                let wa = if across_on { body.held_slides[i] } else { 0.0 };
-                let wb = if along_on { body.free_slides[i] } else { 0.0 };
+                let wa = if across_on {
+                    body.held_slides[slot][i]
+                } else {
+                    0.0
+                };
+                let wb = if along_on {
+                    body.free_slides[slot][i]
+                } else {
+                    0.0
+                };
                 let wr = rotation[i];
                 if wa == 0.0 && wb == 0.0 && wr == 0.0 {
                     continue;
@@ -241,7 +292,10 @@ impl Blend {
                 }
             }
         }
-        moved
+        Blended {
+            coords: moved,
+            translated,
+        }
     }
 }
 
