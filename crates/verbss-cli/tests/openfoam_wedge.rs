@@ -248,21 +248,30 @@ fn a_wedge_case_moves_in_its_plane_and_stays_on_both_wedge_planes() {
     );
 }
 
+/// OpenFOAM's movingCone tutorial copied into `dir` and meshed by
+/// blockMesh; `None` (the test skips) without the tutorial or `tools`.
+fn moving_cone(dir: &Path, tools: &[&str]) -> Option<std::path::PathBuf> {
+    let name = "incompressible/pimpleFoam/laminar/movingCone";
+    if !have_tutorial(name) || !have_utilities(tools) {
+        return None;
+    }
+    let case = dir.join("movingCone");
+    copy_tutorial(name, &case);
+    foam("blockMesh", &case, &[]);
+    Some(case)
+}
+
 /// OpenFOAM's movingCone (blockMesh): its cone and moving far field moved
 /// 0.1 mm along the axis in 4 steps (the axis sliding), times 1e-05 and
 /// 2e-05 of its `deltaT 5e-06`: checkMesh passes both, and pimpleFoam run
 /// on from 2e-05 prints no "Wedge patch … is not planar" warning.
 #[test]
 fn moving_cone_moves_as_a_wedge_and_pimple_foam_reads_it_without_warnings() {
-    let name = "incompressible/pimpleFoam/laminar/movingCone";
-    let tools = ["blockMesh", "checkMesh", "pimpleFoam", "foamDictionary"];
-    if !have_tutorial(name) || !have_utilities(&tools) {
-        return;
-    }
     let dir = tempfile::tempdir().unwrap();
-    let case = dir.path().join("movingCone");
-    copy_tutorial(name, &case);
-    foam("blockMesh", &case, &[]);
+    let tools = ["blockMesh", "checkMesh", "pimpleFoam", "foamDictionary"];
+    let Some(case) = moving_cone(dir.path(), &tools) else {
+        return;
+    };
     let c = case.to_str().unwrap();
     let o = verbss(&[
         "deform",
@@ -308,14 +317,10 @@ fn moving_cone_moves_as_a_wedge_and_pimple_foam_reads_it_without_warnings() {
 /// axis instead of shearing them.
 #[test]
 fn moving_cone_reaches_its_full_3_mm_in_30_steps_with_the_defaults() {
-    let name = "incompressible/pimpleFoam/laminar/movingCone";
-    if !have_tutorial(name) || !have_utilities(&["blockMesh", "checkMesh"]) {
-        return;
-    }
     let dir = tempfile::tempdir().unwrap();
-    let case = dir.path().join("movingCone");
-    copy_tutorial(name, &case);
-    foam("blockMesh", &case, &[]);
+    let Some(case) = moving_cone(dir.path(), &["blockMesh", "checkMesh"]) else {
+        return;
+    };
     let c = case.to_str().unwrap();
     let report = dir.path().join("report.json");
     let o = verbss(&[

@@ -39,6 +39,17 @@ pub fn one_triangle() -> Mesh {
 /// `(i / n, j / n)`, each square cut along its diagonal from `(i, j)` to
 /// `(i + 1, j + 1)`; groups `left`, `right`, `bottom` and `top` of lines.
 pub fn square_of_triangles(n: usize) -> Mesh {
+    unit_square(n, false)
+}
+
+/// The same grid of quadrilaterals `(i, j), (i + 1, j), (i + 1, j + 1),
+/// (i, j + 1)`, with the same nodes and groups.
+pub fn square_of_quads(n: usize) -> Mesh {
+    unit_square(n, true)
+}
+
+/// [`square_of_triangles`], or [`square_of_quads`] when `quads`.
+fn unit_square(n: usize, quads: bool) -> Mesh {
     let node = |i: usize, j: usize| j * (n + 1) + i;
     let mut coords = Vec::new();
     for j in 0..=n {
@@ -55,8 +66,12 @@ pub fn square_of_triangles(n: usize) -> Mesh {
                 node(i + 1, j + 1),
                 node(i, j + 1),
             );
-            cells.push(CellKind::Triangle, &[a, b, c]);
-            cells.push(CellKind::Triangle, &[a, c, d]);
+            if quads {
+                cells.push(CellKind::Quad, &[a, b, c, d]);
+            } else {
+                cells.push(CellKind::Triangle, &[a, b, c]);
+                cells.push(CellKind::Triangle, &[a, c, d]);
+            }
         }
     }
     let side = |name: &str, f: &dyn Fn(usize) -> [usize; 2]| {

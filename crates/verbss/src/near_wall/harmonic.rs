@@ -298,7 +298,6 @@ impl Laplace {
 mod tests {
     use super::*;
     use crate::collective::Whole;
-    use crate::mesh::{CellKind, Cells, Mesh};
 
     /// The unit square, 16 × 16 quadrilaterals: `w = 1` on the lower half of the left
     /// side (a body's face pushed along x), 0 on the right side (a fixed
@@ -308,25 +307,7 @@ mod tests {
     fn weights(directional: bool) -> (f64, f64) {
         let n = 16;
         let node = |i: usize, j: usize| j * (n + 1) + i;
-        let mut coords = Vec::new();
-        for j in 0..=n {
-            for i in 0..=n {
-                coords.extend([i as f64 / n as f64, j as f64 / n as f64]);
-            }
-        }
-        let mut cells = Cells::new();
-        for j in 0..n {
-            for i in 0..n {
-                let quad = [
-                    node(i, j),
-                    node(i + 1, j),
-                    node(i + 1, j + 1),
-                    node(i, j + 1),
-                ];
-                cells.push(CellKind::Quad, &quad);
-            }
-        }
-        let mesh = Mesh::new(2, coords, cells, vec![]).unwrap();
+        let mesh = crate::mesh::samples::square_of_quads(n);
         let graph = Arc::new(topology::edge_graph(&mesh.cells, mesh.node_count()));
         let laplace = Laplace::new(2, graph);
         let mut unknown = vec![true; mesh.node_count()];
