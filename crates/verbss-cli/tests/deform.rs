@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 mod common;
 
-use common::{stderr, verbss};
+use common::{read_json, stderr, verbss};
 
 fn naca() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/meshes/su2/mesh_NACA0012_inv.su2")
@@ -46,8 +46,7 @@ fn positions_put_every_listed_node_where_the_file_says() {
             table.ids[k]
         );
     }
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(report).unwrap()).unwrap();
+    let r = read_json(&report);
     let last = r["steps"].as_array().unwrap().last().unwrap().clone();
     for key in [
         "step",

@@ -9,7 +9,7 @@ mod common;
 
 use common::foam::{copy_tutorial, foam, foam_output, have_openfoam, have_tutorial};
 use common::foam::{have_utilities, start_from, write_system_as};
-use common::{stderr, verbss};
+use common::{read_json, stderr, verbss};
 
 /// The wedge's half angle (degrees) of [`wedge_case`].
 const HALF_ANGLE: f64 = 2.5;
@@ -341,8 +341,7 @@ fn moving_cone_reaches_its_full_3_mm_in_30_steps_with_the_defaults() {
         "--quiet",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let r = read_json(&report);
     // Step 0 (the input mesh), then the 30 steps.
     let steps = r["steps"].as_array().unwrap();
     let numbers: Vec<u64> = steps.iter().map(|s| s["step"].as_u64().unwrap()).collect();

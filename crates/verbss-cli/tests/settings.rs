@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 mod common;
 
-use common::{stderr, verbss};
+use common::{read_json, stderr, verbss};
 
 fn naca() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/meshes/su2/mesh_NACA0012_inv.su2")
@@ -83,8 +83,7 @@ fn a_reports_settings_pasted_as_a_case_file_run_the_same_steps() {
         "--quiet",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let r: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let r = read_json(&report);
     let settings = r["settings"].as_object().unwrap();
     assert_eq!(settings.len(), verbss::settings::TABLE.len());
     assert_eq!(settings["omega"], 1.55);

@@ -21,6 +21,11 @@ pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// The JSON file at `path` (a run's `report.json`).
+pub fn read_json(path: &std::path::Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
 /// The unit square in SU2, groups `left` (x = 0) and `rest`.
 pub const SQUARE: &str = "NDIME= 2
 NELEM= 2
