@@ -12,7 +12,7 @@ use std::process::Command;
 
 mod common;
 
-use common::{stderr, verbss};
+use common::{deform_to, stderr, verbss};
 use verbss_testkit::{needs, python};
 
 const SCRIPT: &str = concat!(
@@ -68,17 +68,11 @@ fn deform_changes_only_the_coordinates_of_gmsh_files() {
         for encoding in ENCODINGS {
             let input = dir.path().join(format!("{name}_{encoding}.msh"));
             let output = dir.path().join(format!("{name}_{encoding}.out.msh"));
-            let o = verbss(&[
-                "deform",
-                s(&input),
-                "-o",
-                s(&output),
-                "--moving",
-                group,
-                "--translate",
-                translation,
-                "--quiet",
-            ]);
+            let o = deform_to(
+                &input,
+                &output,
+                &["--moving", group, "--translate", translation],
+            );
             assert!(o.status.success(), "{name} {encoding}: {}", stderr(&o));
             let report: serde_json::Value =
                 serde_json::from_str(&script(&["compare", s(&input), s(&output)])).unwrap();
@@ -121,17 +115,11 @@ fn a_periodic_side_moved_without_its_master_is_refused() {
     for encoding in ENCODINGS {
         let input = dir.path().join(format!("periodic_{encoding}.msh"));
         let output = dir.path().join("parted.msh");
-        let o = verbss(&[
-            "deform",
-            s(&input),
-            "-o",
-            s(&output),
-            "--moving",
-            "body,outlet",
-            "--translate",
-            "0,-0.05,0",
-            "--quiet",
-        ]);
+        let o = deform_to(
+            &input,
+            &output,
+            &["--moving", "body,outlet", "--translate", "0,-0.05,0"],
+        );
         assert_eq!(o.status.code(), Some(2), "{encoding}: {}", stderr(&o));
         let e = stderr(&o);
         assert!(

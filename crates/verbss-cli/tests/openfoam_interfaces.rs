@@ -8,29 +8,11 @@ use std::path::Path;
 mod common;
 
 use common::foam::{
-    copy_tutorial, count_after, failures, foam, have_tutorial, have_utilities, write_system,
+    check_mesh_failures, copy_tutorial, count_after, foam, have_tutorial, have_utilities,
+    ring_case, write_system,
 };
-use common::{stderr, verbss};
+use common::{deform_to, stderr, verbss};
 use verbss::Mesh;
-
-/// `verbss deform CASE -o OUT ARGS… --quiet`.
-fn deform(case: &Path, out: &Path, args: &[&str]) -> std::process::Output {
-    let mut all = vec![
-        "deform",
-        case.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-    ];
-    all.extend_from_slice(args);
-    all.push("--quiet");
-    verbss(&all)
-}
-
-/// The failed checks of checkMesh on `case`, as its `***` lines.
-fn check_mesh_failures(case: &Path) -> Vec<String> {
-    let log = foam("checkMesh", case, &[]);
-    failures(&log).into_iter().map(str::to_string).collect()
-}
 
 /// The largest distance of a node of group `g` from where `to` takes it.
 fn off(input: &Mesh, moved: &Mesh, g: &str, to: impl Fn(&[f64]) -> [f64; 2]) -> f64 {
@@ -70,7 +52,7 @@ fn mixer_vessel_ami_2d_turns_its_rotor_with_its_side_of_the_interface() {
     // (0.000000, -0.020000): duplicate nodes` (the two sides of the AMI).
     let out = dir.path().join("turned");
     // About the origin of its dynamicMeshDict's rotatingMotion, in one step.
-    let o = deform(
+    let o = deform_to(
         &case,
         &out,
         &[
@@ -95,7 +77,7 @@ fn mixer_vessel_ami_2d_turns_its_rotor_with_its_side_of_the_interface() {
         assert!(off(&input, &moved, g, to) < 1e-12, "{g}");
     }
     write_system(&out);
-    assert_eq!(check_mesh_failures(&out), Vec::<String>::new());
+    assert_eq!(check_mesh_failures(&out, &[]), Vec::<String>::new());
 }
 
 #[test]
@@ -142,7 +124,7 @@ fn oscillating_inlet_acmi_2d_slides_its_inlet_channel_along_the_interface() {
     let positions = dir.path().join("up.csv");
     std::fs::write(&positions, table).unwrap();
     let out = dir.path().join("slid");
-    let o = deform(
+    let o = deform_to(
         &case,
         &out,
         &[
@@ -160,73 +142,24 @@ fn oscillating_inlet_acmi_2d_slides_its_inlet_channel_along_the_interface() {
     assert!(off(&input, &moved, "ACMI2_couple", same) == 0.0);
     assert!(off(&input, &moved, "outlet", same) == 0.0);
     write_system(&out);
-    assert_eq!(check_mesh_failures(&out), Vec::<String>::new());
+    assert_eq!(check_mesh_failures(&out, &[]), Vec::<String>::new());
 }
 
 /// A square body (patch `wing`, side 1) in a 2D box of side 3, 8 blocks of
 /// `n × n` cells, one cell thick: its left and right sides (`lo`, `hi`) a
 /// cyclic pair, its bottom and top `walls`.
 fn periodic_box(case: &Path, n: usize) {
-    write_system(case);
-    let x = [-1.5, -0.5, 0.5, 1.5];
-    let v = |i: usize, j: usize, k: usize| k * 16 + j * 4 + i;
-    let mut vertices = String::new();
-    for k in 0..2 {
-        for j in 0..4 {
-            for i in 0..4 {
-                vertices += &format!("({} {} {}) ", x[i], x[j], 0.2 * k as f64);
-            }
-        }
-    }
-    let side = |p: usize, q: usize| format!("({p} {q} {} {}) ", q + 16, p + 16);
-    let (mut blocks, mut sides) = (String::new(), [String::new(), String::new()]);
-    let (mut walls, mut wing, mut empty) = (String::new(), String::new(), String::new());
-    for j in 0..3 {
-        for i in 0..3 {
-            if (i, j) == (1, 1) {
-                continue;
-            }
-            let c = [
-                v(i, j, 0),
-                v(i + 1, j, 0),
-                v(i + 1, j + 1, 0),
-                v(i, j + 1, 0),
-            ];
-            let top = c.map(|p| p + 16);
-            blocks += &format!(
-                "hex ({} {} {} {} {} {} {} {}) ({n} {n} 1) simpleGrading (1 1 1)\n",
-                c[0], c[1], c[2], c[3], top[0], top[1], top[2], top[3]
-            );
-            empty += &format!("({} {} {} {}) ", c[0], c[3], c[2], c[1]);
-            empty += &format!("({} {} {} {}) ", top[0], top[1], top[2], top[3]);
-        }
-    }
-    for t in 0..3 {
-        sides[0] += &side(v(0, t + 1, 0), v(0, t, 0));
-        sides[1] += &side(v(3, t, 0), v(3, t + 1, 0));
-        walls += &side(v(t, 0, 0), v(t + 1, 0, 0));
-        walls += &side(v(t + 1, 3, 0), v(t, 3, 0));
-    }
-    for (p, q) in [
-        ((1, 1), (2, 1)),
-        ((2, 1), (2, 2)),
-        ((2, 2), (1, 2)),
-        ((1, 2), (1, 1)),
-    ] {
-        wing += &side(v(p.0, p.1, 0), v(q.0, q.1, 0));
-    }
-    let dict = format!(
-        "FoamFile {{ version 2.0; format ascii; class dictionary; object blockMeshDict; }}\n\
-         vertices ( {vertices});\nblocks (\n{blocks});\nboundary (\n\
-         wing {{ type wall; faces ( {wing}); }}\n\
-         lo {{ type cyclic; neighbourPatch hi; faces ( {}); }}\n\
-         hi {{ type cyclic; neighbourPatch lo; faces ( {}); }}\n\
-         walls {{ type wall; faces ( {walls}); }}\n\
-         sides {{ type empty; faces ( {empty}); }}\n);\n",
-        sides[0], sides[1]
+    ring_case(
+        case,
+        n,
+        1,
+        ["walls", "hi", "walls", "lo"],
+        &[
+            ("lo", "cyclic; neighbourPatch hi"),
+            ("hi", "cyclic; neighbourPatch lo"),
+            ("walls", "wall"),
+        ],
     );
-    std::fs::write(case.join("system/blockMeshDict"), dict).unwrap();
-    foam("blockMesh", case, &[]);
 }
 
 #[test]
@@ -239,7 +172,7 @@ fn a_cyclic_pair_is_held_by_default_and_a_motion_that_parts_it_is_refused() {
     periodic_box(&case, 6);
     let input = verbss::io::read(&case).unwrap();
     let out = dir.path().join("moved");
-    let o = deform(
+    let o = deform_to(
         &case,
         &out,
         &["--moving", "wing", "--translate", "0.2,0.1", "--steps", "2"],
@@ -249,9 +182,9 @@ fn a_cyclic_pair_is_held_by_default_and_a_motion_that_parts_it_is_refused() {
     let same = |p: &[f64]| [p[0], p[1]];
     assert!(off(&input, &moved, "lo", same) == 0.0 && off(&input, &moved, "hi", same) == 0.0);
     write_system(&out);
-    assert_eq!(check_mesh_failures(&out), Vec::<String>::new());
+    assert_eq!(check_mesh_failures(&out, &[]), Vec::<String>::new());
     // One side moved with the body: refused before the first step.
-    let o = deform(
+    let o = deform_to(
         &case,
         &dir.path().join("parted"),
         &["--moving", "wing,lo", "--translate", "0.2,0"],
@@ -266,7 +199,7 @@ fn a_cyclic_pair_is_held_by_default_and_a_motion_that_parts_it_is_refused() {
     );
     // The walls (whose ends are on both sides) turned: the ends part at
     // the first step.
-    let o = deform(
+    let o = deform_to(
         &case,
         &dir.path().join("turned"),
         &["--moving", "walls", "--rotate", "2", "--center", "0,0"],

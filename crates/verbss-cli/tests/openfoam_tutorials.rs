@@ -9,30 +9,11 @@ use std::path::{Path, PathBuf};
 mod common;
 
 use common::foam::{
-    copy_tutorial, count_after, failures, foam, have_tutorial, have_utilities, start_from,
-    write_system,
+    check_mesh_failures, copy_tutorial, count_after, failures, foam, have_tutorial, have_utilities,
+    start_from, write_system,
 };
-use common::{stderr, verbss};
+use common::{deform_to, stderr, verbss};
 use verbss::io::WriteOptions;
-
-/// The failed checks of checkMesh on `case` (with `args`), as its `***` lines.
-fn check_mesh_failures(case: &Path, args: &[&str]) -> Vec<String> {
-    let log = foam("checkMesh", case, args);
-    failures(&log).into_iter().map(str::to_string).collect()
-}
-
-/// `verbss deform CASE -o OUT ARGS… --quiet`.
-fn deform(case: &Path, out: &Path, args: &[&str]) -> std::process::Output {
-    let mut all = vec![
-        "deform",
-        case.to_str().unwrap(),
-        "-o",
-        out.to_str().unwrap(),
-    ];
-    all.extend_from_slice(args);
-    all.push("--quiet");
-    verbss(&all)
-}
 
 #[test]
 fn twisting_column_turned_half_a_turn_is_valid_for_check_mesh_or_stops_naming_the_cell() {
@@ -45,7 +26,7 @@ fn twisting_column_turned_half_a_turn_is_valid_for_check_mesh_or_stops_naming_th
     copy_tutorial(name, &case);
     foam("blockMesh", &case, &[]);
     let out = dir.path().join("turned");
-    let o = deform(
+    let o = deform_to(
         &case,
         &out,
         &[
@@ -175,7 +156,7 @@ fn wing_motion_pitches_40_degrees_and_every_step_written_passes_check_mesh() {
         "{input:?}"
     );
     let out = dir.path().join("pitched");
-    let o = deform(
+    let o = deform_to(
         &case,
         &out,
         &[
@@ -295,7 +276,7 @@ fn a_snappy_hex_mesh_sphere_moves_and_passes_check_mesh() {
             "--steps",
             steps,
         ];
-        let o = deform(&case, &out, &[&motion[..], &["--method", method]].concat());
+        let o = deform_to(&case, &out, &[&motion[..], &["--method", method]].concat());
         assert!(o.status.success(), "{method}: {}", stderr(&o));
         write_system(&out);
         assert_eq!(
@@ -324,7 +305,7 @@ fn a_snappy_hex_mesh_sphere_moves_and_passes_check_mesh() {
         "--steps",
         "2",
     ];
-    let o = deform(&case, &out, &motion);
+    let o = deform_to(&case, &out, &motion);
     assert!(o.status.success(), "{}", stderr(&o));
     let moved = verbss::io::read(&out).unwrap();
     for &i in &sphere {
@@ -371,7 +352,7 @@ fn airfoil_2d_pitched_then_simple_foam_runs_on_the_moved_mesh() {
     let dir = tempfile::tempdir().unwrap();
     let case = dir.path().join("airFoil2D");
     copy_tutorial(name, &case);
-    let o = deform(
+    let o = deform_to(
         &case,
         &case,
         &[

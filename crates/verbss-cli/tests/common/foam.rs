@@ -89,6 +89,12 @@ pub fn write_system_as(case: &Path, format: &str) {
     }
 }
 
+/// The failed checks of checkMesh on `case` (with `args`), as its `***` lines.
+pub fn check_mesh_failures(case: &Path, args: &[&str]) -> Vec<String> {
+    let log = foam("checkMesh", case, args);
+    failures(&log).into_iter().map(str::to_string).collect()
+}
+
 /// Whether `checkMesh` passes the mesh of `case` at its latest time.
 pub fn assert_mesh_ok(case: &Path) {
     let log = foam("checkMesh", case, &["-latestTime"]);
@@ -171,6 +177,13 @@ pub fn count_after(log: &str, key: &str) -> Option<usize> {
 /// with `empty` patches `back` (z = 0) and `front` when `layers` is 1 (a 2D
 /// case), else `wall` ones.
 pub fn block_case(case: &Path, n: usize, layers: usize) {
+    ring_case(case, n, layers, ["farfield"; 4], &[("farfield", "patch")]);
+}
+
+/// [`block_case`] with the box's sides (bottom, right, top, left) in the
+/// patches `outer` names, each patch declared by `patches` as its name and
+/// what follows `type` in its entry (`"cyclic; neighbourPatch hi"`).
+pub fn ring_case(case: &Path, n: usize, layers: usize, outer: [&str; 4], patches: &[(&str, &str)]) {
     write_system(case);
     let x = [-1.5, -0.5, 0.5, 1.5];
     let v = |i: usize, j: usize, k: usize| k * 16 + j * 4 + i;
@@ -183,13 +196,8 @@ pub fn block_case(case: &Path, n: usize, layers: usize) {
         }
     }
     let quad = |a: usize, b: usize, c: usize, d: usize| format!("({a} {b} {c} {d}) ");
-    let (mut blocks, mut wing, mut farfield, mut back, mut front): (
-        String,
-        String,
-        String,
-        String,
-        String,
-    ) = Default::default();
+    let (mut blocks, mut wing, mut back, mut front) =
+        (String::new(), String::new(), String::new(), String::new());
     for j in 0..3 {
         for i in 0..3 {
             if (i, j) == (1, 1) {
@@ -212,6 +220,7 @@ pub fn block_case(case: &Path, n: usize, layers: usize) {
             front += &quad(a + 16, b + 16, c + 16, d + 16);
         }
     }
+    let mut faces = vec![String::new(); patches.len()];
     for t in 0..3 {
         let edges = [
             (v(t, 0, 0), v(t + 1, 0, 0)),
@@ -219,8 +228,12 @@ pub fn block_case(case: &Path, n: usize, layers: usize) {
             (v(t, 3, 0), v(t + 1, 3, 0)),
             (v(0, t, 0), v(0, t + 1, 0)),
         ];
-        for (p, q) in edges {
-            farfield += &quad(p, q, q + 16, p + 16);
+        for (side, (p, q)) in edges.into_iter().enumerate() {
+            let k = patches
+                .iter()
+                .position(|(name, _)| *name == outer[side])
+                .expect("each side's patch is declared");
+            faces[k] += &quad(p, q, q + 16, p + 16);
         }
     }
     for (p, q) in [
@@ -232,12 +245,17 @@ pub fn block_case(case: &Path, n: usize, layers: usize) {
         let (p, q) = (v(p.0, p.1, 0), v(q.0, q.1, 0));
         wing += &quad(p, q, q + 16, p + 16);
     }
+    let outer: String = patches
+        .iter()
+        .zip(&faces)
+        .map(|((name, kind), faces)| format!("{name} {{ type {kind}; faces ( {faces}); }}\n"))
+        .collect();
     let side_type = if layers == 1 { "empty" } else { "wall" };
     let dict = format!(
         "FoamFile {{ version 2.0; format ascii; class dictionary; object blockMeshDict; }}\n\
          convertToMeters 1;\nvertices ( {vertices});\nblocks (\n{blocks});\nboundary (\n\
          wing {{ type wall; faces ( {wing}); }}\n\
-         farfield {{ type patch; faces ( {farfield}); }}\n\
+         {outer}\
          back {{ type {side_type}; faces ( {back}); }}\n\
          front {{ type {side_type}; faces ( {front}); }}\n);\n"
     );

@@ -21,6 +21,19 @@ pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// `verbss deform INPUT -o OUT ARGS… --quiet`.
+pub fn deform_to(input: &std::path::Path, out: &std::path::Path, args: &[&str]) -> Output {
+    let mut all = vec![
+        "deform",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    all.extend_from_slice(args);
+    all.push("--quiet");
+    verbss(&all)
+}
+
 /// The JSON file at `path` (a run's `report.json`).
 pub fn read_json(path: &std::path::Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
