@@ -69,17 +69,12 @@ impl AccelState {
         }
     }
 
-    /// Under [`Accel::Auto`], whether a step's plain sweeps of `unknowns`
-    /// nodes stop after [`super::AUTO_SWEEPS`] to hand the step to the
-    /// multigrid: on a mesh of mostly triangles or tetrahedra whose
-    /// hierarchy would take at most half the memory available, until the
-    /// multigrid took over or could not be built.
-    pub(crate) fn may_switch(&self, unknowns: usize) -> bool {
-        self.simplicial
-            && !self.declined
-            && !self.switched
-            && available_memory()
-                .is_none_or(|bytes| (HIERARCHY_BYTES_PER_NODE * unknowns as u64) <= bytes / 2)
+    /// Under [`Accel::Auto`], whether a step's plain sweeps stop after
+    /// [`super::AUTO_SWEEPS`] to hand the step to the multigrid: on a mesh
+    /// of mostly triangles or tetrahedra, until the multigrid took over or
+    /// was declined.
+    pub(crate) fn may_switch(&self) -> bool {
+        self.simplicial && !self.declined && !self.switched
     }
 
     /// Whether a multigrid hierarchy is kept (for the order of the unknowns
@@ -90,9 +85,14 @@ impl AccelState {
             .is_some_and(|a| matches!(a.preconditioner, Preconditioner::Multigrid { .. }))
     }
 
-    /// Under [`Accel::Auto`], the multigrid solves this step and the next.
-    pub(crate) fn switch(&mut self) {
-        self.switched = true;
+    /// Under [`Accel::Auto`], the multigrid of `unknowns` nodes solves this
+    /// step and the next, unless its hierarchy would take more than half
+    /// the memory available: then the sweeps go on, for the rest of the run.
+    pub(crate) fn switch(&mut self, unknowns: usize) {
+        let fits = available_memory()
+            .is_none_or(|bytes| HIERARCHY_BYTES_PER_NODE * unknowns as u64 <= bytes / 2);
+        self.switched = fits;
+        self.declined = !fits;
     }
 
     /// Whether the solve of `built` with `params` uses the multigrid: the

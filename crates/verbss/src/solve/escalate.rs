@@ -255,10 +255,8 @@ impl Engine {
         let mut sweep_gmres;
         // Under `auto`, sweeps that have not converged after AUTO_SWEEPS
         // hand the step to the multigrid.
-        let switching = stage == Stage::Sweeps
-            && params.accel == Accel::Auto
-            && factored
-            && accel.may_switch(built.layout.len());
+        let switching =
+            stage == Stage::Sweeps && params.accel == Accel::Auto && factored && accel.may_switch();
         if switching {
             stage_params.max_iterations = params.max_iterations.min(AUTO_SWEEPS);
         }
@@ -336,7 +334,7 @@ impl Engine {
             stage,
         )?;
         if switching && !info.converged {
-            accel.switch();
+            accel.switch(built.layout.len());
             let (a, seconds) = accel.prepare(built, pool, params, dim)?;
             hierarchy = seconds;
             if a.is_some() {
