@@ -46,6 +46,7 @@ use crate::motion::{Attachment, Motion};
 use crate::near_wall::{self, Bounds, Follows};
 use crate::settings::{Reference, Settings};
 use crate::solve::{Engine, NodeRole, SolverSetup, SpringSolver};
+use crate::threads::Workers;
 use crate::topology;
 
 mod accept;
@@ -147,6 +148,9 @@ pub struct Deformer<S = Engine, C = Whole> {
     failed: Option<Snapshot>,
     /// The periodic pairs, checked at every step where both sides move.
     periodic: Vec<periodic::Periodic>,
+    /// The workers of the step's parallel work (`threads` of the settings),
+    /// shared with the solver.
+    workers: Workers,
 }
 
 impl Deformer {
@@ -204,6 +208,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
             m.validate(mesh.dim)?;
         }
         settings.reference = settings.reference.resolved(&motions);
+        let workers = Workers::new(settings.solve.threads)?;
         let baffles = agree(&on, coincident::baffles(mesh))?;
         let mut plan = agree(&on, plan_roles(mesh, attachments, &on))?;
         agree(&on, coincident::check_baffles(mesh, &plan, &baffles))?;
@@ -251,10 +256,11 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
             normals: &plan.normals,
             stiffness: &rigid.stiffness,
             edge_graph: edge_graph.as_ref(),
+            workers: &workers,
         })?;
         let orientation = crate::quality::orientation(mesh);
         let start = Instant::now();
-        let check = accept::check(mesh, &mesh.coords, &orientation, &on);
+        let check = accept::check(mesh, &mesh.coords, &orientation, &on, &workers);
         if let Some(worst) = &check.summary.worst {
             return Err(Error::InvalidMesh(format!(
                 "element {} is inverted or degenerate (tangled, or of zero area or volume) at {}",
@@ -303,6 +309,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
             blend,
             orientation,
             failed: None,
+            workers,
         })
     }
 

@@ -24,6 +24,7 @@
 //! | [`near_wall`] | the near-wall treatments: the blended rigid motion, the rigid layer, wall-distance stiffening, sub-steps |
 //! | [`deform`] | the stepper: motion → system → solve → update → check, on a whole mesh or a rank's part |
 //! | [`collective`] | sums, maxima and ghost values over the processes sharing a mesh |
+//! | [`threads`] | the one pool of worker threads a run's parallel work shares |
 //! | [`case`], [`report`] | the TOML case file and `report.json` |
 //! | [`generate`] | built-in meshes (the demo's NACA0012 O-grid) |
 //!
@@ -78,6 +79,7 @@ pub mod report;
 pub mod settings;
 pub mod solve;
 pub mod springs;
+pub mod threads;
 pub mod topology;
 
 pub use error::{Error, Result};

@@ -12,6 +12,7 @@ use crate::collective::Collective;
 use crate::mesh::Mesh;
 use crate::quality::{self, Failure, Inversion, Summary};
 use crate::solve::SolveInfo;
+use crate::threads::Workers;
 
 /// A blended solve whose minimum quality falls below this fraction of the
 /// reference configuration's is compared with the solve without the blend.
@@ -60,9 +61,16 @@ pub struct Worst {
 }
 
 /// Checks `mesh` at `coords` against the input orientations `orientation`
-/// (collective).
-pub fn check(mesh: &Mesh, coords: &[f64], orientation: &[i8], on: &dyn Collective) -> Check {
-    let (quality, invalid) = quality::qualities_and_inversions(mesh, coords, orientation);
+/// (collective), the cells on `workers`.
+pub fn check(
+    mesh: &Mesh,
+    coords: &[f64],
+    orientation: &[i8],
+    on: &dyn Collective,
+    workers: &Workers,
+) -> Check {
+    let (quality, invalid) =
+        workers.install(|| quality::qualities_and_inversions(mesh, coords, orientation));
     let counted: Vec<bool> = (0..mesh.cells.len())
         .map(|c| on.counts(mesh.cells.cell(c)))
         .collect();

@@ -103,7 +103,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
         let Some(blend) = &mut self.blend else {
             return (reference.to_vec(), false);
         };
-        let mut moved = blend.apply(reference, targets, &self.on, weighting);
+        let mut moved = blend.apply(reference, targets, &self.on, weighting, &self.workers);
         blend::keep_in_planes(
             self.mesh.dim,
             &self.roles,
@@ -185,7 +185,13 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
         }
         self.on.refresh(&mut next, dim);
         let checking = Instant::now();
-        let check = accept::check(&self.mesh, &next, &self.orientation, &self.on);
+        let check = accept::check(
+            &self.mesh,
+            &next,
+            &self.orientation,
+            &self.on,
+            &self.workers,
+        );
         Ok(Attempt {
             coords: next,
             u,

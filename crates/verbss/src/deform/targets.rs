@@ -10,6 +10,8 @@
 
 use std::collections::HashMap;
 
+use rayon::prelude::*;
+
 use super::roles::Plan;
 use super::Deformer;
 use crate::collective::{agree, Collective};
@@ -60,11 +62,6 @@ impl Anchors {
 }
 
 impl<S: SpringSolver, C: Collective> Deformer<S, C> {
-    /// The global number of local node `i`: a positions file's node id.
-    fn global_of(&self, i: usize) -> usize {
-        self.global.get(i).map_or(i, |&g| g as usize)
-    }
-
     /// Where the prescribed nodes (moving and rigid-layer) are at step `n`
     /// (collective).
     pub fn targets(&self, n: usize) -> Result<Vec<(usize, Vec<f64>)>> {
@@ -84,58 +81,61 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
             .iter()
             .map(|m| m.frame(clock, self.size.0, dim))
             .collect::<Result<Vec<_>>>()?;
-        let mut targets = Vec::with_capacity(self.moving.len() + self.layer.len());
-        for &(node, b) in &self.moving {
-            let mut p = self.mesh.point(node).to_vec();
-            for &m in &self.bodies[b] {
-                self.motions[m].apply(self.global_of(node), &mut p, clock, &frames[m])?;
-            }
-            targets.push(self.within_bounds(n, node, p)?);
-        }
-        let is_field = |b: usize| self.bodies[b].iter().all(|&m| self.motions[m].is_field());
-        let displaced = (0..self.bodies.len())
+        // Each node on its own, on the workers (the fields they read, not
+        // the deformer, which may not be shared between threads); the first
+        // failing node's error, in order.
+        let (mesh, global, motions, bodies) =
+            (&*self.mesh, &self.global, &self.motions, &self.bodies);
+        let (normals, current) = (&self.normals, &self.current.coords);
+        let (moving, layer, workers) = (&self.moving, &self.layer, &self.workers);
+        // The global number of local node `i`: a positions file's node id.
+        let global_of = |i: usize| global.get(i).map_or(i, |&g| g as usize);
+        let moved: Vec<Result<(usize, Vec<f64>)>> = workers.install(|| {
+            moving
+                .par_iter()
+                .map(|&(node, b)| {
+                    let mut p = mesh.point(node).to_vec();
+                    for &m in &bodies[b] {
+                        motions[m].apply(global_of(node), &mut p, clock, &frames[m])?;
+                    }
+                    within_bounds(mesh, n, node, p)
+                })
+                .collect()
+        });
+        let mut targets = moved.into_iter().collect::<Result<Vec<_>>>()?;
+        let is_field = |b: usize| bodies[b].iter().all(|&m| motions[m].is_field());
+        let displaced = (0..bodies.len())
             .any(|b| !is_field(b))
             .then(|| self.anchor_displacements(&targets));
-        for &(node, body, role) in &self.layer {
-            let mut p = self.mesh.point(node).to_vec();
-            match body {
-                Some((b, _)) if is_field(b) => {
-                    for &m in &self.bodies[b] {
-                        self.motions[m].apply(self.global_of(node), &mut p, clock, &frames[m])?;
-                    }
-                }
-                Some((_, tag)) => {
-                    if let Some(d) = displaced.as_ref().and_then(|map| map.get(&tag)) {
-                        for (x, dx) in p.iter_mut().zip(d) {
-                            *x += dx;
+        let layer: Vec<Result<(usize, Vec<f64>)>> = workers.install(|| {
+            layer
+                .par_iter()
+                .map(|&(node, body, role)| {
+                    let mut p = mesh.point(node).to_vec();
+                    match body {
+                        Some((b, _)) if is_field(b) => {
+                            for &m in &bodies[b] {
+                                motions[m].apply(global_of(node), &mut p, clock, &frames[m])?;
+                            }
                         }
+                        Some((_, tag)) => {
+                            if let Some(d) = displaced.as_ref().and_then(|map| map.get(&tag)) {
+                                for (x, dx) in p.iter_mut().zip(d) {
+                                    *x += dx;
+                                }
+                            }
+                        }
+                        None => {}
                     }
-                }
-                None => {}
-            }
-            let x = &self.current.coords[dim * node..dim * (node + 1)];
-            role.keep_on(&self.normals, &mut p, x);
-            targets.push(self.within_bounds(n, node, p)?);
+                    role.keep_on(normals, &mut p, &current[dim * node..dim * (node + 1)]);
+                    within_bounds(mesh, n, node, p)
+                })
+                .collect()
+        });
+        for target in layer {
+            targets.push(target?);
         }
         Ok(targets)
-    }
-
-    /// The target `p` of `node` at step `n`, refused unless every
-    /// coordinate is finite and within ±1e100 (beyond it the springs'
-    /// products overflow): a motion whose numbers are too large or too
-    /// small (an infinite angle, a speed of 1e308, a wavelength of 1e-320,
-    /// a displacement of 1e308 given to a binding) never reaches a solve,
-    /// a message or a file as NaN.
-    fn within_bounds(&self, n: usize, node: usize, p: Vec<f64>) -> Result<(usize, Vec<f64>)> {
-        if p.iter().all(|x| x.abs() <= crate::motion::MAX_COORDINATE) {
-            return Ok((node, p));
-        }
-        Err(Error::InvalidSetting(format!(
-            "step {n}: the motion moves node {} to {}, not a finite position within ±1e100 \
-             (check the motion's numbers: angles, speeds, wavelengths, displacements)",
-            self.mesh.node_tags[node],
-            crate::error::format_point(&p)
-        )))
     }
 
     /// The displacement at this step of every moving node a layer node
@@ -169,4 +169,22 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
         }
         map
     }
+}
+
+/// The target `p` of `node` of `mesh` at step `n`, refused unless every
+/// coordinate is finite and within ±1e100 (beyond it the springs'
+/// products overflow): a motion whose numbers are too large or too
+/// small (an infinite angle, a speed of 1e308, a wavelength of 1e-320,
+/// a displacement of 1e308 given to a binding) never reaches a solve,
+/// a message or a file as NaN.
+fn within_bounds(mesh: &Mesh, n: usize, node: usize, p: Vec<f64>) -> Result<(usize, Vec<f64>)> {
+    if p.iter().all(|x| x.abs() <= crate::motion::MAX_COORDINATE) {
+        return Ok((node, p));
+    }
+    Err(Error::InvalidSetting(format!(
+        "step {n}: the motion moves node {} to {}, not a finite position within ±1e100 \
+         (check the motion's numbers: angles, speeds, wavelengths, displacements)",
+        mesh.node_tags[node],
+        crate::error::format_point(&p)
+    )))
 }

@@ -38,12 +38,15 @@
 
 use std::sync::Arc;
 
+use rayon::prelude::*;
+
 use super::distances::Nearest;
 use super::harmonic::{Laplace, Shadow};
 use crate::collective::{exact_sums, Collective};
 use crate::geometry::{cross, dot, norm};
 use crate::near_wall::{Bounds, Follows};
 use crate::solve::{Frame, NodeRole};
+use crate::threads::Workers;
 use crate::topology::Csr;
 
 /// Prescribed nodes this fraction of the mesh's size from their targets
@@ -199,13 +202,15 @@ impl Blend {
     /// `coords` moved by every body's blended rigid motion towards
     /// `targets` (the prescribed nodes' positions, moving nodes first), the
     /// translation's weight coupled as `weighting` says, over the processes
-    /// `on` (collective).
+    /// `on` (collective), the nodes' work on `workers` (each node on its own,
+    /// sums in fixed chunks: the same bits on any number of them).
     pub fn apply(
         &mut self,
         coords: &[f64],
         targets: &[(usize, Vec<f64>)],
         on: &dyn Collective,
         weighting: Weighting,
+        workers: &Workers,
     ) -> Blended {
         let dim = self.dim;
         let mut moved = coords.to_vec();
@@ -249,7 +254,8 @@ impl Blend {
                 let fitted: Vec<usize> = body.fitted.iter().map(|&k| targets[k].0).collect();
                 let shadow = directional
                     .then(|| Shadow::of(dim, direction, coords, &fitted, body.radius, on));
-                self.laplace.solve(on, coords, unknown, w, shadow.as_ref());
+                self.laplace
+                    .solve(on, coords, unknown, w, shadow.as_ref(), workers);
             }
             // The body's radius about the centre it turns about.
             let mut reach = [body
@@ -265,32 +271,37 @@ impl Blend {
                 .fold(0.0, f64::max)];
             on.max(&mut reach);
             let graph = self.laplace.graph();
-            let to_held = body.near_held.distances(on, graph, coords);
-            let to_others = body.near_others.distances(on, graph, coords);
-            let rotation = angle_weights(&to_held, &to_others, reach[0]);
-            let (across_on, along_on) = (moves(&across), moves(&along));
-            for i in 0..coords.len() / dim {
-                let wa = if across_on {
-                    body.held_slides[slot][i]
-                } else {
-                    0.0
-                };
-                let wb = if along_on {
-                    body.free_slides[slot][i]
-                } else {
-                    0.0
-                };
-                let wr = rotation[i];
-                if wa == 0.0 && wb == 0.0 && wr == 0.0 {
-                    continue;
-                }
-                let x = &coords[dim * i..dim * (i + 1)];
-                let mut p = x.to_vec();
-                crate::motion::rotate(&mut p, &rigid.centre, &rigid.axis, wr * rigid.angle);
-                for d in 0..dim {
-                    moved[dim * i + d] += p[d] - x[d] + wa * across[d] + wb * along[d];
-                }
-            }
+            let to_held = body.near_held.distances(on, graph, coords, workers);
+            let to_others = body.near_others.distances(on, graph, coords, workers);
+            let rotation = workers.install(|| angle_weights(&to_held, &to_others, reach[0]));
+            let held = if moves(&across) {
+                Some(&body.held_slides[slot])
+            } else {
+                None
+            };
+            let free = if moves(&along) {
+                Some(&body.free_slides[slot])
+            } else {
+                None
+            };
+            let weight = |w: Option<&Vec<f64>>, i: usize| w.map_or(0.0, |w| w[i]);
+            workers.install(|| {
+                moved
+                    .par_chunks_mut(dim)
+                    .enumerate()
+                    .for_each(|(i, moved)| {
+                        let (wa, wb, wr) = (weight(held, i), weight(free, i), rotation[i]);
+                        if wa == 0.0 && wb == 0.0 && wr == 0.0 {
+                            return;
+                        }
+                        let x = &coords[dim * i..dim * (i + 1)];
+                        let mut p = x.to_vec();
+                        crate::motion::rotate(&mut p, &rigid.centre, &rigid.axis, wr * rigid.angle);
+                        for d in 0..dim {
+                            moved[d] += p[d] - x[d] + wa * across[d] + wb * along[d];
+                        }
+                    });
+            });
         }
         Blended {
             coords: moved,
@@ -393,11 +404,12 @@ pub fn keep_in_planes(
 
 /// The angle's weight `v` of every node (see the module documentation),
 /// from its distances to the body's held nodes and to the other prescribed
-/// nodes, the body's radius about its centre `rho`.
+/// nodes, the body's radius about its centre `rho`; node by node on the
+/// current pool.
 fn angle_weights(to_body: &[f64], to_others: &[f64], rho: f64) -> Vec<f64> {
     let rho = ANGLE_SCALE * rho.max(f64::MIN_POSITIVE);
     to_body
-        .iter()
+        .par_iter()
         .zip(to_others)
         .map(|(&d, &e): (&f64, &f64)| {
             if e == 0.0 || d.is_infinite() {

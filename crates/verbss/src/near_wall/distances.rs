@@ -12,9 +12,12 @@
 //! part (the rounds choose between equally near nodes by the coordinates'
 //! last bits, so those must be the same: docs/distributed.md).
 
+use rayon::prelude::*;
+
 use crate::collective::{mark_sync, Collective};
 use crate::near_wall::spread::nearest_connected;
 use crate::near_wall::Seeds;
+use crate::threads::Workers;
 use crate::topology::Csr;
 
 /// No seed is connected to the node.
@@ -104,12 +107,14 @@ impl Nearest {
     /// (collective; infinite where no seed is connected): each node starts
     /// from its last seed and takes its neighbours' (along `graph`) while
     /// one is nearer, ties to the smaller number, in rounds that read the
-    /// last round's seeds, until no node changes.
+    /// last round's seeds, until no node changes. Each round's nodes are
+    /// looked at on `workers`, each on its own: the same answer on any number.
     pub(super) fn distances(
         &mut self,
         on: &dyn Collective,
         graph: &Csr,
         coords: &[f64],
+        workers: &Workers,
     ) -> Vec<f64> {
         let dim = self.dim;
         let mut at = vec![0.0; dim * self.count];
@@ -133,23 +138,31 @@ impl Nearest {
             (squared, self.numbers[k])
         };
         let n = self.slot.len();
-        let mut best: Vec<(f64, u64)> = (0..n).map(|i| to(i, self.slot[i])).collect();
+        let mut best: Vec<(f64, u64)> = workers.install(|| {
+            (0..n)
+                .into_par_iter()
+                .map(|i| to(i, self.slot[i]))
+                .collect()
+        });
         let mut active: Vec<usize> = (0..n).collect();
         let mut seen = vec![false; n];
         loop {
-            let mut changed: Vec<(usize, u32, (f64, u64))> = Vec::new();
-            for &j in &active {
-                let mut found = (best[j], NONE);
-                for i in graph.entries(j).filter(|&i| self.slot[i] != INSIDE) {
-                    let candidate = to(j, self.slot[i]);
-                    if candidate < found.0 {
-                        found = (candidate, self.slot[i]);
-                    }
-                }
-                if found.1 != NONE {
-                    changed.push((j, found.1, found.0));
-                }
-            }
+            let (slot, best_now) = (&self.slot, &best);
+            let changed: Vec<(usize, u32, (f64, u64))> = workers.install(|| {
+                active
+                    .par_iter()
+                    .filter_map(|&j| {
+                        let mut found = (best_now[j], NONE);
+                        for i in graph.entries(j).filter(|&i| slot[i] != INSIDE) {
+                            let candidate = to(j, slot[i]);
+                            if candidate < found.0 {
+                                found = (candidate, slot[i]);
+                            }
+                        }
+                        (found.1 != NONE).then_some((j, found.1, found.0))
+                    })
+                    .collect()
+            });
             for &(j, k, d) in &changed {
                 self.slot[j] = k;
                 best[j] = d;
@@ -183,7 +196,7 @@ impl Nearest {
                 seen[j] = false;
             }
         }
-        best.iter().map(|b| b.0.sqrt()).collect()
+        workers.install(|| best.par_iter().map(|b| b.0.sqrt()).collect())
     }
 }
 
@@ -215,22 +228,31 @@ mod tests {
             .filter(|&i| mesh.point(i)[1] == 0.0)
             .collect();
         seeds.push(6 * 13 + 6);
-        let mut nearest = Nearest::new(&Whole, &graph, 2, &mesh.coords, &mesh.node_tags, &seeds);
-        let d = nearest.distances(&Whole, &graph, &mesh.coords);
+        let mut moved = mesh.coords.clone();
+        moved[2 * (6 * 13 + 6)] -= 0.3;
+        // The distances on the input and after the move, on `threads` workers.
+        let on = |threads: usize| {
+            let workers = Workers::new(threads).unwrap();
+            let mut nearest =
+                Nearest::new(&Whole, &graph, 2, &mesh.coords, &mesh.node_tags, &seeds);
+            let input = nearest.distances(&Whole, &graph, &mesh.coords, &workers);
+            (input, nearest.distances(&Whole, &graph, &moved, &workers))
+        };
+        let (d, after) = on(1);
+        for threads in [2, 3] {
+            assert_eq!(on(threads), (d.clone(), after.clone()));
+        }
         for (i, &di) in d.iter().enumerate() {
             assert_eq!(di, brute(&mesh.coords, &seeds, i), "node {i}");
         }
         // The centre seed swept to the left: the nodes it leaves find the
         // bottom side or its new place, each at a distance to a seed no
         // nearer than the nearest.
-        let mut moved = mesh.coords.clone();
-        moved[2 * (6 * 13 + 6)] -= 0.3;
-        let d = nearest.distances(&Whole, &graph, &moved);
-        for (i, &di) in d.iter().enumerate() {
+        for (i, &di) in after.iter().enumerate() {
             let exact = brute(&moved, &seeds, i);
             assert!(di >= exact && di <= exact + 0.3, "node {i}: {di} {exact}");
         }
-        assert_eq!(d[6 * 13 + 6], 0.0);
-        assert_eq!(d[6 * 13 + 2], brute(&moved, &seeds, 6 * 13 + 2));
+        assert_eq!(after[6 * 13 + 6], 0.0);
+        assert_eq!(after[6 * 13 + 2], brute(&moved, &seeds, 6 * 13 + 2));
     }
 }

@@ -24,8 +24,11 @@
 
 use std::sync::Arc;
 
+use rayon::prelude::*;
+
 use crate::collective::Collective;
-use crate::topology::{self, Csr};
+use crate::threads::{chunked_sums, Workers};
+use crate::topology::Csr;
 
 /// Conjugate gradients stop at this reduction of the residual (so that
 /// processes summing in another order agree to about this much of the
@@ -122,21 +125,17 @@ impl Shadow {
     }
 }
 
-/// The edges of a mesh: as a list for the products (each edge once,
-/// `[a, b]` with `a < b`, sorted) and as a graph for the distances.
+/// The edge graph of a mesh: the products run row by row over it.
 pub(super) struct Laplace {
     dim: usize,
-    edges: Vec<[u32; 2]>,
     graph: Arc<Csr>,
 }
 
 impl Laplace {
     /// The problem on the edges of a mesh in `dim` dimensions, its edge
-    /// graph `graph` ([`topology::edge_graph`]).
+    /// graph `graph` ([`crate::topology::edge_graph`]).
     pub(super) fn new(dim: usize, graph: Arc<Csr>) -> Laplace {
-        let mut edges = Vec::with_capacity(graph.targets.len() / 2);
-        edges.extend(topology::upper_edges(&graph).map(|[a, b]| [a as u32, b as u32]));
-        Laplace { dim, edges, graph }
+        Laplace { dim, graph }
     }
 
     /// The edges as a graph (both directions).
@@ -149,7 +148,9 @@ impl Laplace {
     /// given (isotropic otherwise): on entry the prescribed values and
     /// the unknowns' initial guess, on exit the solution (clamped to
     /// `[0, 1]`), over the processes `on` (collective; the ghosts' values
-    /// on entry their owners').
+    /// on entry their owners'). The products and sums run on `workers`,
+    /// node by node (`(A x)_i = Σ_j k_ij (x_i − x_j)` over row `i`, in its
+    /// order) and in fixed chunks: the same bits for any number of them.
     pub(super) fn solve(
         &self,
         on: &dyn Collective,
@@ -157,73 +158,56 @@ impl Laplace {
         unknown: &[bool],
         w: &mut [f64],
         along: Option<&Shadow>,
+        workers: &Workers,
     ) {
-        let dim = self.dim;
-        let unknown: Vec<bool> = unknown
-            .iter()
-            .enumerate()
-            .map(|(i, u)| *u && !self.graph.row(i).is_empty())
-            .collect();
-        let k: Vec<f64> = self
-            .edges
-            .iter()
-            .map(|&[a, b]| {
-                let (a, b) = (a as usize, b as usize);
-                let e: [f64; 3] = std::array::from_fn(|d| {
-                    if d < dim {
-                        coords[dim * b + d] - coords[dim * a + d]
-                    } else {
-                        0.0
-                    }
-                });
-                let squared: f64 = e.iter().map(|v| v * v).sum();
-                let middle: [f64; 3] = std::array::from_fn(|d| {
-                    if d < dim {
-                        0.5 * (coords[dim * a + d] + coords[dim * b + d])
-                    } else {
-                        0.0
-                    }
-                });
-                let across = match along {
-                    Some(shadow) => {
-                        let t = &shadow.along;
-                        let cos2 = (e[0] * t[0] + e[1] * t[1] + e[2] * t[2]).powi(2) / squared;
-                        let a = 1.0 + (ACROSS - 1.0) * shadow.depth(&middle);
-                        cos2 + a * (1.0 - cos2)
-                    }
-                    None => 1.0,
-                };
-                across / squared.sqrt()
-            })
-            .collect();
+        let graph = &*self.graph;
         let n = w.len();
-        let mut diag = vec![0.0; n];
-        for (&[a, b], &ke) in self.edges.iter().zip(&k) {
-            diag[a as usize] += ke;
-            diag[b as usize] += ke;
-        }
+        // The coupling of every entry of the graph, in its order, and the
+        // diagonal, each row's sum.
+        let (unknown, k, diag) = workers.install(|| {
+            let unknown: Vec<bool> = (0..n)
+                .into_par_iter()
+                .map(|i| unknown[i] && !graph.row(i).is_empty())
+                .collect();
+            let k: Vec<f64> = (0..n)
+                .into_par_iter()
+                .flat_map_iter(|i| {
+                    graph
+                        .entries(i)
+                        .map(move |j| coupling(self.dim, coords, i.min(j), i.max(j), along))
+                })
+                .collect();
+            let diag: Vec<f64> = (0..n)
+                .into_par_iter()
+                .map(|i| {
+                    k[graph.offsets[i]..graph.offsets[i + 1]]
+                        .iter()
+                        .sum::<f64>()
+                        .max(f64::MIN_POSITIVE)
+                })
+                .collect();
+            (unknown, k, diag)
+        });
         // A x over the unknowns, prescribed entries of x taken as they are.
         let apply = |x: &[f64], y: &mut [f64]| {
-            y.fill(0.0);
-            for (&[a, b], &ke) in self.edges.iter().zip(&k) {
-                let (a, b) = (a as usize, b as usize);
-                let f = ke * (x[a] - x[b]);
-                y[a] += f;
-                y[b] -= f;
-            }
+            workers.install(|| {
+                y.par_iter_mut().enumerate().for_each(|(i, yi)| {
+                    let (lo, hi) = (graph.offsets[i], graph.offsets[i + 1]);
+                    *yi = graph.targets[lo..hi]
+                        .iter()
+                        .zip(&k[lo..hi])
+                        .map(|(&j, &kij)| kij * (x[i] - x[j as usize]))
+                        .sum();
+                });
+            });
         };
         // r, z and p stay 0 at the prescribed entries; the dot products
         // take the owned entries (all of them on one process).
         let owned: Vec<f64> = (0..n).map(|i| f64::from(u8::from(on.owns(i)))).collect();
-        let dot = |x: &[f64], y: &[f64]| {
-            let mut sum = [x
-                .iter()
-                .zip(y)
-                .zip(&owned)
-                .map(|((a, b), o)| a * b * o)
-                .sum()];
+        let sums = |term: &(dyn Fn(usize) -> [f64; 2] + Sync)| {
+            let mut sum = workers.install(|| chunked_sums(n, term));
             on.sum(&mut sum);
-            sum[0]
+            sum
         };
         let mut r = vec![0.0; n];
         apply(w, &mut r);
@@ -237,12 +221,11 @@ impl Laplace {
             .map(|i| if unknown[i] { 0.0 } else { w[i] })
             .collect();
         apply(&prescribed, &mut pull);
-        let mut scale = [(0..n)
-            .filter(|&i| unknown[i] && on.owns(i))
-            .map(|i| pull[i] * pull[i])
-            .sum::<f64>()];
-        on.sum(&mut scale);
-        let scale = scale[0].sqrt();
+        let scale = sums(&|i| {
+            let u = f64::from(u8::from(unknown[i]));
+            [pull[i] * pull[i] * u * owned[i], 0.0]
+        })[0]
+            .sqrt();
         if scale == 0.0 {
             for i in (0..n).filter(|&i| unknown[i]) {
                 w[i] = 0.0;
@@ -252,40 +235,39 @@ impl Laplace {
         // 1 at the unknowns, 0 at the prescribed: keeps `A p` off the
         // prescribed entries of r.
         let mask: Vec<f64> = unknown.iter().map(|&u| f64::from(u)).collect();
-        for d in diag.iter_mut() {
-            *d = d.max(f64::MIN_POSITIVE);
-        }
         let mut z: Vec<f64> = r.iter().zip(&diag).map(|(ri, di)| ri / di).collect();
         let mut p = z.clone();
         on.refresh(&mut p, 1);
         let mut q = vec![0.0; n];
-        let mut rz = dot(&r, &z);
-        let mut rr = dot(&r, &r);
+        let [mut rz, mut rr] = sums(&|i| [r[i] * z[i] * owned[i], r[i] * r[i] * owned[i]]);
         for _ in 0..MAX_ITERATIONS {
             if rr.sqrt() <= REDUCTION * scale {
                 break;
             }
             apply(&p, &mut q);
-            let pq = dot(&p, &q);
+            let pq = sums(&|i| [p[i] * q[i] * owned[i], 0.0])[0];
             if pq <= 0.0 {
                 break;
             }
             let alpha = rz / pq;
-            let mut next = [0.0; 2];
-            for i in 0..n {
-                w[i] += alpha * p[i];
-                r[i] -= alpha * q[i] * mask[i];
-                z[i] = r[i] / diag[i];
-                next[0] += r[i] * z[i] * owned[i];
-                next[1] += r[i] * r[i] * owned[i];
-            }
-            on.sum(&mut next);
+            workers.install(|| {
+                (w.par_iter_mut(), r.par_iter_mut(), z.par_iter_mut())
+                    .into_par_iter()
+                    .enumerate()
+                    .for_each(|(i, (wi, ri, zi))| {
+                        *wi += alpha * p[i];
+                        *ri -= alpha * q[i] * mask[i];
+                        *zi = *ri / diag[i];
+                    });
+            });
+            let next = sums(&|i| [r[i] * z[i] * owned[i], r[i] * r[i] * owned[i]]);
             let beta = next[0] / rz;
-            rz = next[0];
-            rr = next[1];
-            for (pi, zi) in p.iter_mut().zip(&z) {
-                *pi = zi + beta * *pi;
-            }
+            [rz, rr] = next;
+            workers.install(|| {
+                p.par_iter_mut()
+                    .zip(&z)
+                    .for_each(|(pi, zi)| *pi = zi + beta * *pi);
+            });
             on.refresh(&mut p, 1);
         }
         for wi in w.iter_mut() {
@@ -294,21 +276,91 @@ impl Laplace {
     }
 }
 
+/// The coupling `k_ab` of the edge from node `a` to node `b > a` at
+/// `coords` (`dim` numbers a node): `1/L`, or in the shadow `along` the
+/// directional one (see the module documentation).
+fn coupling(dim: usize, coords: &[f64], a: usize, b: usize, along: Option<&Shadow>) -> f64 {
+    let e: [f64; 3] = std::array::from_fn(|d| {
+        if d < dim {
+            coords[dim * b + d] - coords[dim * a + d]
+        } else {
+            0.0
+        }
+    });
+    let squared: f64 = e.iter().map(|v| v * v).sum();
+    let middle: [f64; 3] = std::array::from_fn(|d| {
+        if d < dim {
+            0.5 * (coords[dim * a + d] + coords[dim * b + d])
+        } else {
+            0.0
+        }
+    });
+    let across = match along {
+        Some(shadow) => {
+            let t = &shadow.along;
+            let cos2 = (e[0] * t[0] + e[1] * t[1] + e[2] * t[2]).powi(2) / squared;
+            let a = 1.0 + (ACROSS - 1.0) * shadow.depth(&middle);
+            cos2 + a * (1.0 - cos2)
+        }
+        None => 1.0,
+    };
+    across / squared.sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::collective::Whole;
+    use crate::mesh::Mesh;
 
-    /// The unit square, 16 × 16 quadrilaterals: `w = 1` on the lower half of the left
-    /// side (a body's face pushed along x), 0 on the right side (a fixed
-    /// wall), the rest free; the largest spread of the weights across the
-    /// motion of a column's nodes in the body's shadow (`y ≤ 0.5`), and the
-    /// weight at the top-right corner's neighbour, far from the shadow.
-    fn weights(directional: bool) -> (f64, f64) {
-        let n = 16;
+    #[test]
+    fn the_weights_are_the_same_on_any_workers_and_solve_the_edge_by_edge_system() {
+        for directional in [false, true] {
+            let (w, mesh, unknown) = solved(48, directional, 1);
+            for threads in [2, 3] {
+                let (other, ..) = solved(48, directional, threads);
+                assert!(other
+                    .iter()
+                    .zip(&w)
+                    .all(|(a, b)| a.to_bits() == b.to_bits()));
+            }
+            // The residual and the prescribed values' pull, edge by edge.
+            let body: Vec<usize> = (0..=24).map(|j| j * 49).collect();
+            let shadow = Shadow::of(2, [1.0, 0.0, 0.0], &mesh.coords, &body, 0.25, &Whole);
+            let along = directional.then_some(&shadow);
+            let (mut residual, mut pull) = (vec![0.0; w.len()], vec![0.0; w.len()]);
+            for [a, b] in crate::topology::edges(&mesh.cells, mesh.node_count()) {
+                let k = coupling(2, &mesh.coords, a, b, along);
+                residual[a] += k * (w[a] - w[b]);
+                residual[b] += k * (w[b] - w[a]);
+                let given = |i: usize| if unknown[i] { 0.0 } else { w[i] };
+                pull[a] += k * (given(a) - given(b));
+                pull[b] += k * (given(b) - given(a));
+            }
+            let norm = |v: &[f64]| {
+                (0..v.len())
+                    .filter(|&i| unknown[i])
+                    .map(|i| v[i] * v[i])
+                    .sum::<f64>()
+                    .sqrt()
+            };
+            assert!(
+                norm(&residual) <= 10.0 * REDUCTION * norm(&pull),
+                "{} against {}",
+                norm(&residual),
+                norm(&pull)
+            );
+        }
+    }
+
+    /// The weights on the unit square of `n × n` quadrilaterals, solved on
+    /// `threads` workers: `w = 1` on the lower half of the left side (a
+    /// body's face pushed along x), 0 on the right side (a fixed wall), the
+    /// rest free; with the mesh and the unknowns.
+    fn solved(n: usize, directional: bool, threads: usize) -> (Vec<f64>, Mesh, Vec<bool>) {
         let node = |i: usize, j: usize| j * (n + 1) + i;
         let mesh = crate::mesh::samples::square_of_quads(n);
-        let graph = Arc::new(topology::edge_graph(&mesh.cells, mesh.node_count()));
+        let graph = Arc::new(crate::topology::edge_graph(&mesh.cells, mesh.node_count()));
         let laplace = Laplace::new(2, graph);
         let mut unknown = vec![true; mesh.node_count()];
         let mut w = vec![0.0; mesh.node_count()];
@@ -327,7 +379,19 @@ mod tests {
             &unknown,
             &mut w,
             directional.then_some(&shadow),
+            &Workers::new(threads).unwrap(),
         );
+        (w, mesh, unknown)
+    }
+
+    /// On 16 × 16 cells ([`solved`]): the largest spread of the weights
+    /// across the motion of a column's nodes in the body's shadow
+    /// (`y ≤ 0.5`), and the weight at the top-right corner's neighbour, far
+    /// from the shadow.
+    fn weights(directional: bool) -> (f64, f64) {
+        let n = 16;
+        let node = |i: usize, j: usize| j * (n + 1) + i;
+        let (w, ..) = solved(n, directional, 1);
         let spread = (1..n)
             .map(|i| {
                 let column = (0..=n / 2).map(|j| w[node(i, j)]);

@@ -30,8 +30,9 @@ use super::{
     prescribed_scale, run, verify, Accel, Engine, Method, SolveInfo, SolveParams, Solver, Stage,
     System, AUTO_SWEEPS, ERROR_FRACTION,
 };
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::geometry::{ldlt_factor, packed_len, point};
+use crate::threads::Workers;
 
 /// The direct solve is tried on 2D systems of at most this many unknown nodes.
 pub const DIRECT_NODES_2D: usize = 400_000;
@@ -74,9 +75,9 @@ impl Engine {
     /// documentation of [`crate::solve`]) on reference coordinates `coords`,
     /// escalating as [`SolveParams::escalate`] says, and says what it did.
     ///
-    /// Fails with [`Error::InvalidSetting`] for arrays of the wrong length,
+    /// Fails with [`crate::Error::InvalidSetting`] for arrays of the wrong length,
     /// non-finite input or parameters out of range, and with
-    /// [`Error::InvalidMesh`] when `coords` collapse a cell (a spring of zero
+    /// [`crate::Error::InvalidMesh`] when `coords` collapse a cell (a spring of zero
     /// length) or make a node's springs singular. A solve that did not
     /// converge is not an error: `converged` is false.
     pub fn solve(
@@ -195,14 +196,8 @@ impl Engine {
         params: &SolveParams,
     ) -> Result<bool> {
         let threads = params.threads;
-        if self.pool.as_ref().map(|p| p.0) != Some(threads) {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .map_err(|e| {
-                    Error::InvalidSetting(format!("cannot start {threads} threads: {e}"))
-                })?;
-            self.pool = Some((threads, pool));
+        if self.pool.as_ref().map(Workers::threads) != Some(threads) {
+            self.pool = Some(Workers::new(threads)?);
         }
         let reuse = self
             .built
@@ -213,12 +208,11 @@ impl Engine {
                 System::Blocks { blocks, .. } if b.method == params.method => Some(blocks),
                 _ => None,
             });
-            let (_, pool) = self.pool.take().expect("started above");
+            let pool = self.pool.clone().expect("started above");
             let built = pool.install(|| match self.conn.dim {
                 2 => self.build::<2>(coords, displacement, params.method, kept),
                 _ => self.build::<3>(coords, displacement, params.method, kept),
             });
-            self.pool = Some((threads, pool));
             self.built = Some(built?);
         }
         Ok(!reuse)
@@ -246,7 +240,7 @@ impl Engine {
             ..
         } = self;
         let built = built.as_mut().expect("prepared");
-        let pool = &pool.as_ref().expect("prepared").1;
+        let pool = pool.as_ref().expect("prepared").pool();
         let scale = prescribed_scale(dim, roles, normals, displacement);
         let mut threshold = params.threshold(scale, exact);
         let factored = matches!(built.system, System::Blocks { factored: true, .. });
@@ -358,7 +352,7 @@ impl Engine {
         let Some(built) = self.built.as_mut() else {
             return;
         };
-        let pool = &self.pool.as_ref().expect("prepared").1;
+        let pool = self.pool.as_ref().expect("prepared");
         let check = pool.install(|| match self.conn.dim {
             2 => check::<2>(built, displacement),
             _ => check::<3>(built, displacement),

@@ -111,10 +111,13 @@ pub(crate) use sweep::{chunked_dot, chunked_sum, sweep};
 
 use std::sync::Arc;
 
+use rayon::prelude::*;
+
 use crate::error::{Error, Result};
 use crate::geometry::{ldlt_factor, packed_len, packed_mul, point};
 use crate::mesh::Mesh;
 use crate::springs::{self, Connectivity, NodeBlocks, Springs};
+use crate::threads::Workers;
 use crate::topology;
 
 /// Nodes of one colour are updated in chunks of this many; each chunk sums its
@@ -135,7 +138,8 @@ pub struct Engine {
     /// Unit plane normals of the sliding nodes (first `D` numbers used).
     normals: Vec<[f64; 3]>,
     built: Option<Built>,
-    pool: Option<(usize, rayon::ThreadPool)>,
+    /// The workers (the deformer's, shared, or started at the first solve).
+    pool: Option<Workers>,
     accel: accel::AccelState,
     /// The last layout and the moving nodes it was ordered from: a rebuild
     /// with the same moving nodes (every step of a run) reuses it.
@@ -483,16 +487,21 @@ impl Engine {
         let s = packed_len(D);
         let unprojected = layout.frames.project_diagonal::<D>(&mut blocks.diag);
         if factored {
-            for p in 0..layout.len() {
-                let diag = &mut blocks.diag[s * p..s * (p + 1)];
-                let a = diag.to_vec();
-                if !ldlt_factor::<D>(&a, diag) {
-                    return Err(Error::InvalidMesh(format!(
-                        "node {}: its springs do not hold it in every direction \
-                         (singular stiffness block)",
-                        self.conn.node_tags[layout.order[p]]
-                    )));
-                }
+            // Block by block on the current pool; the first singular one named.
+            let singular = blocks.diag[..s * layout.len()]
+                .par_chunks_mut(s)
+                .enumerate()
+                .filter_map(|(p, diag)| {
+                    let a = diag.to_vec();
+                    (!ldlt_factor::<D>(&a, diag)).then_some(p)
+                })
+                .min();
+            if let Some(p) = singular {
+                return Err(Error::InvalidMesh(format!(
+                    "node {}: its springs do not hold it in every direction \
+                     (singular stiffness block)",
+                    self.conn.node_tags[layout.order[p]]
+                )));
             }
         }
         Ok(unprojected)

@@ -8,6 +8,7 @@ use std::sync::Arc;
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::springs::Connectivity;
+use crate::threads::Workers;
 use crate::topology::Csr;
 
 use super::{Engine, NodeRole, SolveInfo, SolveParams};
@@ -54,6 +55,9 @@ pub struct SolverSetup<'a> {
     /// The mesh's edge graph when the deformer built it already (for the
     /// blended rigid motion): shared, not built again.
     pub edge_graph: Option<&'a Arc<Csr>>,
+    /// The deformer's workers: the solver's parallel work runs on them
+    /// while the settings ask for as many.
+    pub workers: &'a Workers,
 }
 
 impl Engine {
@@ -62,6 +66,7 @@ impl Engine {
         let conn = Connectivity::with_edge_graph(setup.mesh, setup.edge_graph.cloned());
         let mut engine = Engine::with_connectivity(conn, setup.mesh, setup.roles, setup.normals)?;
         engine.set_stiffness(setup.stiffness.to_vec());
+        engine.pool = Some(setup.workers.clone());
         Ok(engine)
     }
 }
