@@ -49,6 +49,8 @@ use crate::solve::{Engine, NodeRole, SolverSetup, SpringSolver};
 use crate::topology;
 
 mod accept;
+#[cfg(test)]
+mod amplification_tests;
 mod attempt;
 mod coincident;
 #[cfg(test)]
@@ -213,11 +215,16 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
         let blending = settings.robust.blend && !plan.bodies.is_empty();
         let edge_graph = (settings.robust.treats() || blending)
             .then(|| Arc::new(topology::edge_graph(&mesh.cells, mesh.node_count())));
+        let deforms: Vec<bool> = plan
+            .bodies
+            .iter()
+            .map(|chain| chain.iter().any(|&a| motions[a].deforms()))
+            .collect();
         let rigid = near_wall::prepare(
             mesh,
             edge_graph.as_deref(),
             &plan.roles,
-            (plan.bodies.len(), &plan.moving),
+            (&deforms, &plan.moving),
             &settings.robust,
             &on,
         )?;

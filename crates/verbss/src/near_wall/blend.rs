@@ -56,6 +56,14 @@ pub const ROUND_OFF: f64 = 1e-12;
 /// (CHANGELOG.md, 2026-11-23).
 const ANGLE_SCALE: f64 = 2.0;
 
+/// A body whose fitted rigid motion misses a wall node by this fraction of
+/// the largest wall move or more is not turned by the blend (its angle is
+/// scaled by `1 − miss / (RIGID_MISS · move)`, clamped to `[0, 1]`): a
+/// rotation fitted to a body that deforms (the aft part of an airfoil
+/// drooped, which the fit misses by half its move) would carry the nodes
+/// far from it along an arc that no wall node takes.
+const RIGID_MISS: f64 = 0.1;
+
 /// A body: the moving nodes its rigid motion is fitted to (indices into the
 /// step's targets) and every node held at `w = 1` (mesh indices).
 struct Body {
@@ -222,7 +230,9 @@ impl Blend {
             if moving[0] == 0.0 {
                 continue;
             }
-            let rigid = fit(on, dim, coords, targets, &body.fitted).about_axis(body.radius);
+            let fitted = fit(on, dim, coords, targets, &body.fitted);
+            let rigidity = fitted.rigidity(on, dim, coords, targets, &body.fitted, self.extent);
+            let rigid = fitted.turned_by(rigidity).about_axis(body.radius);
             // The translation's part across the sliding planes and along them.
             let t = rigid.translation;
             let along: [f64; 3] = std::array::from_fn(|r| dot(&self.slide_along[r], &t));
@@ -461,6 +471,52 @@ fn fit(
 }
 
 impl Rigid {
+    /// How rigidly the nodes `fitted` (indices into `targets`) move from
+    /// `coords` under this motion, over the processes `on` (collective): 1
+    /// where it puts each on its target to within [`ROUND_OFF`] of `extent`,
+    /// otherwise `1 − e / (RIGID_MISS · m)` clamped to `[0, 1]`, with `e` the
+    /// largest distance between a node's image and its target and `m` the
+    /// largest move of a node.
+    fn rigidity(
+        &self,
+        on: &dyn Collective,
+        dim: usize,
+        coords: &[f64],
+        targets: &[(usize, Vec<f64>)],
+        fitted: &[usize],
+        extent: f64,
+    ) -> f64 {
+        // [largest miss, largest move]
+        let mut largest = [0.0f64; 2];
+        for (i, q) in fitted.iter().map(|&k| &targets[k]) {
+            if !on.owns(*i) {
+                continue;
+            }
+            let x = &coords[dim * i..dim * (i + 1)];
+            let mut image = x.to_vec();
+            crate::motion::rotate(&mut image, &self.centre, &self.axis, self.angle);
+            let miss = (0..dim).map(|d| (image[d] + self.translation[d] - q[d]).powi(2));
+            let moved = (0..dim).map(|d| (q[d] - x[d]).powi(2));
+            largest[0] = largest[0].max(miss.sum::<f64>().sqrt());
+            largest[1] = largest[1].max(moved.sum::<f64>().sqrt());
+        }
+        on.max(&mut largest);
+        let [miss, moved] = largest;
+        if miss <= ROUND_OFF * extent {
+            1.0
+        } else {
+            (1.0 - miss / (RIGID_MISS * moved)).clamp(0.0, 1.0)
+        }
+    }
+
+    /// The motion with its angle scaled by `share`, about the same centre
+    /// (the fitted nodes' centroid) with the same translation (the
+    /// centroid's move): `x ↦ c + t + R(share · θ)(x − c)`.
+    fn turned_by(mut self, share: f64) -> Rigid {
+        self.angle *= share;
+        self
+    }
+
     /// The same motion about the point nearest its axis within `radius`
     /// of the centroid: the translation left is the least there, so a hinged
     /// flap turns about its hinge. With `y ⊥ a` the way from the centroid
