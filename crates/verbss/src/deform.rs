@@ -215,16 +215,19 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
         let blending = settings.robust.blend && !plan.bodies.is_empty();
         let edge_graph = (settings.robust.treats() || blending)
             .then(|| Arc::new(topology::edge_graph(&mesh.cells, mesh.node_count())));
-        let deforms: Vec<bool> = plan
+        // The bodies moved by given positions (a deformation the blend does
+        // not turn and the stiffening does not grade: docs/method.md,
+        // "Amplification").
+        let given: Vec<bool> = plan
             .bodies
             .iter()
-            .map(|chain| chain.iter().any(|&a| motions[a].deforms()))
+            .map(|chain| chain.iter().any(|&a| !motions[a].is_field()))
             .collect();
         let rigid = near_wall::prepare(
             mesh,
             edge_graph.as_deref(),
             &plan.roles,
-            (&deforms, &plan.moving),
+            (&given, &plan.moving),
             &settings.robust,
             &on,
         )?;
@@ -248,6 +251,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
                 &plan.roles,
                 &plan.normals,
                 blend::bodies(plan.bodies.len(), &plan.moving, &rigid.nodes),
+                &given,
                 &on,
             )
         });

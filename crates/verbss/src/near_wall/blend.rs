@@ -56,18 +56,25 @@ pub const ROUND_OFF: f64 = 1e-12;
 /// (CHANGELOG.md, 2026-11-23).
 const ANGLE_SCALE: f64 = 2.0;
 
-/// A body whose fitted rigid motion misses a wall node by this fraction of
-/// the largest wall move or more is not turned by the blend (its angle is
+/// A body moved by given positions whose fitted rigid motion misses a wall
+/// node by this fraction of the largest wall move or more is not turned by
+/// the blend (its angle is
 /// scaled by `1 − miss / (RIGID_MISS · move)`, clamped to `[0, 1]`): a
 /// rotation fitted to a body that deforms (the aft part of an airfoil
 /// drooped, which the fit misses by half its move) would carry the nodes
-/// far from it along an arc that no wall node takes.
+/// far from it along an arc that no wall node takes. A bending and an
+/// undulation are turned as fitted: scaled, and unstiffened, the bending
+/// wing of docs/robustness.md inverted at step 14 (at step 25 unstiffened
+/// alone), not 38.
 const RIGID_MISS: f64 = 0.1;
 
 /// A body: the moving nodes its rigid motion is fitted to (indices into the
 /// step's targets) and every node held at `w = 1` (mesh indices).
 struct Body {
     fitted: Vec<usize>,
+    /// Whether its angle is scaled by how rigidly it moves
+    /// ([`Rigid::rigidity`]): a body moved by given positions.
+    given: bool,
     held: Vec<usize>,
     /// Half the body's size (its wall nodes' bounding-box diagonal).
     radius: f64,
@@ -142,7 +149,8 @@ impl Blend {
     /// (the same number for a node on every process), held nodes owned
     /// or not, shared by the processes `on` (collective): `roles` are the
     /// deformer's (rigid-layer nodes prescribed), `edge_graph` the local
-    /// cells' ([`crate::topology::edge_graph`]).
+    /// cells' ([`crate::topology::edge_graph`]); `given` says which bodies
+    /// are moved by given positions.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         dim: usize,
@@ -152,6 +160,7 @@ impl Blend {
         roles: &[NodeRole],
         normals: &[[f64; 3]],
         bodies: Vec<(Vec<usize>, Vec<usize>)>,
+        given: &[bool],
         on: &dyn Collective,
     ) -> Blend {
         let n = roles.len();
@@ -161,7 +170,8 @@ impl Blend {
         let extent = size(&(0..n).collect::<Vec<_>>());
         let bodies = bodies
             .into_iter()
-            .map(|(fitted, mut held)| {
+            .zip(given)
+            .map(|((fitted, mut held), &given)| {
                 let mut is_held = vec![false; n];
                 for &i in &held {
                     is_held[i] = true;
@@ -187,6 +197,7 @@ impl Blend {
                     near_others: Nearest::new(on, graph, dim, coords, ids, &others),
                     radius: 0.5 * size(&wall),
                     fitted,
+                    given,
                     held,
                     held_slides: [vec![0.0; n], vec![0.0; n]],
                     free_slides: [vec![0.0; n], vec![0.0; n]],
@@ -231,7 +242,11 @@ impl Blend {
                 continue;
             }
             let fitted = fit(on, dim, coords, targets, &body.fitted);
-            let rigidity = fitted.rigidity(on, dim, coords, targets, &body.fitted, self.extent);
+            let rigidity = if body.given {
+                fitted.rigidity(on, dim, coords, targets, &body.fitted, self.extent)
+            } else {
+                1.0
+            };
             let rigid = fitted.turned_by(rigidity).about_axis(body.radius);
             // The translation's part across the sliding planes and along them.
             let t = rigid.translation;
@@ -702,6 +717,37 @@ mod tests {
             assert!((p[0] + near.translation[0] - q[0]).abs() < 1e-12);
             assert!((p[1] + near.translation[1] - q[1]).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn a_body_is_turned_as_far_as_it_moves_rigidly() {
+        // A plate from (0, 0) to (1, 0) turned 0.2 about its end moves rigidly.
+        let coords = [0.0, 0.0, 0.5, 0.0, 1.0, 0.0];
+        let turned: Vec<(usize, Vec<f64>)> = (0..3)
+            .map(|i| {
+                let mut p = coords[2 * i..2 * i + 2].to_vec();
+                crate::motion::rotate(&mut p, &[1.0, 0.0, 0.0], &[0.0, 0.0, 1.0], 0.2);
+                (i, p)
+            })
+            .collect();
+        let all = [0, 1, 2];
+        let rigid = fit(&Whole, 2, &coords, &turned, &all);
+        assert_eq!(rigid.rigidity(&Whole, 2, &coords, &turned, &all, 1.0), 1.0);
+        // Its end alone moved down 0.1: the fit (down 1/30, turned by
+        // −0.1 about the centroid) misses the middle node by 1/30, a third
+        // of the largest move, so the body is not turned.
+        let bent = vec![
+            (0, vec![0.0, 0.0]),
+            (1, vec![0.5, 0.0]),
+            (2, vec![1.0, -0.1]),
+        ];
+        let fitted = fit(&Whole, 2, &coords, &bent, &all);
+        assert!((fitted.angle + 0.1).abs() < 1e-3, "{}", fitted.angle);
+        let share = fitted.rigidity(&Whole, 2, &coords, &bent, &all, 1.0);
+        assert_eq!(share, 0.0);
+        let unturned = fitted.turned_by(share);
+        assert_eq!(unturned.angle, 0.0);
+        assert!((unturned.translation[1] + 0.1 / 3.0).abs() < 1e-15);
     }
 
     #[test]

@@ -232,7 +232,7 @@ fn stiffening_is_one_within_the_layer_and_falls_as_a_power_of_the_distance() {
     )
     .unwrap();
     assert_eq!(off, Treatment::default());
-    // A body that deforms keeps its layer and stiffens nothing.
+    // A body moved by given positions keeps its layer and stiffens nothing.
     let deforming = prepare(&mesh, None, d.roles(), (&[true], &moving), &robust, &Whole).unwrap();
     assert_eq!(
         (&deforming.nodes, &deforming.thickness),
