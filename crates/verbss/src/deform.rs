@@ -50,6 +50,8 @@ use crate::threads::Workers;
 use crate::topology;
 
 mod accept;
+#[cfg(test)]
+mod amplification_tests;
 mod attempt;
 mod coincident;
 #[cfg(test)]
@@ -218,11 +220,19 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
         let blending = settings.robust.blend && !plan.bodies.is_empty();
         let edge_graph = (settings.robust.treats() || blending)
             .then(|| Arc::new(topology::edge_graph(&mesh.cells, mesh.node_count())));
+        // The bodies moved by given positions (a deformation the blend does
+        // not turn and the stiffening does not grade: docs/method.md,
+        // "Amplification").
+        let given: Vec<bool> = plan
+            .bodies
+            .iter()
+            .map(|chain| chain.iter().any(|&a| !motions[a].is_field()))
+            .collect();
         let rigid = near_wall::prepare(
             mesh,
             edge_graph.as_deref(),
             &plan.roles,
-            (plan.bodies.len(), &plan.moving),
+            (&given, &plan.moving),
             &settings.robust,
             &on,
         )?;
@@ -246,6 +256,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
                 &plan.roles,
                 &plan.normals,
                 blend::bodies(plan.bodies.len(), &plan.moving, &rigid.nodes),
+                &given,
                 &on,
             )
         });

@@ -313,6 +313,15 @@ impl Motion {
         }
     }
 
+    /// Whether the motion can change the shape of what it moves (given
+    /// positions, a bending, an undulation), unlike the rigid motions.
+    pub fn deforms(&self) -> bool {
+        matches!(
+            self,
+            Motion::Positions(_) | Motion::Bending { .. } | Motion::Undulation { .. }
+        )
+    }
+
     /// Whether the motion is a field defined at every point (all but
     /// [`Motion::Positions`], which prescribes given nodes only).
     pub fn is_field(&self) -> bool {

@@ -166,9 +166,10 @@ pub struct Treatment {
 
 /// The rigid layer and stiffness factors of the local mesh `mesh` (a whole
 /// mesh, or one process's part with its ghosts) around the moving nodes
-/// `moving` (node and body, of `bodies` bodies numbered alike on every
-/// process), collective over the processes `on`: every node gets one
-/// process's answer on any cut, the walks' seeds gathered from their
+/// `moving` (node and body, of the bodies numbered alike on every process
+/// moved by given positions where `given` says so: no stiffening around
+/// those, see [`stiffness_factor`]), collective over the processes
+/// `on`: every node gets one process's answer on any cut, the walks' seeds gathered from their
 /// owners and their reach made global by ghost refreshes. `roles` are the
 /// nodes' roles before the layer (moving nodes and other boundary nodes
 /// fixed, sliding nodes, free); `graph` the local cells' edge graph
@@ -177,7 +178,7 @@ pub fn prepare(
     mesh: &Mesh,
     graph: Option<&Csr>,
     roles: &[NodeRole],
-    (bodies, moving): (usize, &[(usize, usize)]),
+    (given, moving): (&[bool], &[(usize, usize)]),
     robust: &Robust,
     on: &dyn Collective,
 ) -> Result<Treatment> {
@@ -186,7 +187,7 @@ pub fn prepare(
     if !robust.treats() {
         return Ok(Treatment::default());
     }
-    let (n, dim) = (mesh.node_count(), mesh.dim);
+    let (n, dim, bodies) = (mesh.node_count(), mesh.dim, given.len());
     let built;
     let graph = match graph {
         Some(graph) => graph,
@@ -279,8 +280,13 @@ pub fn prepare(
         .collect();
     let to_fixed = nearest(&fixed, &|i| limits[i]).0;
     // A body of no extent (a single moving node) has no thickness: it
-    // stiffens nothing.
-    let stiffen = p > 0.0 && thickness.iter().any(|&t| t > 0.0);
+    // stiffens nothing, nor does a body moved by given positions.
+    let stiffening: Vec<f64> = thickness
+        .iter()
+        .enumerate()
+        .map(|(b, &t)| if b < bodies && given[b] { 0.0 } else { t })
+        .collect();
+    let stiffen = p > 0.0 && stiffening.iter().any(|&t| t > 0.0);
     let mut stiffness = Vec::new();
     let mut nodes = Vec::new();
     let mut at = vec![0.0; fields.len()];
@@ -289,7 +295,7 @@ pub fn prepare(
             *a = dist[i];
         }
         if stiffen {
-            stiffness.push(stiffness_factor(&at, &thickness, p));
+            stiffness.push(stiffness_factor(&at, &stiffening, p));
         }
         if !free(i) {
             continue;
@@ -322,7 +328,13 @@ pub fn thickness(layer: Layer, size: f64, reached: impl FnOnce(f64) -> f64) -> f
 /// The stiffness factor of a node at distance `dist[b]` from body `b` of
 /// thickness `thickness[b]`: `max_b (t_b / max(d_b, t_b))^p` over the
 /// bodies with `t_b > 0` (a body of no extent stiffens nothing), at least
-/// the smallest positive number.
+/// the smallest positive number. [`prepare`] gives a body moved by given
+/// positions `t_b = 0`: the springs spread its deformation, and graded
+/// springs carry it farther than the wall moves (docs/method.md,
+/// "Amplification": the aft part of an airfoil drooped 0.15 chord moved
+/// the wake 7 chords behind it 0.26 chord). A bending and an undulation
+/// keep it: without it the bending wing of docs/robustness.md inverted at
+/// step 25, not 38.
 pub fn stiffness_factor(dist: &[f64], thickness: &[f64], p: f64) -> f64 {
     dist.iter()
         .zip(thickness)

@@ -59,10 +59,25 @@ pub const ROUND_OFF: f64 = 1e-12;
 /// (CHANGELOG.md, 2026-11-23).
 const ANGLE_SCALE: f64 = 2.0;
 
+/// A body moved by given positions whose fitted rigid motion misses a wall
+/// node by this fraction of the largest wall move or more is not turned by
+/// the blend (its angle is
+/// scaled by `1 − miss / (RIGID_MISS · move)`, clamped to `[0, 1]`): a
+/// rotation fitted to a body that deforms (the aft part of an airfoil
+/// drooped, which the fit misses by half its move) would carry the nodes
+/// far from it along an arc that no wall node takes. A bending and an
+/// undulation are turned as fitted: scaled, and unstiffened, the bending
+/// wing of docs/robustness.md inverted at step 14 (at step 25 unstiffened
+/// alone), not 38.
+const RIGID_MISS: f64 = 0.1;
+
 /// A body: the moving nodes its rigid motion is fitted to (indices into the
 /// step's targets) and every node held at `w = 1` (mesh indices).
 struct Body {
     fitted: Vec<usize>,
+    /// Whether its angle is scaled by how rigidly it moves
+    /// ([`Rigid::rigidity`]): a body moved by given positions.
+    given: bool,
     held: Vec<usize>,
     /// Half the body's size (its wall nodes' bounding-box diagonal).
     radius: f64,
@@ -137,7 +152,8 @@ impl Blend {
     /// (the same number for a node on every process), held nodes owned
     /// or not, shared by the processes `on` (collective): `roles` are the
     /// deformer's (rigid-layer nodes prescribed), `edge_graph` the local
-    /// cells' ([`crate::topology::edge_graph`]).
+    /// cells' ([`crate::topology::edge_graph`]); `given` says which bodies
+    /// are moved by given positions.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         dim: usize,
@@ -147,6 +163,7 @@ impl Blend {
         roles: &[NodeRole],
         normals: &[[f64; 3]],
         bodies: Vec<(Vec<usize>, Vec<usize>)>,
+        given: &[bool],
         on: &dyn Collective,
     ) -> Blend {
         let n = roles.len();
@@ -156,7 +173,8 @@ impl Blend {
         let extent = size(&(0..n).collect::<Vec<_>>());
         let bodies = bodies
             .into_iter()
-            .map(|(fitted, mut held)| {
+            .zip(given)
+            .map(|((fitted, mut held), &given)| {
                 let mut is_held = vec![false; n];
                 for &i in &held {
                     is_held[i] = true;
@@ -182,6 +200,7 @@ impl Blend {
                     near_others: Nearest::new(on, graph, dim, coords, ids, &others),
                     radius: 0.5 * size(&wall),
                     fitted,
+                    given,
                     held,
                     held_slides: [vec![0.0; n], vec![0.0; n]],
                     free_slides: [vec![0.0; n], vec![0.0; n]],
@@ -227,7 +246,13 @@ impl Blend {
             if moving[0] == 0.0 {
                 continue;
             }
-            let rigid = fit(on, dim, coords, targets, &body.fitted).about_axis(body.radius);
+            let fitted = fit(on, dim, coords, targets, &body.fitted);
+            let rigidity = if body.given {
+                fitted.rigidity(on, dim, coords, targets, &body.fitted, self.extent)
+            } else {
+                1.0
+            };
+            let rigid = fitted.turned_by(rigidity).about_axis(body.radius);
             // The translation's part across the sliding planes and along them.
             let t = rigid.translation;
             let along: [f64; 3] = std::array::from_fn(|r| dot(&self.slide_along[r], &t));
@@ -473,6 +498,52 @@ fn fit(
 }
 
 impl Rigid {
+    /// How rigidly the nodes `fitted` (indices into `targets`) move from
+    /// `coords` under this motion, over the processes `on` (collective): 1
+    /// where it puts each on its target to within [`ROUND_OFF`] of `extent`,
+    /// otherwise `1 − e / (RIGID_MISS · m)` clamped to `[0, 1]`, with `e` the
+    /// largest distance between a node's image and its target and `m` the
+    /// largest move of a node.
+    fn rigidity(
+        &self,
+        on: &dyn Collective,
+        dim: usize,
+        coords: &[f64],
+        targets: &[(usize, Vec<f64>)],
+        fitted: &[usize],
+        extent: f64,
+    ) -> f64 {
+        // [largest miss, largest move]
+        let mut largest = [0.0f64; 2];
+        for (i, q) in fitted.iter().map(|&k| &targets[k]) {
+            if !on.owns(*i) {
+                continue;
+            }
+            let x = &coords[dim * i..dim * (i + 1)];
+            let mut image = x.to_vec();
+            crate::motion::rotate(&mut image, &self.centre, &self.axis, self.angle);
+            let miss = (0..dim).map(|d| (image[d] + self.translation[d] - q[d]).powi(2));
+            let moved = (0..dim).map(|d| (q[d] - x[d]).powi(2));
+            largest[0] = largest[0].max(miss.sum::<f64>().sqrt());
+            largest[1] = largest[1].max(moved.sum::<f64>().sqrt());
+        }
+        on.max(&mut largest);
+        let [miss, moved] = largest;
+        if miss <= ROUND_OFF * extent {
+            1.0
+        } else {
+            (1.0 - miss / (RIGID_MISS * moved)).clamp(0.0, 1.0)
+        }
+    }
+
+    /// The motion with its angle scaled by `share`, about the same centre
+    /// (the fitted nodes' centroid) with the same translation (the
+    /// centroid's move): `x ↦ c + t + R(share · θ)(x − c)`.
+    fn turned_by(mut self, share: f64) -> Rigid {
+        self.angle *= share;
+        self
+    }
+
     /// The same motion about the point nearest its axis within `radius`
     /// of the centroid: the translation left is the least there, so a hinged
     /// flap turns about its hinge. With `y ⊥ a` the way from the centroid
@@ -658,6 +729,37 @@ mod tests {
             assert!((p[0] + near.translation[0] - q[0]).abs() < 1e-12);
             assert!((p[1] + near.translation[1] - q[1]).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn a_body_is_turned_as_far_as_it_moves_rigidly() {
+        // A plate from (0, 0) to (1, 0) turned 0.2 about its end moves rigidly.
+        let coords = [0.0, 0.0, 0.5, 0.0, 1.0, 0.0];
+        let turned: Vec<(usize, Vec<f64>)> = (0..3)
+            .map(|i| {
+                let mut p = coords[2 * i..2 * i + 2].to_vec();
+                crate::motion::rotate(&mut p, &[1.0, 0.0, 0.0], &[0.0, 0.0, 1.0], 0.2);
+                (i, p)
+            })
+            .collect();
+        let all = [0, 1, 2];
+        let rigid = fit(&Whole, 2, &coords, &turned, &all);
+        assert_eq!(rigid.rigidity(&Whole, 2, &coords, &turned, &all, 1.0), 1.0);
+        // Its end alone moved down 0.1: the fit (down 1/30, turned by
+        // −0.1 about the centroid) misses the middle node by 1/30, a third
+        // of the largest move, so the body is not turned.
+        let bent = vec![
+            (0, vec![0.0, 0.0]),
+            (1, vec![0.5, 0.0]),
+            (2, vec![1.0, -0.1]),
+        ];
+        let fitted = fit(&Whole, 2, &coords, &bent, &all);
+        assert!((fitted.angle + 0.1).abs() < 1e-3, "{}", fitted.angle);
+        let share = fitted.rigidity(&Whole, 2, &coords, &bent, &all, 1.0);
+        assert_eq!(share, 0.0);
+        let unturned = fitted.turned_by(share);
+        assert_eq!(unturned.angle, 0.0);
+        assert!((unturned.translation[1] + 0.1 / 3.0).abs() < 1e-15);
     }
 
     #[test]

@@ -115,7 +115,15 @@ fn no_cell_joins_the_layers_of_two_bodies_or_a_layer_and_the_far_field() {
         layer: Layer::Thickness(0.5),
         ..Robust::off()
     };
-    let t = prepare(&mesh, None, &plan_roles, (3, &moving), &robust, &Whole).unwrap();
+    let t = prepare(
+        &mesh,
+        None,
+        &plan_roles,
+        (&[false; 3], &moving),
+        &robust,
+        &Whole,
+    )
+    .unwrap();
     assert!(!t.nodes.is_empty());
     // The body each node moves with: its own, or its layer's.
     let mut body = vec![usize::MAX; mesh.node_count()];
@@ -200,7 +208,7 @@ fn stiffening_is_one_within_the_layer_and_falls_as_a_power_of_the_distance() {
         stiffening: 2.0,
         ..Robust::off()
     };
-    let t = prepare(&mesh, None, d.roles(), (1, &moving), &robust, &Whole).unwrap();
+    let t = prepare(&mesh, None, d.roles(), (&[false], &moving), &robust, &Whole).unwrap();
     // The straight-line distance to the nearest airfoil node.
     let wall: Vec<usize> = moving.iter().map(|m| m.0).collect();
     let dist: Vec<f64> = (0..mesh.node_count())
@@ -214,8 +222,23 @@ fn stiffening_is_one_within_the_layer_and_falls_as_a_power_of_the_distance() {
         let expected: f64 = if *d <= 0.1 { 1.0 } else { (0.1 / d).powi(2) };
         assert!((phi - expected).abs() < 1e-15 * expected.max(1.0));
     }
-    let off = prepare(&mesh, None, d.roles(), (1, &moving), &Robust::off(), &Whole).unwrap();
+    let off = prepare(
+        &mesh,
+        None,
+        d.roles(),
+        (&[false], &moving),
+        &Robust::off(),
+        &Whole,
+    )
+    .unwrap();
     assert_eq!(off, Treatment::default());
+    // A body moved by given positions keeps its layer and stiffens nothing.
+    let deforming = prepare(&mesh, None, d.roles(), (&[true], &moving), &robust, &Whole).unwrap();
+    assert_eq!(
+        (&deforming.nodes, &deforming.thickness),
+        (&t.nodes, &t.thickness)
+    );
+    assert!(deforming.stiffness.is_empty() && !t.stiffness.is_empty());
 }
 
 #[test]
