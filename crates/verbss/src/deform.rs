@@ -54,6 +54,7 @@ mod coincident;
 #[cfg(test)]
 mod interface_tests;
 mod periodic;
+mod relocate;
 mod report;
 mod roles;
 mod step;
@@ -126,6 +127,9 @@ pub struct Deformer<S = Engine, C = Whole> {
     layer_nodes: usize,
     /// The blended rigid motion, when [`crate::near_wall::Robust::blend`] is on.
     blend: Option<Blend>,
+    /// The relocation of the worst cells' nodes, when
+    /// [`crate::near_wall::Robust::relocate`] is on.
+    relocation: Option<relocate::Relocation>,
     /// The input mesh's minimum quality.
     input_quality: f64,
     orientation: Vec<i8>,
@@ -262,6 +266,10 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
                 format_point(&worst.centroid)
             )));
         }
+        let relocation = settings
+            .robust
+            .relocate
+            .then(|| relocate::Relocation::new(mesh, check.quality.clone()));
         let mut report = report::summarize(&check.summary);
         report.converged = true;
         report.seconds = start.elapsed().as_secs_f64();
@@ -301,6 +309,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
             layer_thickness: rigid.thickness,
             layer_nodes: layer_nodes[0] as usize,
             blend,
+            relocation,
             orientation,
             failed: None,
         })
