@@ -468,7 +468,7 @@ fn settings_are_named_as_on_the_command_line_and_checked_when_set() {
             "omegga",
             "1.5",
             "unknown setting 'omegga' (expected method, reference, predictor, rigid_layer, \
-          stiffening, substeps, blend, solver, accel, escalate, omega, tolerance, \
+          stiffening, substeps, blend, relocate, solver, accel, escalate, omega, tolerance, \
           absolute_tolerance, max_iterations or threads)",
         ),
         ("omega", "2.5", "omega must be a number in (0, 2) (got 2.5)"),

@@ -57,6 +57,7 @@ mod coincident;
 #[cfg(test)]
 mod interface_tests;
 mod periodic;
+mod relocate;
 mod report;
 mod roles;
 mod step;
@@ -129,6 +130,9 @@ pub struct Deformer<S = Engine, C = Whole> {
     layer_nodes: usize,
     /// The blended rigid motion, when [`crate::near_wall::Robust::blend`] is on.
     blend: Option<Blend>,
+    /// The relocation of the worst cells' nodes, when
+    /// [`crate::near_wall::Robust::relocate`] is on.
+    relocation: Option<relocate::Relocation>,
     /// The input mesh's minimum quality.
     input_quality: f64,
     orientation: Vec<i8>,
@@ -279,6 +283,10 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
                 format_point(&worst.centroid)
             )));
         }
+        let relocation = settings
+            .robust
+            .relocate
+            .then(|| relocate::Relocation::new(mesh, check.quality.clone()));
         let mut report = report::summarize(&check.summary);
         report.converged = true;
         report.seconds = start.elapsed().as_secs_f64();
@@ -318,6 +326,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
             layer_thickness: rigid.thickness,
             layer_nodes: layer_nodes[0] as usize,
             blend,
+            relocation,
             orientation,
             failed: None,
             workers,

@@ -108,6 +108,10 @@ pub struct Robust {
     /// the mesh with a harmonic weight before the springs solve what is left
     /// (`near_wall/blend.rs`).
     pub blend: bool,
+    /// The relocation of the worst cells' nodes after the springs: the
+    /// free and sliding nodes of a cell below half its input quality moved
+    /// to raise its cells' least quality ratio (`deform/relocate.rs`).
+    pub relocate: bool,
 }
 
 impl Robust {
@@ -135,14 +139,15 @@ impl Robust {
     }
 
     /// The recommended treatments: the automatic rigid layer, inverse
-    /// wall-distance stiffening (`p = 1`), sub-steps down to 1/64 of a step
-    /// and the blended rigid motion.
+    /// wall-distance stiffening (`p = 1`), sub-steps down to 1/64 of a step,
+    /// the blended rigid motion and the relocation of the worst cells' nodes.
     pub fn recommended() -> Robust {
         Robust {
             layer: Layer::Auto,
             substeps: 6,
             stiffening: 1.0,
             blend: true,
+            relocate: true,
         }
     }
 }

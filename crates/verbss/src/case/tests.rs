@@ -106,7 +106,7 @@ fn unknown_setting_names_the_known_ones() {
     assert_eq!(
         err("mesh = \"m.su2\"\nsteps = 3\n[solver]\nomegga = 1.5\n"),
         "cases/c.toml:4: `solver.omegga`: unknown setting 'omegga' (expected method, \
-         reference, predictor, rigid_layer, stiffening, substeps, blend, solver, accel, \
+         reference, predictor, rigid_layer, stiffening, substeps, blend, relocate, solver, accel, \
          escalate, omega, tolerance, absolute_tolerance, max_iterations or threads)"
     );
     assert_eq!(

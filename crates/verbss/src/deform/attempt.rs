@@ -70,6 +70,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
     ) -> Result<Attempt> {
         let attempt = self.attempt(start, targets, fraction, false)?;
         report.check_seconds += attempt.check_seconds;
+        report.relocated += attempt.relocated;
         let exact_wanted = self.settings.solve.escalate
             && attempt.info.converged
             && attempt.check.summary.invalid > 0
@@ -79,6 +80,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
         }
         let exact = self.attempt(start, targets, fraction, true)?;
         report.check_seconds += exact.check_seconds;
+        report.relocated += exact.relocated;
         if exact.info.converged {
             report.add(&attempt.info);
             Ok(exact)
@@ -185,6 +187,18 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
         }
         self.on.refresh(&mut next, dim);
         let checking = Instant::now();
+        let relocated = self.relocation.as_ref().map_or(0, |relocation| {
+            relocation.apply(
+                &self.mesh,
+                &mut next,
+                &self.orientation,
+                &self.roles,
+                &self.normals,
+                &self.global,
+                &self.on,
+                &self.workers,
+            )
+        });
         let check = accept::check(
             &self.mesh,
             &next,
@@ -198,6 +212,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
             info,
             check,
             check_seconds: checking.elapsed().as_secs_f64(),
+            relocated,
         })
     }
 }
@@ -212,8 +227,10 @@ pub(super) struct Attempt {
     pub(super) info: SolveInfo,
     /// The check of the new coordinates.
     pub(super) check: Check,
-    /// Seconds of the check.
+    /// Seconds of the relocation and the check.
     pub(super) check_seconds: f64,
+    /// Nodes the relocation moved ([`super::relocate`]).
+    pub(super) relocated: usize,
 }
 
 /// The better of the solves `a` and `b` ([`accept::better`]; `b` where

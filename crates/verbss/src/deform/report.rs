@@ -30,8 +30,12 @@ pub struct StepReport {
     pub solve_seconds: f64,
     /// Seconds assembling the springs (part of `form_seconds`).
     pub springs_seconds: f64,
-    /// Seconds of the quality and inversion check of the new coordinates.
+    /// Seconds of the quality and inversion check of the new coordinates,
+    /// and of the relocation of the worst cells' nodes before it.
     pub check_seconds: f64,
+    /// Nodes moved by the relocation of the worst cells' nodes, over every
+    /// solve of the step (docs/method.md, "Relocation of the worst cells' nodes").
+    pub relocated: usize,
     /// The smallest element quality.
     pub min_quality: f64,
     /// The number of inverted elements.

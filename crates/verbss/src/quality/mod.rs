@@ -412,6 +412,14 @@ pub fn qualities(mesh: &Mesh, coords: &[f64], reference: &[i8]) -> Vec<f64> {
     }))
 }
 
+/// [`cell_quality`] of cell `c` of `mesh` (any kind: its topology is the
+/// mesh's) with its nodes `nodes`, indices into `coords` (`mesh.dim`
+/// numbers each), which may be a copy of a few nodes.
+pub fn quality_in(mesh: &Mesh, c: usize, nodes: &[usize], coords: &[f64], sign: i8) -> f64 {
+    let (kind, local) = (mesh.cells.kinds[c], mesh.cells.local(c));
+    by_dim!(mesh.dim, D => quality_of::<D>(kind, nodes, local, coords, sign))
+}
+
 /// Indices of the cells inverted on `coords` relative to `reference`, in
 /// increasing order.
 ///

@@ -429,6 +429,20 @@ pub static TABLE: &[Setting] = &[
         take: |s| Value::Switch(s.robust.blend),
     },
     Setting {
+        name: "relocate",
+        values: Values::Switch,
+        default: "off",
+        presets: &[(Preset::Robust, "on")],
+        help: "After the springs, the free and sliding nodes of every cell below half its input \
+               quality are moved to raise their cells' least quality ratio (docs/method.md, \
+               \"Relocation of the worst cells' nodes\").",
+        put: |s, v| {
+            s.robust.relocate = v.switch();
+            Ok(())
+        },
+        take: |s| Value::Switch(s.robust.relocate),
+    },
+    Setting {
         name: "solver",
         values: Values::Names(Solver::NAMES),
         default: "sor",

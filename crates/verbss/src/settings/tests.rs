@@ -189,7 +189,7 @@ fn wrong_names_and_spellings_are_named() {
             "omegga",
             "1.5",
             "unknown setting 'omegga' (expected method, reference, predictor, rigid_layer, \
-             stiffening, substeps, blend, solver, accel, escalate, omega, tolerance, \
+             stiffening, substeps, blend, relocate, solver, accel, escalate, omega, tolerance, \
              absolute_tolerance, max_iterations or threads)",
         ),
         (
