@@ -90,6 +90,8 @@ struct Body {
     /// prescribed node of every node.
     near_held: Nearest,
     near_others: Nearest,
+    /// The other prescribed nodes (fixed walls, the far field, other bodies).
+    others: Vec<usize>,
 }
 
 /// The bodies of a run and the problem their weights solve, on a whole
@@ -198,6 +200,7 @@ impl Blend {
                 Body {
                     near_held: Nearest::new(on, graph, dim, coords, ids, &held),
                     near_others: Nearest::new(on, graph, dim, coords, ids, &others),
+                    others,
                     radius: 0.5 * size(&wall),
                     fitted,
                     given,
@@ -277,8 +280,17 @@ impl Blend {
                 let l = norm(part);
                 let direction = [part[0] / l, part[1] / l, part[2] / l];
                 let fitted: Vec<usize> = body.fitted.iter().map(|&k| targets[k].0).collect();
-                let shadow = directional
-                    .then(|| Shadow::of(dim, direction, coords, &fitted, body.radius, on));
+                let shadow = directional.then(|| {
+                    Shadow::of(
+                        dim,
+                        direction,
+                        coords,
+                        &fitted,
+                        &body.others,
+                        body.radius,
+                        on,
+                    )
+                });
                 self.laplace
                     .solve(on, coords, unknown, w, shadow.as_ref(), workers);
             }

@@ -15,7 +15,8 @@
 //! cells are compressed along the motion rather than sheared (OpenFOAM's
 //! `directional` diffusivity, which its movingCone tutorial gives as
 //! `(1 200 0)`), while beside the body, where a fixed wall along the
-//! motion may be near, the shear spreads as before. Solved by conjugate gradients with a Jacobi
+//! motion may be near, the shear spreads as before (the shadow's fade is
+//! pulled inside it next to a fixed wall beside the body). Solved by conjugate gradients with a Jacobi
 //! preconditioner, from the previous increment's weights, on a whole mesh
 //! or on one process's part: the products are exact on the owned nodes
 //! (every edge around them is local), the ghosts take their owners' values
@@ -47,23 +48,37 @@ pub(super) const ACROSS: f64 = 100.0;
 
 /// A body's shadow along its translation: the points whose coordinates
 /// across the unit direction `along` (on the orthonormal `across`, one
-/// vector in 2D, two in 3D) lie within the body's nodes' (`lo` to `hi`).
+/// vector in 2D, two in 3D) lie within the body's nodes', and the fade of
+/// its depth on each side.
+///
+/// On a side the depth falls linearly to 0 over a width `f` (the body's
+/// radius) outside the shadow's edge; where a fixed node lies beside the
+/// body (within its extent along the motion) a gap `g < 2f` outside the
+/// edge, the fall ends `clamp(g − f, 0, f)` outside the edge and is
+/// `min(g, f)` wide. A column across the motion that ends on a fixed wall
+/// cannot move as one: coupled strongly into it, the column would be held
+/// near the wall's 0 and the cells just ahead of the body take the whole
+/// translation (docs/method.md, "Blended rigid motion").
 pub(super) struct Shadow {
     pub(super) along: [f64; 3],
     pub(super) across: Vec<[f64; 3]>,
-    pub(super) lo: Vec<f64>,
-    pub(super) hi: Vec<f64>,
-    pub(super) fade: f64,
+    /// Per side (`−across[r]` for `r`, then `across[r]` for `m + r`, `m`
+    /// vectors across): where the depth reaches 0 along that side's
+    /// coordinate, and the width it falls over.
+    pub(super) ramps: Vec<[f64; 2]>,
 }
 
 impl Shadow {
     /// The shadow along the unit vector `along` in `dim` dimensions of the
-    /// nodes `nodes` of `coords`, over the processes `on` (collective).
+    /// nodes `nodes` of `coords`, faded over `fade` and pulled inside on a
+    /// side a node of `fixed` lies beside, over the processes `on`
+    /// (collective).
     pub(super) fn of(
         dim: usize,
         along: [f64; 3],
         coords: &[f64],
         nodes: &[usize],
+        fixed: &[usize],
         fade: f64,
         on: &dyn Collective,
     ) -> Shadow {
@@ -88,38 +103,76 @@ impl Shadow {
             ];
             vec![u, v]
         };
+        // The coordinate of node `i` along `b`.
+        let project =
+            |i: usize, b: &[f64; 3]| (0..dim).map(|d| coords[dim * i + d] * b[d]).sum::<f64>();
         // [−lo…, hi…], the larger over the processes.
         let m = across.len();
         let mut bounds = vec![f64::NEG_INFINITY; 2 * m];
         for &i in nodes {
-            let p: [f64; 3] =
-                std::array::from_fn(|d| if d < dim { coords[dim * i + d] } else { 0.0 });
             for (r, b) in across.iter().enumerate() {
-                let s = p[0] * b[0] + p[1] * b[1] + p[2] * b[2];
+                let s = project(i, b);
                 bounds[r] = bounds[r].max(-s);
                 bounds[m + r] = bounds[m + r].max(s);
             }
         }
         on.max(&mut bounds);
+        // The body's extent along the motion, [−start, end].
+        let mut extent = [f64::NEG_INFINITY; 2];
+        for &i in nodes {
+            let s = project(i, &along);
+            extent[0] = extent[0].max(-s);
+            extent[1] = extent[1].max(s);
+        }
+        on.max(&mut extent);
+        // On each side (−lo…, hi…), minus the gap to the nearest fixed node
+        // beside the body, the larger over the processes.
+        let mut gaps = vec![f64::NEG_INFINITY; 2 * m];
+        for &i in fixed {
+            let s = project(i, &along);
+            if s < -extent[0] || s > extent[1] {
+                continue;
+            }
+            for (r, b) in across.iter().enumerate() {
+                let s = project(i, b);
+                for (k, sigma) in [(r, -s), (m + r, s)] {
+                    let out = sigma - bounds[k];
+                    if out > 0.0 {
+                        gaps[k] = gaps[k].max(-out);
+                    }
+                }
+            }
+        }
+        on.max(&mut gaps);
+        let ramps: Vec<[f64; 2]> = (0..2 * m)
+            .map(|k| {
+                let (edge, gap) = (bounds[k], -gaps[k]);
+                [edge + (gap - fade).clamp(0.0, fade), fade.min(gap)]
+            })
+            .collect();
         Shadow {
             along,
-            lo: bounds[..m].iter().map(|v| -v).collect(),
-            hi: bounds[m..].to_vec(),
-            fade: fade.max(f64::MIN_POSITIVE),
+            ramps,
             across,
         }
     }
 
     /// How deep the point `p` is in the shadow: 1 within it, falling
-    /// linearly to 0 at `fade` outside it across the motion.
+    /// linearly to 0 across the motion on each side.
     fn depth(&self, p: &[f64; 3]) -> f64 {
+        let m = self.across.len();
         self.across
             .iter()
             .enumerate()
             .map(|(r, b)| {
                 let s = p[0] * b[0] + p[1] * b[1] + p[2] * b[2];
-                let outside = (self.lo[r] - s).max(s - self.hi[r]).max(0.0);
-                (1.0 - outside / self.fade).max(0.0)
+                [(r, -s), (m + r, s)]
+                    .iter()
+                    .map(|&(k, sigma)| {
+                        let [end, width] = self.ramps[k];
+                        ((end - sigma) / width.max(f64::MIN_POSITIVE)).clamp(0.0, 1.0)
+                    })
+                    .product::<f64>()
             })
             .product()
     }
@@ -372,7 +425,7 @@ mod tests {
             }
         }
         let body: Vec<usize> = (0..=n / 2).map(|j| node(0, j)).collect();
-        let shadow = Shadow::of(2, [1.0, 0.0, 0.0], &mesh.coords, &body, 0.25, &Whole);
+        let shadow = Shadow::of(2, [1.0, 0.0, 0.0], &mesh.coords, &body, &[], 0.25, &Whole);
         laplace.solve(
             &Whole,
             &mesh.coords,
@@ -415,5 +468,46 @@ mod tests {
             (far_directional - far).abs() < 0.5 * far,
             "{far_directional} against {far}"
         );
+    }
+
+    /// A unit-square body moving along x, its shadow across `y ∈ [0, 1]`
+    /// faded over 1, with fixed nodes `fixed` of `coords` after its four
+    /// corners: the depth at `y` above the body's middle.
+    fn depth_above(fixed: &[[f64; 2]], y: f64) -> f64 {
+        let mut coords = vec![0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
+        coords.extend(fixed.iter().flatten());
+        let others: Vec<usize> = (4..4 + fixed.len()).collect();
+        let shadow = Shadow::of(
+            2,
+            [1.0, 0.0, 0.0],
+            &coords,
+            &[0, 1, 2, 3],
+            &others,
+            1.0,
+            &Whole,
+        );
+        shadow.depth(&[0.5, y, 0.0])
+    }
+
+    #[test]
+    fn a_fixed_wall_beside_the_body_pulls_the_fade_inside_its_shadow() {
+        // No wall: 1 on the body's side, 0 a fade beyond it.
+        assert_eq!(depth_above(&[], 1.0), 1.0);
+        assert!((depth_above(&[], 1.5) - 0.5).abs() < 1e-12);
+        // A fixed wall 0.5 above the body along its extent: the edges
+        // between them keep 1/L, the fade falls to 0 at the body's side.
+        let wall = [[0.0, 1.5], [0.5, 1.5], [1.0, 1.5]];
+        assert_eq!(depth_above(&wall, 1.0), 0.0);
+        assert!((depth_above(&wall, 0.75) - 0.5).abs() < 1e-12);
+        assert_eq!(depth_above(&wall, 0.4), 1.0);
+        // Between one and two fades away the fade ends short of the wall
+        // by a fade: continuous with the two cases above.
+        let far = [[0.5, 2.5]];
+        assert!((depth_above(&far, 1.25) - 0.25).abs() < 1e-12);
+        assert_eq!(depth_above(&far, 1.5), 0.0);
+        // The same wall ahead of the body (past its extent along the
+        // motion) is where the compression goes: no change.
+        let ahead = [[3.0, 1.5], [4.0, 1.5]];
+        assert!((depth_above(&ahead, 1.5) - 0.5).abs() < 1e-12);
     }
 }
