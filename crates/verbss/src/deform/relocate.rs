@@ -398,13 +398,17 @@ mod tests {
         let before = least_ratio(&mesh, &coords, &orientation, &input);
         let on = |threads: usize| {
             let mut c = coords.clone();
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap()
-                .install(|| {
-                    relocation.apply(&mesh, &mut c, &orientation, &roles, &[], &[], &Whole)
-                });
+            let workers = Workers::new(threads).unwrap();
+            relocation.apply(
+                &mesh,
+                &mut c,
+                &orientation,
+                &roles,
+                &[],
+                &[],
+                &Whole,
+                &workers,
+            );
             c
         };
         let one = on(1);

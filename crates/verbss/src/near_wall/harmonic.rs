@@ -379,7 +379,7 @@ mod tests {
             }
             // The residual and the prescribed values' pull, edge by edge.
             let body: Vec<usize> = (0..=24).map(|j| j * 49).collect();
-            let shadow = Shadow::of(2, [1.0, 0.0, 0.0], &mesh.coords, &body, 0.25, &Whole);
+            let shadow = Shadow::of(2, [1.0, 0.0, 0.0], &mesh.coords, &body, &[], 0.25, &Whole);
             let along = directional.then_some(&shadow);
             let (mut residual, mut pull) = (vec![0.0; w.len()], vec![0.0; w.len()]);
             for [a, b] in crate::topology::edges(&mesh.cells, mesh.node_count()) {
