@@ -351,7 +351,7 @@ fn an_inverting_motion_never_leaves_an_invalid_mesh_in_the_output() {
     ]);
     assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
     assert!(
-        stderr(&o).starts_with("error: step 1: element 1 inverted at"),
+        stderr(&o).starts_with("error: step 1: element 6 inverted at"),
         "{}",
         stderr(&o)
     );

@@ -136,6 +136,7 @@ mod tests {
         let expected = serde_json::json!({
             "method": "verbss", "reference": "auto", "predictor": "previous",
             "rigid_layer": 0.02, "stiffening": 1.0, "substeps": 6, "blend": true,
+            "relocate": true,
             "solver": "sor", "accel": "auto", "escalate": true, "omega": 1.6,
             "tolerance": 1e-6, "absolute_tolerance": false, "max_iterations": 2000,
             "threads": 0

@@ -194,7 +194,7 @@ impl<S: SpringSolver, C: Collective> Deformer<S, C> {
                 &self.orientation,
                 &self.roles,
                 &self.normals,
-                &self.global,
+                &self.mesh.node_tags,
                 &self.on,
                 &self.workers,
             )

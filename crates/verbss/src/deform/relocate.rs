@@ -19,7 +19,8 @@
 //!
 //! Nodes move in up to 3 passes (each finds the poor cells again) of up
 //! to 8 rounds, each an independent set: a candidate moves when
-//! its priority (a hash of its global number) is below that of every other
+//! its priority (a hash of its number in the file, the same on every
+//! process and in any node order) is below that of every other
 //! candidate of its cells, so no two nodes of a round share a cell. A
 //! round's moves change disjoint cells: the mesh's least ratio never
 //! falls, and the result is the same on any number of threads or processes.
@@ -64,7 +65,7 @@ impl Relocation {
 
     /// Relocates the nodes of the cells of `coords` below [`BELOW`] of their
     /// input quality (see the module documentation); `ids` the nodes'
-    /// global numbers (empty: their indices), `roles` and `normals` the
+    /// numbers in the file (empty: their indices), `roles` and `normals` the
     /// deformer's, over the processes `on` (collective), the cells and
     /// nodes on `workers`. Returns how many nodes moved on every process
     /// together.
@@ -295,8 +296,8 @@ fn distance(a: &[f64], b: &[f64]) -> f64 {
         .sqrt()
 }
 
-/// SplitMix64's finaliser: a node's priority from its global number, the
-/// same on every process.
+/// SplitMix64's finaliser: a node's priority from its number in the file,
+/// the same on every process.
 fn mix(id: u64) -> u64 {
     let mut z = id.wrapping_add(0x9E37_79B9_7F4A_7C15);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
