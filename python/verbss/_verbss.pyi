@@ -119,6 +119,7 @@ class Deformer:
         stiffening: Optional[float] = None,
         substeps: Optional[int] = None,
         blend: Optional[bool] = None,
+        relocate: Optional[bool] = None,
         solver: Optional[str] = None,
         accel: Optional[str] = None,
         escalate: Optional[bool] = None,

@@ -302,7 +302,8 @@ fn default_method(steps: usize, stages: &str) -> NearWall<'_> {
 /// The default method moves the channel's hole by the blend alone (its
 /// translation's weight a distributed harmonic solve), and where the
 /// blended start is weak (the hole pushed 0.3 along the channel in one
-/// step) solves the springs from the plain start instead, as one process.
+/// step, the relocation off) solves the springs from the plain start
+/// instead, as one process.
 #[test]
 fn the_default_method_moves_the_channel_hole_as_on_one_process() {
     if !common::mpi_ready() {
@@ -320,7 +321,11 @@ fn the_default_method_moves_the_channel_hole_as_on_one_process() {
         &[],
         &blended,
     );
-    let plain = default_method(1, "sweeps");
+    // Without the relocation of the worst cells' nodes, which makes this
+    // blended start good enough.
+    let mut plain = default_method(1, "sweeps");
+    plain.args = &["--relocate", "off"];
+    plain.robust.relocate = false;
     let motion = ["--translate", "0.3,0"];
     deforms_like_one_process_with(&mesh, "wall", &motion, Reference::Updated, 0.3, &[], &plain);
 }
