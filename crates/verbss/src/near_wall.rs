@@ -38,6 +38,7 @@ use crate::topology::{self, Csr};
 pub(crate) mod blend;
 mod distances;
 mod harmonic;
+mod rigid_fit;
 pub(crate) mod spread;
 
 pub use self::spread::Seeds;
