@@ -320,6 +320,20 @@ mod tests {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// [`Relocation::apply`] on one process with `threads` workers, no
+    /// sliding node, the nodes numbered by their indices.
+    fn relocated(
+        relocation: &Relocation,
+        mesh: &Mesh,
+        coords: &mut [f64],
+        orientation: &[i8],
+        roles: &[NodeRole],
+        threads: usize,
+    ) -> usize {
+        let workers = Workers::new(threads).unwrap();
+        relocation.apply(mesh, coords, orientation, roles, &[], &[], &Whole, &workers)
+    }
+
     /// Free interior nodes, fixed boundary nodes.
     fn roles(mesh: &Mesh) -> Vec<NodeRole> {
         topology::boundary_nodes(mesh)
@@ -345,17 +359,7 @@ mod tests {
         let before = least_ratio(&mesh, &coords, &orientation, &input);
         assert!(before < BELOW, "{before}");
         let pushed_coords = coords.clone();
-        let workers = Workers::new(1).unwrap();
-        let moved = relocation.apply(
-            &mesh,
-            &mut coords,
-            &orientation,
-            &roles,
-            &[],
-            &[],
-            &Whole,
-            &workers,
-        );
+        let moved = relocated(&relocation, &mesh, &mut coords, &orientation, &roles, 1);
         let after = least_ratio(&mesh, &coords, &orientation, &input);
         assert!(
             moved >= 1 && after > BELOW,
@@ -399,17 +403,7 @@ mod tests {
         let before = least_ratio(&mesh, &coords, &orientation, &input);
         let on = |threads: usize| {
             let mut c = coords.clone();
-            let workers = Workers::new(threads).unwrap();
-            relocation.apply(
-                &mesh,
-                &mut c,
-                &orientation,
-                &roles,
-                &[],
-                &[],
-                &Whole,
-                &workers,
-            );
+            relocated(&relocation, &mesh, &mut c, &orientation, &roles, threads);
             c
         };
         let one = on(1);
