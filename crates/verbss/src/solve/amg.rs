@@ -32,7 +32,7 @@
 
 use rayon::prelude::*;
 
-use super::bsr::{galerkin, invert, madd_kernel, mul_kernel, Bsr, DenseLu};
+use super::bsr::{galerkin, invert, madd_kernel, mul_kernel, Bsr, DenseLu, Transposed};
 use super::{chunked_sum, Layout};
 use crate::error::{Error, Result};
 use crate::geometry::{ldlt_mul, packed_len, packed_mul};
@@ -68,10 +68,11 @@ pub(crate) struct Hierarchy {
     fine: [Vec<f64>; 2],
 }
 
-/// Prolongation `P` and restriction `R = Pᵀ` between two levels.
+/// Prolongation `P` and restriction `R = Pᵀ` (a view of `P`'s blocks)
+/// between two levels.
 struct Transfer {
     p: Bsr,
-    r: Bsr,
+    r: Transposed,
 }
 
 /// A coarse level: its matrix and its Gauss–Seidel data.
@@ -128,7 +129,7 @@ impl Hierarchy {
             let modes = b.len() / (a.rows * a.r);
             let (t, next_b, dropped) = tentative(&aggregate, count, &b, a.r, modes);
             let p = smooth_prolongator(a, &t)?;
-            let r = p.transpose();
+            let r = p.transposed();
             let mut ac = galerkin(&r, a, &p);
             for &(node, k) in &dropped {
                 let e = ac.find(node, node).expect("diagonal block");
@@ -191,7 +192,8 @@ impl Hierarchy {
         smooth(e, r, false);
         let [res, correction] = &mut self.fine;
         residual(r, e, res);
-        self.transfers[0].r.mul(res, &mut self.scratch[0][0]);
+        let t = &self.transfers[0];
+        t.r.mul(&t.p, res, &mut self.scratch[0][0]);
         cycle(
             &self.transfers,
             &self.coarse,
@@ -237,7 +239,7 @@ fn cycle(
         .zip(r.par_iter())
         .for_each(|(x, b)| *x = b - *x);
     let t = &transfers[level];
-    t.r.mul(res, &mut rest[0][0]);
+    t.r.mul(&t.p, res, &mut rest[0][0]);
     cycle(transfers, coarse, coarsest, rest, level + 1);
     t.p.mul(&rest[0][1], res);
     add(e, res);

@@ -132,44 +132,35 @@ impl Bsr {
         }
     }
 
-    /// `Aᵀ`, with transposed blocks; rows keep their entries in increasing
-    /// column order.
-    pub(crate) fn transpose(&self) -> Bsr {
-        let (r, c) = (self.r, self.c);
-        let mut count = vec![0usize; self.cols + 1];
+    /// `Aᵀ` as a [`Transposed`] view of this matrix's blocks; its rows keep
+    /// their entries in increasing column order.
+    pub(crate) fn transposed(&self) -> Transposed {
+        let mut offsets = vec![0usize; self.cols + 1];
         for &j in &self.columns {
-            count[j as usize + 1] += 1;
+            offsets[j as usize + 1] += 1;
         }
         for j in 0..self.cols {
-            count[j + 1] += count[j];
+            offsets[j + 1] += offsets[j];
         }
         let nnz = self.columns.len();
-        let mut columns = vec![0u32; nnz];
-        let mut values = vec![0.0; nnz * r * c];
-        let mut fill = count.clone();
+        let (mut columns, mut entries) = (vec![0u32; nnz], vec![0usize; nnz]);
+        let mut fill = offsets.clone();
         for i in 0..self.rows {
             for e in self.offsets[i]..self.offsets[i + 1] {
-                let j = self.columns[e] as usize;
-                let slot = fill[j];
-                fill[j] += 1;
-                columns[slot] = i as u32;
-                let b = self.block(e);
-                let t = &mut values[r * c * slot..r * c * (slot + 1)];
-                for a in 0..r {
-                    for k in 0..c {
-                        t[k * r + a] = b[a * c + k];
-                    }
-                }
+                let slot = &mut fill[self.columns[e] as usize];
+                columns[*slot] = i as u32;
+                entries[*slot] = e;
+                *slot += 1;
             }
         }
-        Bsr {
+        Transposed {
             rows: self.cols,
             cols: self.rows,
-            r: c,
-            c: r,
-            offsets: count,
+            r: self.c,
+            c: self.r,
+            offsets,
             columns,
-            values,
+            entries,
         }
     }
 
@@ -211,15 +202,6 @@ impl Bsr {
         )
     }
 
-    /// The entries of block row `i` with block columns in `columns`, for a
-    /// matrix whose rows list their columns in increasing order.
-    fn entries_between(&self, i: usize, columns: &Range<usize>) -> Range<usize> {
-        let row = &self.columns[self.offsets[i]..self.offsets[i + 1]];
-        let first = row.partition_point(|&j| (j as usize) < columns.start);
-        let last = row.partition_point(|&j| (j as usize) < columns.end);
-        self.offsets[i] + first..self.offsets[i] + last
-    }
-
     /// The entry of block `(i, j)`, if stored.
     pub(crate) fn find(&self, i: usize, j: usize) -> Option<usize> {
         (self.offsets[i]..self.offsets[i + 1]).find(|&e| self.columns[e] as usize == j)
@@ -238,6 +220,58 @@ fn split_by<T>(whole: &mut [T], lengths: impl Iterator<Item = usize>) -> Vec<&mu
         .collect()
 }
 
+/// `Aᵀ` for a [`Bsr`] `A`, without copies of its blocks: block row `i` lists
+/// the entries of `A`'s block column `i` in increasing row order, entry `e`
+/// being block `entries[e]` of `A`, read transposed. The multigrid's
+/// restriction `R = Pᵀ` is one: storing `R`'s blocks doubled the memory of
+/// the transfers.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Transposed {
+    /// Block rows (`A`'s block columns).
+    pub(crate) rows: usize,
+    /// Block columns (`A`'s block rows).
+    pub(crate) cols: usize,
+    /// Rows of one block (`A`'s block columns' width).
+    pub(crate) r: usize,
+    /// Columns of one block.
+    pub(crate) c: usize,
+    /// Start of each block row, plus the end.
+    pub(crate) offsets: Vec<usize>,
+    /// Block column of each entry.
+    pub(crate) columns: Vec<u32>,
+    /// The entry of `A` each entry reads.
+    entries: Vec<usize>,
+}
+
+impl Transposed {
+    /// `y = Aᵀ x`, `a` the matrix this was made from; every block sums its
+    /// terms in the order of a stored transpose.
+    pub(crate) fn mul(&self, a: &Bsr, x: &[f64], y: &mut [f64]) {
+        let (r, c) = (self.r, self.c);
+        let kernel = mul_kernel_of::<true>(r, c);
+        y.par_chunks_mut(r * ROWS_PER_TASK)
+            .enumerate()
+            .for_each(|(t, out)| {
+                for (k, yi) in out.chunks_exact_mut(r).enumerate() {
+                    yi.fill(0.0);
+                    let i = t * ROWS_PER_TASK + k;
+                    for e in self.offsets[i]..self.offsets[i + 1] {
+                        let j = self.columns[e] as usize;
+                        kernel(a.block(self.entries[e]), &x[c * j..c * (j + 1)], yi);
+                    }
+                }
+            });
+    }
+
+    /// The entries of block row `i` with block columns in `columns`.
+    fn entries_between(&self, i: usize, columns: &Range<usize>) -> Range<usize> {
+        let row = &self.columns[self.offsets[i]..self.offsets[i + 1]];
+        let first = row.partition_point(|&j| (j as usize) < columns.start);
+        let last = row.partition_point(|&j| (j as usize) < columns.end);
+        self.offsets[i] + first..self.offsets[i] + last
+    }
+}
+
 /// The slot of block column `j` in the row being formed (`cols`, with its
 /// blocks of `s2` numbers at the end of `values`): found through `slot`, or
 /// appended as a zero block.
@@ -254,20 +288,19 @@ fn claim(slot: &mut [u32], cols: &mut Vec<u32>, values: &mut Vec<f64>, j: u32, s
 /// Fine block rows of `A P` formed at a time by [`galerkin`].
 const GALERKIN_ROWS: usize = 8192;
 
-/// The coarse matrix `R (A P)`, for an `R` whose block rows list their
-/// columns in increasing order (as [`Bsr::transpose`] makes them). `A P`,
+/// The coarse matrix `Pᵀ (A P)`, `r` the [`Transposed`] of `p`. `A P`,
 /// the largest matrix of a multigrid setup, is never held whole: it is
 /// formed [`GALERKIN_ROWS`] block rows at a time, first as a pattern to
 /// find each coarse row's block columns, then with its values, whose terms
 /// `R_ik (A P)_kj` are added in place before the next slice is formed.
-/// Every block sums its terms in the order of `r.product(&a.product(p))`
-/// and so equals it bit for bit.
-pub(crate) fn galerkin(r: &Bsr, a: &Bsr, p: &Bsr) -> Bsr {
+/// Every block sums its terms in the order of `R.product(&a.product(p))`,
+/// `R` the transpose stored, and so equals it bit for bit.
+pub(crate) fn galerkin(r: &Transposed, a: &Bsr, p: &Bsr) -> Bsr {
     galerkin_in_slices(r, a, p, GALERKIN_ROWS)
 }
 
 /// [`galerkin`] with slices of `slice` fine block rows.
-fn galerkin_in_slices(r: &Bsr, a: &Bsr, p: &Bsr, slice: usize) -> Bsr {
+fn galerkin_in_slices(r: &Transposed, a: &Bsr, p: &Bsr, slice: usize) -> Bsr {
     assert!(
         r.cols == a.rows && a.cols == p.rows && r.c == a.r,
         "shapes of R A P"
@@ -313,7 +346,7 @@ fn galerkin_in_slices(r: &Bsr, a: &Bsr, p: &Bsr, slice: usize) -> Bsr {
     let columns: Vec<u32> = patterns.into_iter().flatten().collect();
     let mut values = vec![0.0; s2 * columns.len()];
     let mut rows = split_by(&mut values, offsets.windows(2).map(|w| s2 * (w[1] - w[0])));
-    let kernel = madd_kernel(r.r, r.c, p.c);
+    let kernel = madd_kernel_of::<true>(r.r, r.c, p.c);
     for fine in slices() {
         let ap = a.product_rows(p, fine.clone(), true);
         rows.par_iter_mut()
@@ -331,7 +364,7 @@ fn galerkin_in_slices(r: &Bsr, a: &Bsr, p: &Bsr, slice: usize) -> Bsr {
                     let k = r.columns[e] as usize - fine.start;
                     for f in ap.offsets[k]..ap.offsets[k + 1] {
                         let at = s2 * slot[ap.columns[f] as usize] as usize;
-                        kernel(r.block(e), ap.block(f), &mut out[at..at + s2]);
+                        kernel(p.block(r.entries[e]), ap.block(f), &mut out[at..at + s2]);
                     }
                 }
                 for &j in cols {
@@ -354,46 +387,59 @@ fn galerkin_in_slices(r: &Bsr, a: &Bsr, p: &Bsr, slice: usize) -> Bsr {
 /// `y += A x` for one block.
 pub(crate) type MulKernel = Box<dyn Fn(&[f64], &[f64], &mut [f64]) + Sync + Send>;
 
-/// `y += A x` for an `R × C` row-major block.
+/// `y += A x` for an `R × C` block, stored row-major, or with `T` its
+/// transpose stored row-major (`C × R`): the same terms in the same order.
 #[inline(always)]
-fn mul_add<const R: usize, const C: usize>(a: &[f64], x: &[f64], y: &mut [f64]) {
+fn mul_add<const R: usize, const C: usize, const T: bool>(a: &[f64], x: &[f64], y: &mut [f64]) {
     let (a, x, y) = (&a[..R * C], &x[..C], &mut y[..R]);
     for (k, yk) in y.iter_mut().enumerate() {
         let mut s = 0.0;
         for l in 0..C {
-            s += a[k * C + l] * x[l];
+            s += a[if T { l * R + k } else { k * C + l }] * x[l];
         }
         *yk += s;
     }
 }
 
-/// The [`mul_add`] of an `r × c` block: compiled for the block shapes of
-/// the hierarchy (node blocks 2, 3; near-null space sizes 3, 6), a generic
-/// loop otherwise.
+/// The [`mul_add`] of an `r × c` block.
 pub(crate) fn mul_kernel(r: usize, c: usize) -> MulKernel {
+    mul_kernel_of::<false>(r, c)
+}
+
+/// The [`mul_add`] of an `r × c` block (stored transposed with `T`):
+/// compiled for the block shapes of the hierarchy (node blocks 2, 3;
+/// near-null space sizes 3, 6), a generic loop otherwise.
+fn mul_kernel_of<const T: bool>(r: usize, c: usize) -> MulKernel {
     match (r, c) {
-        (2, 2) => Box::new(mul_add::<2, 2>),
-        (3, 3) => Box::new(mul_add::<3, 3>),
-        (6, 6) => Box::new(mul_add::<6, 6>),
-        (2, 3) => Box::new(mul_add::<2, 3>),
-        (3, 2) => Box::new(mul_add::<3, 2>),
-        (3, 6) => Box::new(mul_add::<3, 6>),
-        (6, 3) => Box::new(mul_add::<6, 3>),
+        (2, 2) => Box::new(mul_add::<2, 2, T>),
+        (3, 3) => Box::new(mul_add::<3, 3, T>),
+        (6, 6) => Box::new(mul_add::<6, 6, T>),
+        (2, 3) => Box::new(mul_add::<2, 3, T>),
+        (3, 2) => Box::new(mul_add::<3, 2, T>),
+        (3, 6) => Box::new(mul_add::<3, 6, T>),
+        (6, 3) => Box::new(mul_add::<6, 3, T>),
         _ => Box::new(move |a: &[f64], x: &[f64], y: &mut [f64]| {
             for (k, yk) in y.iter_mut().enumerate().take(r) {
-                *yk += (0..c).map(|l| a[k * c + l] * x[l]).sum::<f64>();
+                *yk += (0..c)
+                    .map(|l| a[if T { l * r + k } else { k * c + l }] * x[l])
+                    .sum::<f64>();
             }
         }),
     }
 }
 
-/// `out += A B` for blocks `A` (`R × C`) and `B` (`C × K`), row-major.
+/// `out += A B` for blocks `A` (`R × C`; stored transposed with `T`) and
+/// `B` (`C × K`), row-major.
 #[inline(always)]
-fn madd<const R: usize, const C: usize, const K: usize>(a: &[f64], b: &[f64], out: &mut [f64]) {
+fn madd<const R: usize, const C: usize, const K: usize, const T: bool>(
+    a: &[f64],
+    b: &[f64],
+    out: &mut [f64],
+) {
     let (a, b, out) = (&a[..R * C], &b[..C * K], &mut out[..R * K]);
     for x in 0..R {
         for z in 0..C {
-            let v = a[x * C + z];
+            let v = a[if T { z * R + x } else { x * C + z }];
             for y in 0..K {
                 out[x * K + y] += v * b[z * K + y];
             }
@@ -401,21 +447,27 @@ fn madd<const R: usize, const C: usize, const K: usize>(a: &[f64], b: &[f64], ou
     }
 }
 
-/// The [`madd`] of blocks `r × c` and `c × k`, compiled for the products of
-/// the hierarchy, a generic loop otherwise.
+/// The [`madd`] of blocks `r × c` and `c × k`.
 pub(crate) fn madd_kernel(r: usize, c: usize, k: usize) -> MulKernel {
+    madd_kernel_of::<false>(r, c, k)
+}
+
+/// The [`madd`] of blocks `r × c` (stored transposed with `T`) and `c × k`,
+/// compiled for the products of the hierarchy, a generic loop otherwise.
+fn madd_kernel_of<const T: bool>(r: usize, c: usize, k: usize) -> MulKernel {
     match (r, c, k) {
-        (2, 2, 3) => Box::new(madd::<2, 2, 3>),
-        (3, 2, 3) => Box::new(madd::<3, 2, 3>),
-        (3, 3, 3) => Box::new(madd::<3, 3, 3>),
-        (3, 3, 6) => Box::new(madd::<3, 3, 6>),
-        (6, 3, 6) => Box::new(madd::<6, 3, 6>),
-        (6, 6, 6) => Box::new(madd::<6, 6, 6>),
+        (2, 2, 3) => Box::new(madd::<2, 2, 3, T>),
+        (3, 2, 3) => Box::new(madd::<3, 2, 3, T>),
+        (3, 3, 3) => Box::new(madd::<3, 3, 3, T>),
+        (3, 3, 6) => Box::new(madd::<3, 3, 6, T>),
+        (6, 3, 6) => Box::new(madd::<6, 3, 6, T>),
+        (6, 6, 6) => Box::new(madd::<6, 6, 6, T>),
         _ => Box::new(move |a: &[f64], b: &[f64], out: &mut [f64]| {
             for x in 0..r {
                 for z in 0..c {
+                    let v = a[if T { z * r + x } else { x * c + z }];
                     for y in 0..k {
-                        out[x * k + y] += a[x * c + z] * b[z * k + y];
+                        out[x * k + y] += v * b[z * k + y];
                     }
                 }
             }
@@ -536,6 +588,23 @@ mod tests {
         d
     }
 
+    /// The transpose `t` of `a` with its blocks stored.
+    fn stored(t: &Transposed, a: &Bsr) -> Bsr {
+        Bsr::from_rows(
+            t.rows,
+            t.cols,
+            (t.r, t.c),
+            || (),
+            |_, i, columns, values| {
+                for e in t.offsets[i]..t.offsets[i + 1] {
+                    columns.push(t.columns[e]);
+                    let b = a.block(t.entries[e]);
+                    values.extend((0..t.r * t.c).map(|k| b[(k % t.c) * t.r + k / t.c]));
+                }
+            },
+        )
+    }
+
     #[test]
     fn product_transpose_and_mul_agree_with_dense_algebra() {
         let a = vec![
@@ -559,11 +628,17 @@ mod tests {
                 assert_eq!(ap[i][j], want);
             }
         }
-        let pt = to_dense(&pm.transpose());
+        let pt = to_dense(&stored(&pm.transposed(), &pm));
         for i in 0..4 {
             for j in 0..3 {
                 assert_eq!(pt[j][i], p[i][j]);
             }
+        }
+        let z = [0.5, -1.0, 2.0, 4.0];
+        let mut w = [0.0; 3];
+        pm.transposed().mul(&pm, &z, &mut w);
+        for j in 0..3 {
+            assert_eq!(w[j], (0..4).map(|k| p[k][j] * z[k]).sum::<f64>());
         }
         let x = [1.0, -2.0, 0.5, 3.0];
         let mut y = [0.0; 4];
@@ -611,8 +686,8 @@ mod tests {
     fn galerkin_in_slices_equals_the_whole_product_bit_for_bit() {
         let a = scattered(40, 40, (3, 3), 6, 7);
         let p = scattered(40, 9, (3, 6), 3, 11);
-        let r = p.transpose();
-        let whole = r.product(&a.product(&p));
+        let r = p.transposed();
+        let whole = stored(&r, &p).product(&a.product(&p));
         for slice in [1, 3, 7, 40, 100] {
             let sliced = galerkin_in_slices(&r, &a, &p, slice);
             assert_eq!(sliced.offsets, whole.offsets, "slice {slice}");
