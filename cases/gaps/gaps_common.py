@@ -146,18 +146,52 @@ def quality(verbss, case_dir, points_file, scratch):
     return None if q["inverted"] else q["quality"]["min"]
 
 
-def openfoam_rows(verbss, case, mesh_name, base, body_case, slip, fixed, work,
+def held_and_free(base, moving, fixed):
+    """The points of the `moving` patches and those on no moving or fixed patch."""
+    moved = patch_points(base, moving)
+    held = np.union1d(moved, patch_points(base, fixed)) if fixed else moved
+    count = len(peer.read_foam_points(base / "constant/polyMesh/points"))
+    return moved, np.setdiff1d(np.arange(count), held)
+
+
+def foam_row(verbss, case, mesh_name, nodes, run, base, run_dir, log, steps, moved, free, work,
+             unit=1.0):
+    """The row of a moveDynamicMesh run in `run_dir` (its `log`), steps at
+    times k·`unit`: a step counts until OpenFOAM's check fails or verbss finds
+    an inverted cell; steps not written are not measured."""
+    records = peer.foam_steps(log, unit)
+    previous = peer.read_foam_points(base / "constant/polyMesh/points")
+    qualities, amplification, done = [], 0.0, 0
+    for s in records:
+        if s["openfoam_failed_checks"]:
+            break
+        points_file = run_dir / s["time"] / "polyMesh/points"
+        q = None
+        if points_file.exists():
+            q = quality(verbss, run_dir, points_file, work / "quality")
+            if q is None:
+                break
+            current = peer.read_foam_points(points_file)
+            move = np.linalg.norm(current - previous, axis=1)
+            if move[moved].max() > 0:
+                amplification = max(amplification, move[free].max() / move[moved].max())
+            previous = current
+        qualities.append(q)
+        done += 1
+    later = [s["cpu_s"] for s in records[1:]] or [s["cpu_s"] for s in records]
+    return row(case, mesh_name, nodes, run, steps, done, qualities + [None] * (steps - done),
+               amplification, sum(later) / len(later) if later else None)
+
+
+def openfoam_rows(verbss, case, mesh_name, nodes, base, body_case, slip, fixed, work,
                   diffusivities=DIFFUSIVITIES, tolerance=1e-20):
     """displacementLaplacian (PCG to an absolute `tolerance`, see
     bench/openfoam_peer.py) on copies of the OpenFOAM case folder `base`
     (ASCII polyMesh), once per diffusivity. `body_case` is openfoam_peer's case
-    dict (body, steps, translate or rotate); `slip` the patches that slip,
-    `fixed` those that stay."""
-    steps, body = body_case["steps"], body_case["body"]
+    dict (body, steps, translate or rotate); `slip` the patches that slip
+    (pointDisplacement and cellDisplacement `slip`), `fixed` those that stay."""
     names = list(patches(base))
-    moving = patch_points(base, [body])
-    held = np.union1d(moving, patch_points(base, fixed)) if fixed else moving
-    free = np.setdiff1d(np.arange(len(peer.read_foam_points(base / "constant/polyMesh/points"))), held)
+    moved, free = held_and_free(base, [body_case["body"]], fixed)
     rows = []
     for label, diffusivity in diffusivities:
         run_dir = work / f"openfoam-{label.replace(' ', '-')}"
@@ -166,30 +200,12 @@ def openfoam_rows(verbss, case, mesh_name, base, body_case, slip, fixed, work,
         for d in ("0", "system", "constant"):
             (run_dir / d).mkdir(exist_ok=True)
         dicts = peer.foam_dicts(body_case, "laplacian", names, tolerance,
-                                diffusivity=diffusivity.format(body=body), slip=slip)
+                                diffusivity=diffusivity.format(body=body_case["body"]), slip=slip)
         for name, (cls, text) in dicts.items():
             (run_dir / name).write_text(peer.FOAM_HEADER % (cls, Path(name).name) + text)
         r = peer.run(["moveDynamicMesh"], cwd=run_dir, env=peer.foam_env(run_dir), check=False)
         (run_dir / "log.moveDynamicMesh").write_text(r.stdout + r.stderr)
-        records = peer.foam_steps(r.stdout)
-        previous = peer.read_foam_points(base / "constant/polyMesh/points")
-        qualities, amplification, done = [], 0.0, 0
-        for s in records:
-            points_file = run_dir / s["time"] / "polyMesh/points"
-            if s["openfoam_failed_checks"] or not points_file.exists():
-                break
-            q = quality(verbss, run_dir, points_file, work / "quality")
-            if q is None:
-                break
-            current = peer.read_foam_points(points_file)
-            move = np.linalg.norm(current - previous, axis=1)
-            if move[moving].max() > 0:
-                amplification = max(amplification, move[free].max() / move[moving].max())
-            previous = current
-            qualities.append(q)
-            done += 1
-        later = [s["cpu_s"] for s in records[1:]] or [s["cpu_s"] for s in records]
-        rows.append(row(case, mesh_name, len(previous), f"OpenFOAM displacementLaplacian {label}",
-                        steps, done, qualities + [None] * (steps - done), amplification,
-                        sum(later) / len(later) if later else None))
+        rows.append(foam_row(verbss, case, mesh_name, nodes,
+                             f"OpenFOAM displacementLaplacian {label}", base, run_dir, r.stdout,
+                             body_case["steps"], moved, free, work))
     return rows

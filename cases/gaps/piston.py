@@ -109,7 +109,7 @@ def main():
         name = "blockMesh hexahedra 30x6x6"
         rows += common.verbss_rows(verbss, "piston", name, nodes, copy, STEPS, MOTION + [
             "--every", str(STEPS), "--overwrite"], work)
-        rows += common.openfoam_rows(verbss, "piston", name, base, BODY, WALLS, ["outlet"], work)
+        rows += common.openfoam_rows(verbss, "piston", name, nodes, base, BODY, WALLS, ["outlet"], work)
         common.print_rows(rows)
         # prisms: verbss reads the Gmsh file, OpenFOAM its gmshToFoam conversion
         msh = work / "prisms.msh"
@@ -120,7 +120,7 @@ def main():
                                         STEPS, MOTION, work)
         case = foam_case(work / "prisms")
         common.peer.run(["gmshToFoam", str(msh)], cwd=case, env=common.peer.foam_env(case))
-        prism_rows += common.openfoam_rows(verbss, "piston", name, case, BODY, WALLS, ["outlet"], work)
+        prism_rows += common.openfoam_rows(verbss, "piston", name, nodes, case, BODY, WALLS, ["outlet"], work)
         common.print_rows(prism_rows)
         common.write_json(args.json, rows + prism_rows)
 
