@@ -90,8 +90,10 @@ def main():
 
                 motion = ["--moving", "movingWall", "--slide", slide, "--translate", f"{STROKE},0",
                           "--every", str(10 * steps)]
+                reports = root / f"reports-{slide.count(',')}-{steps}"
+                reports.mkdir(exist_ok=True)
                 rows += common.verbss_rows(verbss, "moving-cone", mesh_name, nodes, copy, steps,
-                                           motion, root)
+                                           motion, reports)
     common.print_rows(rows)
     print("\n| reading | run | steps | 20% | 40% | 60% | 80% | 100% |")
     print("|---|---|---|---|---|---|---|---|")
