@@ -187,12 +187,15 @@ def vec(v):
     return "(" + " ".join(f"{x:.17g}" for x in v) + ")"
 
 
-def foam_dicts(case, variant, patches, tolerance, diffusivity=None, slip=()):
+def foam_dicts(case, variant, patches, tolerance, diffusivity=None, slip=(), constraints=None):
     """The case's dictionaries; `diffusivity` replaces laplacian's
-    `inverseDistance (body)`, and the patches in `slip` slip instead of
-    staying fixed."""
+    `inverseDistance (body)`, the patches in `slip` slip instead of
+    staying fixed, and `constraints` ({patch: type}, e.g. wedge) are
+    constraint patches besides frontAndBack."""
     body, steps = case["body"], case["steps"]
-    others = [p for p in patches if p not in (body, "frontAndBack")]
+    constraints = dict({"frontAndBack": "empty"} if "frontAndBack" in patches else {},
+                       **(constraints or {}))
+    others = [p for p in patches if p != body and p not in constraints]
     motion = motion_velocity(case)
     files = {"system/controlDict": ("dictionary", f"""
 application moveDynamicMesh; startFrom startTime; startTime 0; stopAt endTime;
@@ -207,7 +210,7 @@ interpolationSchemes { default linear; } snGradSchemes { default corrected; }
 solvers {{ "cellDisplacement.*" {{ solver PCG; preconditioner DIC; tolerance {tolerance:g};
     relTol 0; maxIter 5000; }} }}
 """)}
-    empty = "frontAndBack { type empty; }" if "frontAndBack" in patches else ""
+    empty = " ".join(f"{p} {{ type {t}; }}" for p, t in constraints.items())
     fixed = " ".join(f"{p} {{ type slip; }}" if p in slip else
                      f"{p} {{ type fixedValue; value uniform (0 0 0); }}" for p in others)
     if variant == "laplacian":

@@ -184,23 +184,25 @@ def foam_row(verbss, case, mesh_name, nodes, run, base, run_dir, log, steps, mov
 
 
 def openfoam_rows(verbss, case, mesh_name, nodes, base, body_case, slip, fixed, work,
-                  diffusivities=DIFFUSIVITIES, tolerance=1e-20):
+                  diffusivities=DIFFUSIVITIES, tolerance=1e-20, constraints=None):
     """displacementLaplacian (PCG to an absolute `tolerance`, see
     bench/openfoam_peer.py) on copies of the OpenFOAM case folder `base`
     (ASCII polyMesh), once per diffusivity. `body_case` is openfoam_peer's case
     dict (body, steps, translate or rotate); `slip` the patches that slip
-    (pointDisplacement and cellDisplacement `slip`), `fixed` those that stay."""
+    (pointDisplacement and cellDisplacement `slip`), `fixed` those that stay,
+    `constraints` the constraint patches ({patch: type}: wedge, empty)."""
     names = list(patches(base))
     moved, free = held_and_free(base, [body_case["body"]], fixed)
     rows = []
     for label, diffusivity in diffusivities:
-        run_dir = work / f"openfoam-{label.replace(' ', '-')}"
+        run_dir = work / f"openfoam-{label.replace(' ', '-')}-{body_case['steps']}"
         shutil.rmtree(run_dir, ignore_errors=True)
         shutil.copytree(base, run_dir, ignore=shutil.ignore_patterns("[1-9]*", "0.*"))
         for d in ("0", "system", "constant"):
             (run_dir / d).mkdir(exist_ok=True)
         dicts = peer.foam_dicts(body_case, "laplacian", names, tolerance,
-                                diffusivity=diffusivity.format(body=body_case["body"]), slip=slip)
+                                diffusivity=diffusivity.format(body=body_case["body"]), slip=slip,
+                                constraints=constraints)
         for name, (cls, text) in dicts.items():
             (run_dir / name).write_text(peer.FOAM_HEADER % (cls, Path(name).name) + text)
         r = peer.run(["moveDynamicMesh"], cwd=run_dir, env=peer.foam_env(run_dir), check=False)
