@@ -17,6 +17,7 @@ script that is missing or fails is reported, not fatal.
 
     cargo build --release -p verbss-cli
     python3 cases/gaps/run_all.py [--verbss PATH] [--work DIR] [--only NAME,...] [--write-docs]
+    python3 cases/gaps/run_all.py --rows DIR/rows.json    (check and print the rows of an earlier run)
 
 Needs what the scripts need: OpenFOAM v1912 (its bashrc sourced), gmsh, meshio, numpy.
 """
@@ -137,7 +138,7 @@ def write_docs(text):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--verbss", default=str(ROOT / "target/release/verbss"))
-    ap.add_argument("--work", help="keep every script's folder and JSON here")
+    ap.add_argument("--work", help="keep every script's folder and JSON (and rows.json) here")
     ap.add_argument("--only", help="these scripts only, comma separated (names without .py)")
     ap.add_argument("--rows", help="check and print the rows of this JSON instead of running")
     ap.add_argument("--write-docs", action="store_true")
