@@ -187,9 +187,15 @@ def vec(v):
     return "(" + " ".join(f"{x:.17g}" for x in v) + ")"
 
 
-def foam_dicts(case, variant, patches, tolerance):
+def foam_dicts(case, variant, patches, tolerance, diffusivity=None, slip=(), constraints=None):
+    """The case's dictionaries; `diffusivity` replaces laplacian's
+    `inverseDistance (body)`, the patches in `slip` slip instead of
+    staying fixed, and `constraints` ({patch: type}, e.g. wedge) are
+    constraint patches besides frontAndBack."""
     body, steps = case["body"], case["steps"]
-    others = [p for p in patches if p not in (body, "frontAndBack")]
+    constraints = dict({"frontAndBack": "empty"} if "frontAndBack" in patches else {},
+                       **(constraints or {}))
+    others = [p for p in patches if p != body and p not in constraints]
     motion = motion_velocity(case)
     files = {"system/controlDict": ("dictionary", f"""
 application moveDynamicMesh; startFrom startTime; startTime 0; stopAt endTime;
@@ -204,8 +210,9 @@ interpolationSchemes { default linear; } snGradSchemes { default corrected; }
 solvers {{ "cellDisplacement.*" {{ solver PCG; preconditioner DIC; tolerance {tolerance:g};
     relTol 0; maxIter 5000; }} }}
 """)}
-    empty = "frontAndBack { type empty; }" if "frontAndBack" in patches else ""
-    fixed = " ".join(f"{p} {{ type fixedValue; value uniform (0 0 0); }}" for p in others)
+    empty = " ".join(f"{p} {{ type {t}; }}" for p, t in constraints.items())
+    fixed = " ".join(f"{p} {{ type slip; }}" if p in slip else
+                     f"{p} {{ type fixedValue; value uniform (0 0 0); }}" for p in others)
     if variant == "laplacian":
         if motion[0] == "linear":
             fn = f"linearMotion; linearMotionCoeffs {{ velocity {vec(motion[1])}; }}"
@@ -215,14 +222,15 @@ solvers {{ "cellDisplacement.*" {{ solver PCG; preconditioner DIC; tolerance {to
         files["constant/dynamicMeshDict"] = ("dictionary", f"""
 dynamicFvMesh dynamicMotionSolverFvMesh; motionSolverLibs (fvMotionSolvers);
 motionSolver displacementLaplacian;
-displacementLaplacianCoeffs {{ diffusivity inverseDistance ({body}); }}
+displacementLaplacianCoeffs {{ diffusivity {diffusivity or f"inverseDistance ({body})"}; }}
 """)
         files["0/pointDisplacement"] = ("pointVectorField", f"""
 dimensions [0 1 0 0 0 0 0]; internalField uniform (0 0 0);
 boundaryField {{ {body} {{ type solidBodyMotionDisplacement; solidBodyMotionFunction {fn}
 value uniform (0 0 0); }} {fixed} {empty} }}
 """)
-        cell = " ".join(f"{p} {{ type cellMotion; value uniform (0 0 0); }}" for p in [body] + others)
+        cell = " ".join(f"{p} {{ type slip; }}" if p in slip else
+                        f"{p} {{ type cellMotion; value uniform (0 0 0); }}" for p in [body] + others)
         files["0/cellDisplacement"] = ("volVectorField", f"""
 dimensions [0 1 0 0 0 0 0]; internalField uniform (0 0 0);
 boundaryField {{ {cell} {empty} }}
@@ -283,18 +291,7 @@ def run_foam(case, variant, work, verbss, tolerance):
     r = run(["moveDynamicMesh"], cwd=work, env=foam_env(work), check=False)
     wall, cpu_all = time.monotonic() - t0, child_cpu() - c0
     (work / "log.moveDynamicMesh").write_text(r.stdout + r.stderr)
-    steps, last = [], 0.0
-    for block in re.split(r"^Time = ", r.stdout, flags=re.M)[1:]:
-        m = re.search(r"^ExecutionTime = ([\d.e+-]+) s", block, re.M)
-        if not m:
-            break
-        t = float(block.split()[0])
-        bad = [c for c in ("Zero or negative cell volume", "Error in face pyramids")
-               if c in block]
-        iters = sum(int(i) for i in re.findall(r"No Iterations (\d+)", block))
-        steps.append({"step": int(round(t)), "cpu_s": float(m.group(1)) - last,
-                      "solver_iterations": iters, "openfoam_failed_checks": bad})
-        last = float(m.group(1))
+    steps = foam_steps(r.stdout)
     # the written points on the original cells: sign flips against step 0,
     # and verbss quality (which measures each cell against its own orientation,
     # so only for steps without a flip)
@@ -324,6 +321,25 @@ def run_foam(case, variant, work, verbss, tolerance):
             "cpu_s_per_step": sum(later) / len(later) if later else None,
             "wall_s": wall, "process_cpu_s_per_step": cpu_all / max(len(steps), 1),
             "per_step": steps}
+
+
+def foam_steps(log, unit=1.0):
+    """Per step of a moveDynamicMesh log (time / `unit` = the step): CPU
+    seconds, solver iterations and the failed mesh checks."""
+    steps, last = [], 0.0
+    for block in re.split(r"^Time = ", log, flags=re.M)[1:]:
+        m = re.search(r"^ExecutionTime = ([\d.e+-]+) s", block, re.M)
+        if not m:
+            break
+        t = float(block.split()[0])
+        bad = [c for c in ("Zero or negative cell volume", "Error in face pyramids")
+               if c in block]
+        iters = sum(int(i) for i in re.findall(r"No Iterations (\d+)", block))
+        steps.append({"step": int(round(t / unit)), "time": block.split()[0],
+                      "cpu_s": float(m.group(1)) - last,
+                      "solver_iterations": iters, "openfoam_failed_checks": bad})
+        last = float(m.group(1))
+    return steps
 
 
 def child_cpu():

@@ -4,10 +4,10 @@ per method the steps reached, the minimum quality, the largest per-step
 amplification (report.json), the amplification of the whole motion (the
 largest move of a node off the wall over the largest of a wall node), how
 far the wake nodes 6.5-7 chords behind the trailing edge moved and the
-seconds per step.
+seconds per step, and the rows of cases/gaps/gaps_common.py (--json).
 
     cargo build --release -p verbss-cli
-    python3 cases/gaps/droop.py [--verbss target/release/verbss] [--size H] [--steps N]
+    python3 cases/gaps/droop.py [--json OUT] [--verbss PATH] [--work DIR] [--size H] [--steps N]
 
 The mesh (Gmsh): chord 1 from (0, 0), blunt trailing edge 0.3% chord thick, a
 quadrilateral boundary layer (first cell 1e-4 chord, growth 1.2, 0.04 chord
@@ -31,7 +31,6 @@ import contextlib
 import io
 import json
 import math
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
@@ -42,6 +41,8 @@ import meshio
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "meshes"))
 import meshing  # noqa: E402
 import rans_blunt  # noqa: E402
+
+import gaps_common as common  # noqa: E402
 
 HINGE = 0.6
 DROOP = 0.15
@@ -144,23 +145,6 @@ def airfoil_nodes(mesh):
     return sorted(nodes)
 
 
-def run(verbss, root, mesh_path, positions_path, steps, name, extra):
-    moved = root / f"{name}.msh"
-    report = root / f"{name}.json"
-    done = subprocess.run(
-        [verbss, "deform", str(mesh_path), "-o", str(moved), "--moving", "airfoil",
-         "--positions", str(positions_path), "--steps", str(steps), "--report", str(report),
-         "--quiet", *extra], capture_output=True, text=True)
-    records = json.loads(report.read_text())["steps"] if report.exists() else []
-    records = [r for r in records if r["step"] > 0]
-    reached = max((r["step"] for r in records if r["inverted"] == 0), default=0)
-    status = f"{reached}/{steps}" + ("" if done.returncode == 0 else " (stopped)")
-    quality = min((r["min_quality"] for r in records if r["inverted"] == 0), default=float("nan"))
-    step_amplification = max((r["amplification"] for r in records), default=float("nan"))
-    seconds = sum(r["seconds"] for r in records) / max(len(records), 1)
-    return status, quality, step_amplification, seconds, moved if done.returncode == 0 else None
-
-
 def moves(before, after_path, wall):
     """The whole motion's amplification (largest move of a node off the wall
     over the largest of a wall node) and the largest move of a node with x
@@ -176,15 +160,13 @@ def moves(before, after_path, wall):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--verbss", default="target/release/verbss")
+    parser = common.options(__doc__)
     parser.add_argument("--size", type=float, default=0.01)
     parser.add_argument("--steps", type=int, default=10)
-    parser.add_argument("--keep", help="a folder to keep the mesh, positions and results in")
     args = parser.parse_args()
     verbss = str(Path(args.verbss).resolve())
     with tempfile.TemporaryDirectory() as tmp:
-        root = Path(args.keep or tmp)
+        root = Path(args.work or tmp).resolve()
         root.mkdir(parents=True, exist_ok=True)
         mesh_path = root / "naca4412-droop.msh"
         build_mesh(args.size, mesh_path)
@@ -194,19 +176,22 @@ def main():
         radius = positions(mesh, positions_path)
         print(f"{len(mesh.points)} nodes, bending radius {radius:.4f}, "
               f"largest wall displacement {DROOP}, {args.steps} steps\n")
-        print("| method | steps | min quality | largest step amplification "
+        motion = ["--moving", "airfoil", "--positions", str(positions_path)]
+        rows = common.verbss_rows(verbss, "droop", f"Gmsh NACA4412, H = {args.size:g}",
+                                  len(mesh.points), lambda slug: (mesh_path, root / f"{slug}.msh"),
+                                  args.steps, motion, root)
+        common.print_rows(rows)
+        print("\n| run | steps | min quality | largest step amplification "
               "| whole-motion amplification | far-wake move (x 7.5-8) | s/step |")
         print("|---|---|---|---|---|---|---|")
-        for name, extra in [("default", []), ("default, --blend off", ["--blend", "off"]),
-                            ("--method verbss", ["--method", "verbss"]),
-                            ("--method laplacian", ["--method", "laplacian"])]:
-            slug = name.replace(" ", "").replace(",", "-").replace("-", "")
-            status, quality, amp, seconds, moved = run(verbss, root, mesh_path, positions_path,
-                                              args.steps, slug, extra)
-            whole, far = moves(mesh.points, moved, wall) if moved else (float("nan"),) * 2
-            print(f"| {name} | {status} | {quality:.4f} | {amp:.3f} | {whole:.3f} | {far:.4f} "
-                  f"| {seconds:.3f} |")
-            sys.stdout.flush()
+        for r in rows:
+            moved = root / f"{r['run'].replace(' ', '').replace('-', '')}.msh"
+            complete = r["steps_done"] == r["steps"] and moved.exists()
+            whole, far = moves(mesh.points, moved, wall) if complete else (None, None)
+            print(f"| {r['run']} | {r['steps_done']}/{r['steps']} | {common.fmt(r['min_quality'], '.4f')} "
+                  f"| {common.fmt(r['amplification'], '.3f')} | {common.fmt(whole, '.3f')} "
+                  f"| {common.fmt(far, '.4f')} | {common.fmt(r['s_per_step'], '.3f')} |")
+        common.write_json(args.json, rows)
 
 
 if __name__ == "__main__":
